@@ -1,0 +1,27 @@
+//! `grassbench list`: techniques, their parameters, and scenes.
+
+use std::io::Write as _;
+
+use crate::{registry, scenes};
+
+/// Prints the registry and the built-in scenes to stdout.
+pub fn list() -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "techniques:")?;
+    for e in registry::TECHNIQUES {
+        writeln!(
+            out,
+            "  {:<12} {} — {}",
+            e.info.id, e.info.name, e.info.paper
+        )?;
+        for (k, v) in (e.default_params)() {
+            writeln!(out, "      {k} = {v}")?;
+        }
+    }
+    writeln!(out, "scenes:")?;
+    for name in scenes::names() {
+        let scene = scenes::load(name)?;
+        writeln!(out, "  {:<16} {}", name, scene.config.description)?;
+    }
+    Ok(())
+}

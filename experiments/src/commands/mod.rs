@@ -1,0 +1,42 @@
+//! The subcommands of `grassbench`.
+
+mod list;
+mod render;
+mod run;
+
+pub use list::list;
+pub use render::{RenderArgs, render};
+pub use run::{RunArgs, run};
+
+use anyhow::Context as _;
+use grassbench::GpuContext;
+use grassbench::gpu::BackendChoice;
+
+/// Options every GPU command shares.
+#[derive(Clone, Debug, clap::Args)]
+pub struct GpuArgs {
+    /// Graphics backend: auto, vulkan, gl, metal, dx12 (default: $GRASSBENCH_BACKEND or auto).
+    #[arg(long, global = true)]
+    pub backend: Option<String>,
+}
+
+impl GpuArgs {
+    /// Creates the GPU context the arguments ask for.
+    pub fn context(&self) -> anyhow::Result<GpuContext> {
+        let choice = match &self.backend {
+            Some(b) => b.parse::<BackendChoice>()?,
+            None => BackendChoice::from_env()?,
+        };
+        GpuContext::new(choice).context("cannot start the GPU")
+    }
+}
+
+/// Parses repeated `--param key=value` into a table.
+pub fn param_table(assignments: &[String]) -> anyhow::Result<toml::Table> {
+    let mut table = toml::Table::new();
+    for a in assignments {
+        let (k, v) = grassbench::params::parse_assignment(a)?;
+        table.insert(k, v);
+    }
+    Ok(table)
+}

@@ -1,0 +1,307 @@
+//! `grassbench run`: techniques x scenes x N frames, measured, with images and CSV.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use grassbench::metrics::grass_coverage;
+use grassbench::runner::{
+    self, FrameRecord, Harness, Provenance, RunOptions, RunSummary, write_atomic, write_csv,
+};
+use grassbench::target::{Size, save_png};
+use grassbench::technique::NoGrass;
+
+use super::{GpuArgs, param_table};
+use crate::{registry, scenes};
+
+/// Arguments of `run`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct RunArgs {
+    /// Technique ids, comma-separated, or `all`.
+    #[arg(long, short, default_value = "all")]
+    pub technique: String,
+    /// Scene names or paths, comma-separated, or `default` for the default comparison.
+    #[arg(long, short, default_value = "default")]
+    pub scene: String,
+    /// Measured frames.
+    #[arg(long, default_value_t = 30)]
+    pub frames: u64,
+    /// Warm-up frames before measuring.
+    #[arg(long, default_value_t = 3)]
+    pub warmup: u64,
+    /// Frames to save as PNG, comma-separated (default: the first and last measured).
+    #[arg(long, value_delimiter = ',')]
+    pub capture: Vec<u64>,
+    /// Output folder.
+    #[arg(long, short)]
+    pub out: PathBuf,
+    /// Target size WxH (default: each scene's).
+    #[arg(long)]
+    pub size: Option<String>,
+    /// 4x MSAA.
+    #[arg(long)]
+    pub msaa: bool,
+    /// Technique parameter override KEY=VALUE, applied to every technique run (repeatable).
+    #[arg(long = "param", short = 'p')]
+    pub params: Vec<String>,
+    /// Replace an existing non-empty output folder.
+    #[arg(long)]
+    pub force: bool,
+    /// GPU options.
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+/// A row of `images.csv`.
+#[derive(serde::Serialize)]
+struct ImageRow {
+    technique: String,
+    scene: String,
+    frame: u64,
+    png: String,
+    /// Fraction of pixels where grass changed the background-only image.
+    coverage: f64,
+}
+
+/// A row of `params.csv` (long format).
+#[derive(serde::Serialize)]
+struct ParamRow {
+    technique: String,
+    scene: String,
+    key: String,
+    value: String,
+}
+
+/// Runs every selected technique on every selected scene.
+pub fn run(args: &RunArgs) -> anyhow::Result<()> {
+    let entries = registry::select(&args.technique)?;
+    let scene_names: Vec<String> = if args.scene.trim() == "default" {
+        scenes::DEFAULT_SCENES
+            .iter()
+            .map(|s| (*s).to_owned())
+            .collect()
+    } else {
+        args.scene.split(',').map(|s| s.trim().to_owned()).collect()
+    };
+    // Load (and so validate) everything before touching the GPU or the output folder.
+    let scenes = scene_names
+        .iter()
+        .map(|n| scenes::load(n))
+        .collect::<Result<Vec<_>, _>>()?;
+    let overrides = param_table(&args.params)?;
+    let size = args.size.as_deref().map(Size::parse).transpose()?;
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    prepare_out_dir(&args.out, args.force)?;
+    let gpu = args.gpu.context()?;
+    let provenance = Provenance::collect(&gpu.summary);
+    write_atomic(&args.out.join("meta.toml"), |f| {
+        std::io::Write::write_all(f, provenance.to_toml().as_bytes())
+    })?;
+
+    let capture = if args.capture.is_empty() {
+        vec![args.warmup, args.warmup + args.frames - 1]
+    } else {
+        args.capture.clone()
+    };
+    let options = RunOptions {
+        warmup: args.warmup,
+        frames: args.frames,
+        capture: capture.clone(),
+    };
+    let mut failures = Vec::new();
+    let mut all_runs: Vec<RunSummary> = Vec::new();
+    for scene in scenes {
+        let name = scene.name().to_owned();
+        let dir = args.out.join(&name);
+        let size = size.unwrap_or(scene.resolution());
+        let mut harness = Harness::new(&gpu, scene, size, args.msaa)
+            .with_context(|| format!("setting up scene `{name}`"))?;
+        // Background-only frames: the baseline grass coverage is measured against.
+        let mut backgrounds = Vec::new();
+        for &f in &capture {
+            let out = harness.frame(&mut NoGrass, f, true)?;
+            if let Some(img) = out.image {
+                save_png(&img, &dir.join(format!("none_frame{f:04}.png")))?;
+                backgrounds.push((f, img));
+            }
+        }
+        let (mut frames, mut runs, mut images, mut params) = (
+            Vec::<FrameRecord>::new(),
+            Vec::new(),
+            Vec::new(),
+            Vec::new(),
+        );
+        for entry in &entries {
+            let id = entry.info.id;
+            let bar = progress_bar(options.warmup + options.frames, &format!("{name} / {id}"));
+            let result = harness.create(entry, &overrides).and_then(|mut t| {
+                runner::run(&mut harness, t.as_mut(), &options, &mut |done, _| {
+                    bar.set_position(done)
+                })
+            });
+            bar.finish_and_clear();
+            let result = match result {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: `{id}` on `{name}`: {e}");
+                    failures.push(format!("{id} on {name}: {e}"));
+                    continue;
+                }
+            };
+            for (f, img) in &result.images {
+                let png = format!("{id}_frame{f:04}.png");
+                save_png(img, &dir.join(&png))?;
+                let coverage = backgrounds
+                    .iter()
+                    .find(|(b, _)| b == f)
+                    .map(|(_, bg)| grass_coverage(img, bg, 6))
+                    .transpose()?
+                    .unwrap_or(f64::NAN);
+                images.push(ImageRow {
+                    technique: id.into(),
+                    scene: name.clone(),
+                    frame: *f,
+                    png,
+                    coverage,
+                });
+            }
+            let s = &result.summary;
+            eprintln!(
+                "{name:>16} {id:<12} {:>8.1} ms/frame GPU wall (p5 {:.1}, p95 {:.1}), {} blades, {} triangles",
+                s.gpu_wall_ms_median, s.gpu_wall_ms_p5, s.gpu_wall_ms_p95, s.blades, s.triangles
+            );
+            for (key, value) in result
+                .summary
+                .params
+                .split(';')
+                .filter_map(|kv| kv.split_once('='))
+            {
+                params.push(ParamRow {
+                    technique: id.into(),
+                    scene: name.clone(),
+                    key: key.into(),
+                    value: value.into(),
+                });
+            }
+            frames.extend(result.frames);
+            runs.push(result.summary);
+            // Write after every technique, so a later failure loses nothing already measured.
+            write_csv(&dir.join("frames.csv"), &frames)?;
+            write_csv(&dir.join("runs.csv"), &runs)?;
+            write_csv(&dir.join("images.csv"), &images)?;
+            write_csv(&dir.join("params.csv"), &params)?;
+        }
+        all_runs.extend(runs);
+        write_csv(&args.out.join("runs.csv"), &all_runs)?;
+    }
+    write_atomic(&args.out.join("README.md"), |f| {
+        std::io::Write::write_all(f, report(&all_runs, &provenance, &capture).as_bytes())
+    })?;
+    if !failures.is_empty() {
+        bail!(
+            "{} run(s) failed:\n  {}",
+            failures.len(),
+            failures.join("\n  ")
+        );
+    }
+    Ok(())
+}
+
+/// Refuses to mix new results into an old folder unless `force`.
+fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
+    let non_empty = std::fs::read_dir(dir)
+        .map(|mut d| d.next().is_some())
+        .unwrap_or(false);
+    if non_empty {
+        if !force {
+            bail!(
+                "output folder `{}` is not empty; choose another --out or pass --force to replace it",
+                dir.display()
+            );
+        }
+        std::fs::remove_dir_all(dir)
+            .with_context(|| format!("cannot clear `{}`", dir.display()))?;
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create `{}`", dir.display()))
+}
+
+fn progress_bar(total: u64, label: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(total);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{prefix:>28} [{bar:30}] {pos}/{len} frames, ETA {eta}",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_prefix(label.to_owned());
+    bar
+}
+
+/// The results folder's README: provenance, the table, the images.
+fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# grassbench results\n");
+    let _ = writeln!(s, "Made by `{}`  ", p.command);
+    let _ = writeln!(
+        s,
+        "at revision `{}` ({} build), {}  ",
+        p.revision, p.build_profile, p.date
+    );
+    let _ = writeln!(
+        s,
+        "on `{}` ({}, {}, driver {} {}), CPU {} x{}.\n",
+        p.adapter.name,
+        p.adapter.backend,
+        p.adapter.device_type,
+        p.adapter.driver,
+        p.adapter.driver_info,
+        p.cpu,
+        p.cpu_count
+    );
+    let _ = writeln!(
+        s,
+        "GPU times are wall time from submit to the end of `poll(wait)` (the ground truth on software \
+         rasterisers); timestamp-query figures are in `runs.csv` beside them. Frame = CPU stages + GPU wall.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades | triangles | GPU MB |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for r in runs {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {}x{}{} | {:.1} ({:.1}–{:.1}) | {:.1} | {} | {} | {:.1} |",
+            r.scene,
+            r.technique,
+            r.width,
+            r.height,
+            if r.msaa { " 4xMSAA" } else { "" },
+            r.gpu_wall_ms_median,
+            r.gpu_wall_ms_p5,
+            r.gpu_wall_ms_p95,
+            r.frame_ms_median,
+            r.blades,
+            r.triangles,
+            r.gpu_bytes as f64 / 1e6
+        );
+    }
+    let _ = writeln!(s, "\n## Images\n");
+    let mut scenes: Vec<&str> = runs.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    for scene in scenes {
+        let _ = writeln!(s, "### {scene}\n");
+        for r in runs.iter().filter(|r| r.scene == scene) {
+            for f in capture {
+                let _ = writeln!(
+                    s,
+                    "![{} frame {f}]({scene}/{}_frame{f:04}.png)",
+                    r.technique, r.technique
+                );
+            }
+        }
+        let _ = writeln!(s);
+    }
+    s
+}

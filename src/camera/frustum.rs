@@ -1,0 +1,110 @@
+//! View-frustum planes and the box and sphere tests culling uses (Zhang Sec. 5.3,
+//! Boulanger Sec. 4.1).
+
+use glam::{Mat4, Vec3, Vec4};
+
+/// An axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+/// Six planes `(n, d)` with `n·p + d >= 0` inside: left, right, bottom, top, near, far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frustum {
+    /// Normalised planes.
+    pub planes: [Vec4; 6],
+}
+
+impl Frustum {
+    /// Extracts the planes of a world-to-clip matrix (Gribb & Hartmann), for wgpu's 0..1 depth.
+    pub fn from_matrix(m: Mat4) -> Self {
+        let (r0, r1, r2, r3) = (m.row(0), m.row(1), m.row(2), m.row(3));
+        let planes = [r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2].map(|p| {
+            let len = p.truncate().length();
+            if len > 0.0 { p / len } else { p }
+        });
+        Self { planes }
+    }
+
+    /// Whether a point is inside all six planes.
+    pub fn contains_point(&self, p: Vec3) -> bool {
+        self.planes
+            .iter()
+            .all(|pl| pl.truncate().dot(p) + pl.w >= 0.0)
+    }
+
+    /// Whether a sphere touches the frustum (conservative).
+    pub fn intersects_sphere(&self, center: Vec3, radius: f32) -> bool {
+        self.planes
+            .iter()
+            .all(|pl| pl.truncate().dot(center) + pl.w >= -radius)
+    }
+
+    /// Whether a box touches the frustum (conservative: the positive vertex test).
+    pub fn intersects_aabb(&self, b: &Aabb) -> bool {
+        self.planes.iter().all(|pl| {
+            let n = pl.truncate();
+            let p = Vec3::select(n.cmpge(Vec3::ZERO), b.max, b.min);
+            n.dot(p) + pl.w >= 0.0
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Camera;
+
+    fn camera() -> Camera {
+        Camera::look_at(
+            Vec3::ZERO,
+            Vec3::NEG_Z,
+            60f32.to_radians(),
+            0.1,
+            100.0,
+            16.0 / 9.0,
+        )
+    }
+
+    #[test]
+    fn points_in_front_are_inside_behind_are_not() {
+        let f = camera().frustum();
+        assert!(f.contains_point(Vec3::new(0.0, 0.0, -10.0)));
+        assert!(!f.contains_point(Vec3::new(0.0, 0.0, 10.0)));
+        assert!(!f.contains_point(Vec3::new(0.0, 0.0, -200.0)));
+        assert!(!f.contains_point(Vec3::new(0.0, 0.0, -0.05)));
+        assert!(!f.contains_point(Vec3::new(100.0, 0.0, -10.0)));
+        assert!(!f.contains_point(Vec3::new(0.0, 50.0, -10.0)));
+    }
+
+    #[test]
+    fn boxes_and_spheres() {
+        let f = camera().frustum();
+        let inside = Aabb {
+            min: Vec3::new(-1.0, -1.0, -11.0),
+            max: Vec3::new(1.0, 1.0, -9.0),
+        };
+        let behind = Aabb {
+            min: Vec3::new(-1.0, -1.0, 5.0),
+            max: Vec3::new(1.0, 1.0, 7.0),
+        };
+        let straddling = Aabb {
+            min: Vec3::new(-100.0, -1.0, -11.0),
+            max: Vec3::new(-5.0, 1.0, -9.0),
+        };
+        let left_out = Aabb {
+            min: Vec3::new(-100.0, -1.0, -11.0),
+            max: Vec3::new(-50.0, 1.0, -9.0),
+        };
+        assert!(f.intersects_aabb(&inside));
+        assert!(!f.intersects_aabb(&behind));
+        assert!(f.intersects_aabb(&straddling));
+        assert!(!f.intersects_aabb(&left_out));
+        assert!(f.intersects_sphere(Vec3::new(0.0, 0.0, 1.0), 2.0));
+        assert!(!f.intersects_sphere(Vec3::new(0.0, 0.0, 5.0), 2.0));
+    }
+}

@@ -1,0 +1,180 @@
+//! The device every part of grassbench shares.
+
+use super::{BackendChoice, ErrorSink, scope::convert};
+use crate::{Error, Result};
+
+/// What was measured on: recorded in every `meta.toml` next to the figures.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize, PartialEq)]
+pub struct AdapterSummary {
+    /// Adapter name, e.g. `llvmpipe (LLVM 15.0.6, 256 bits)`.
+    pub name: String,
+    /// Driver name, e.g. `llvmpipe`.
+    pub driver: String,
+    /// Driver version string.
+    pub driver_info: String,
+    /// Backend, e.g. `Vulkan`.
+    pub backend: String,
+    /// Device type: `Cpu` for software rasterisers.
+    pub device_type: String,
+    /// Whether render passes can be timed with timestamp queries.
+    pub timestamps: bool,
+    /// Nanoseconds per timestamp tick.
+    pub timestamp_period_ns: f32,
+}
+
+/// Instance, adapter, device and queue, plus the error sink. Created once and borrowed by
+/// everything else: techniques never own a device.
+pub struct GpuContext {
+    /// The wgpu instance the adapter came from.
+    pub instance: wgpu::Instance,
+    /// The chosen adapter.
+    pub adapter: wgpu::Adapter,
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// Adapter facts for result files.
+    pub summary: AdapterSummary,
+    sink: ErrorSink,
+}
+
+/// Features grassbench uses when the adapter has them; none is required.
+const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY;
+
+impl GpuContext {
+    /// Creates a headless context on the requested backend.
+    ///
+    /// Adapters are ranked discrete > integrated > virtual > software; with
+    /// [`BackendChoice::Auto`] Vulkan, Metal and DX12 come before GL at equal rank.
+    pub fn new(choice: BackendChoice) -> Result<Self> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = choice.backends();
+        let instance = wgpu::Instance::new(desc);
+        let adapters = pollster::block_on(instance.enumerate_adapters(choice.backends()));
+        let seen = if adapters.is_empty() {
+            "none".to_owned()
+        } else {
+            adapters
+                .iter()
+                .map(|a| {
+                    let i = a.get_info();
+                    format!("{} ({:?})", i.name, i.backend)
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let adapter = adapters
+            .into_iter()
+            .min_by_key(rank)
+            .ok_or_else(|| Error::NoAdapter {
+                backend: choice.to_string(),
+                seen,
+            })?;
+        Self::from_adapter(instance, adapter)
+    }
+
+    /// Creates the device on a given adapter (used by the UI, which chooses its own adapter).
+    pub fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Self> {
+        let info = adapter.get_info();
+        let features = adapter.features() & OPTIONAL_FEATURES;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("grassbench"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| Error::RequestDevice {
+            adapter: info.name.clone(),
+            reason: e.to_string(),
+        })?;
+        Ok(Self::from_device(instance, adapter, device, queue))
+    }
+
+    /// Wraps a device somebody else created (eframe's, in the UI).
+    pub fn from_device(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> Self {
+        let info = adapter.get_info();
+        let sink = ErrorSink::default();
+        sink.install(&device);
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let summary = AdapterSummary {
+            name: info.name,
+            driver: info.driver,
+            driver_info: info.driver_info,
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            timestamps,
+            timestamp_period_ns: queue.get_timestamp_period(),
+        };
+        Self {
+            instance,
+            adapter,
+            device,
+            queue,
+            summary,
+            sink,
+        }
+    }
+
+    /// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first
+    /// error any of them (or the uncaptured-error sink) caught, described as `during`.
+    pub fn scoped<T>(&self, during: &str, f: impl FnOnce() -> T) -> Result<T> {
+        let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let out = f();
+        let v = pollster::block_on(validation.pop());
+        let o = pollster::block_on(oom.pop());
+        let i = pollster::block_on(internal.pop());
+        if let Some(e) = v.or(o).or(i) {
+            return Err(convert(e, during));
+        }
+        self.check(during)?;
+        Ok(out)
+    }
+
+    /// Returns an error that reached no scope (or a lost device) since the last check.
+    pub fn check(&self, during: &str) -> Result<()> {
+        match self.sink.take(during) {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    /// Blocks until the GPU has finished all submitted work.
+    pub fn wait_idle(&self, during: &str) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| Error::DeviceLost {
+                during: during.to_owned(),
+                message: e.to_string(),
+            })?;
+        self.check(during)
+    }
+
+    /// Whether render passes can carry timestamp queries.
+    pub fn has_timestamps(&self) -> bool {
+        self.summary.timestamps
+    }
+}
+
+/// Ranking key: lower is better.
+fn rank(adapter: &wgpu::Adapter) -> (u8, u8) {
+    let info = adapter.get_info();
+    let kind = match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Cpu => 3,
+        wgpu::DeviceType::Other => 4,
+    };
+    let api = match info.backend {
+        wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => 0,
+        _ => 1,
+    };
+    (kind, api)
+}

@@ -1,0 +1,10 @@
+//! Headless GPU access: choosing a backend and adapter, creating the device, and catching
+//! wgpu errors so that a validation error fails a run instead of scrolling past in a log.
+
+mod backend;
+mod context;
+mod scope;
+
+pub use backend::BackendChoice;
+pub use context::{AdapterSummary, GpuContext};
+pub use scope::ErrorSink;

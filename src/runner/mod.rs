@@ -1,0 +1,299 @@
+//! Running techniques on a scene: one [`Harness`] per (scene, size, MSAA) holds the shared GPU
+//! state; [`run`] measures one technique for W warm-up and N measured frames, timing every
+//! stage on its own.
+//!
+//! Clocks, and which figure comes from which (see `shared/PLATFORM.md`):
+//! - CPU stages (`wind_ms`, `update_ms`, `upload_ms`, `encode_ms`) are wall time on the CPU;
+//! - `gpu_wall_ms` is wall time from `queue.submit` to the end of `poll(wait)`: the ground
+//!   truth on software rasterisers, and an upper bound elsewhere;
+//! - `gpu_ts_*_ms` come from timestamp queries around each pass, where the adapter has them;
+//!   render and compute passes are kept apart because lavapipe's compute timestamps are wrong.
+
+mod output;
+mod provenance;
+mod record;
+mod stats;
+
+use std::time::Instant;
+
+pub use output::{write_atomic, write_csv};
+pub use provenance::Provenance;
+pub use record::{FrameRecord, RunSummary};
+pub use stats::Percentiles;
+
+use crate::scene::SceneGpu;
+use crate::target::Size;
+use crate::technique::{
+    FrameEncoder, GrassTechnique, InitContext, PassKind, PassTimer, TechniqueEntry,
+};
+use crate::wind::WindField;
+use crate::{Error, FrameInputs, GpuContext, RenderTarget, Result, Scene};
+
+/// Shared state for rendering one scene at one size: the scene's GPU resources, the target,
+/// the wind (advanced frame by frame) and the pass timer.
+pub struct Harness<'g> {
+    /// Device and queue.
+    pub gpu: &'g GpuContext,
+    /// The scene.
+    pub scene: Scene,
+    /// Bind group 0, terrain, wind texture, background.
+    pub scene_gpu: SceneGpu,
+    /// Where frames are drawn.
+    pub target: RenderTarget,
+    /// Debug view passed to techniques (0 = none).
+    pub debug_view: u32,
+    wind: Box<dyn WindField>,
+    wind_frame: Option<u64>,
+    timer: Option<PassTimer>,
+}
+
+/// What one frame produced.
+pub struct FrameOutput {
+    /// Timings and counts.
+    pub record: FrameRecord,
+    /// The image, when asked for.
+    pub image: Option<image::RgbaImage>,
+}
+
+impl<'g> Harness<'g> {
+    /// Sets up a scene for targets of `size`, with 4x MSAA when `msaa`.
+    pub fn new(gpu: &'g GpuContext, scene: Scene, size: Size, msaa: bool) -> Result<Self> {
+        let target = RenderTarget::new(gpu, size, msaa)?;
+        let scene_gpu = SceneGpu::new(gpu, &scene, target.sample_count)?;
+        let wind = scene.wind()?;
+        Ok(Self {
+            gpu,
+            scene_gpu,
+            target,
+            wind,
+            wind_frame: None,
+            timer: PassTimer::new(gpu),
+            scene,
+            debug_view: 0,
+        })
+    }
+
+    /// Creates a technique: its defaults, overlaid with the scene file's `[techniques.<id>]`,
+    /// overlaid with `overrides`.
+    pub fn create(
+        &self,
+        entry: &TechniqueEntry,
+        overrides: &toml::Table,
+    ) -> Result<Box<dyn GrassTechnique>> {
+        let mut params = self.scene.technique_overrides(entry.info.id);
+        params.extend(overrides.iter().map(|(k, v)| (k.clone(), v.clone())));
+        let ctx = InitContext {
+            gpu: self.gpu,
+            scene: &self.scene,
+            scene_gpu: &self.scene_gpu,
+            size: self.target.size,
+            sample_count: self.target.sample_count,
+        };
+        let during = format!("creating technique `{}`", entry.info.id);
+        self.gpu.scoped(&during, || (entry.create)(&ctx, &params))?
+    }
+
+    /// Advances the wind to `frame` (stateful fields are rebuilt and replayed when going back).
+    fn advance_wind(&mut self, frame: u64) -> Result<()> {
+        if self.wind.is_stateless() {
+            self.wind_frame = Some(frame);
+            return Ok(());
+        }
+        if self.wind_frame.is_some_and(|f| f > frame) {
+            self.wind = self.scene.wind()?;
+            self.wind_frame = None;
+        }
+        let start = self.wind_frame.map_or(0, |f| f + 1);
+        for f in start..=frame {
+            self.wind.advance(self.scene.time_of(f), self.scene.dt());
+        }
+        self.wind_frame = Some(frame);
+        Ok(())
+    }
+
+    fn inputs(&self, frame: u64) -> FrameInputs<'_> {
+        FrameInputs {
+            frame,
+            time: self.scene.time_of(frame),
+            dt: self.scene.dt(),
+            camera: self.scene.camera_at(frame, self.target.size),
+            scene: &self.scene,
+            wind: self.wind.as_ref(),
+            size: self.target.size,
+            debug_view: self.debug_view,
+        }
+    }
+
+    /// Runs `technique.update` for frames `from..to` without drawing them (techniques with GPU
+    /// state also draw them), so a later frame sees the same history as in a full run.
+    pub fn catch_up(
+        &mut self,
+        technique: &mut dyn GrassTechnique,
+        from: u64,
+        to: u64,
+    ) -> Result<()> {
+        for frame in from..to {
+            if technique.info().gpu_state {
+                self.frame(technique, frame, false)?;
+            } else {
+                self.advance_wind(frame)?;
+                let inputs = self.inputs(frame);
+                technique.update(&inputs)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Renders one frame of `technique` and measures it; returns the image if `capture`.
+    pub fn frame(
+        &mut self,
+        technique: &mut dyn GrassTechnique,
+        frame: u64,
+        capture: bool,
+    ) -> Result<FrameOutput> {
+        let info = technique.info();
+        let during = format!(
+            "frame {frame} of `{}` on scene `{}`",
+            info.id,
+            self.scene.name()
+        );
+        let t0 = Instant::now();
+        self.advance_wind(frame)?;
+        let time = self.scene.time_of(frame);
+        self.scene_gpu.bake_wind(self.wind.as_ref(), time);
+        let wind_ms = ms(t0);
+
+        let gpu = self.gpu;
+        let prefix = format!("{}.", info.id);
+        let (update_ms, upload_ms, encode_ms, submit_at, readback, draw_calls) =
+            gpu.scoped(&during, || -> Result<_> {
+                let inputs = self.inputs(frame);
+                let t = Instant::now();
+                technique.update(&inputs)?;
+                let update_ms = ms(t);
+
+                let t = Instant::now();
+                self.scene_gpu.upload(&gpu.queue, &inputs);
+                technique.prepare(gpu, &inputs)?;
+                let upload_ms = ms(t);
+
+                let t = Instant::now();
+                let mut enc = FrameEncoder::new(
+                    gpu,
+                    &self.target,
+                    &self.scene_gpu,
+                    self.timer.as_mut(),
+                    "core.",
+                );
+                {
+                    let mut pass =
+                        enc.render_pass_with("background", Some(wgpu::Color::BLACK), true);
+                    self.scene_gpu
+                        .background
+                        .draw(&mut pass, &self.scene_gpu.terrain);
+                }
+                enc.set_label_prefix(&prefix);
+                technique.encode(&mut enc);
+                let draw_calls = enc.draw_calls();
+                let mut encoder = enc.finish();
+                let readback = capture.then(|| self.target.encode_readback(gpu, &mut encoder));
+                let command_buffer = encoder.finish();
+                let encode_ms = ms(t);
+
+                let submit_at = Instant::now();
+                gpu.queue.submit([command_buffer]);
+                Ok((
+                    update_ms, upload_ms, encode_ms, submit_at, readback, draw_calls,
+                ))
+            })??;
+        gpu.wait_idle(&during)?;
+        let gpu_wall_ms = ms(submit_at);
+
+        let passes = self.timer.as_mut().map(|t| t.read(gpu)).unwrap_or_default();
+        let sum = |f: &dyn Fn(&crate::technique::PassTime) -> bool| -> Option<f64> {
+            gpu.has_timestamps()
+                .then(|| passes.iter().filter(|p| f(p)).map(|p| p.ms).sum())
+        };
+        let image = readback.map(|r| r.finish(gpu)).transpose()?;
+        let stats = technique.stats();
+        let record = FrameRecord {
+            technique: info.id.to_owned(),
+            scene: self.scene.name().to_owned(),
+            width: self.target.size.width,
+            height: self.target.size.height,
+            msaa: self.target.sample_count > 1,
+            frame,
+            time_s: time,
+            wind_ms,
+            update_ms,
+            upload_ms,
+            encode_ms,
+            gpu_wall_ms,
+            gpu_ts_background_ms: sum(&|p| p.label.starts_with("core.")),
+            gpu_ts_render_ms: sum(&|p| !p.label.starts_with("core.") && p.kind == PassKind::Render),
+            gpu_ts_compute_ms: sum(&|p| p.kind == PassKind::Compute),
+            blades: stats.blades,
+            triangles: stats.triangles,
+            draw_calls: stats.draw_calls.max(draw_calls),
+            gpu_bytes: stats.gpu_bytes,
+        };
+        Ok(FrameOutput { record, image })
+    }
+}
+
+/// How many frames to run and which to keep as images.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Frames run before measuring (first-frame shader compilation, caches).
+    pub warmup: u64,
+    /// Frames measured.
+    pub frames: u64,
+    /// Frame indices whose images to return.
+    pub capture: Vec<u64>,
+}
+
+/// A measured run.
+pub struct RunResult {
+    /// One record per measured frame.
+    pub frames: Vec<FrameRecord>,
+    /// Medians and percentiles.
+    pub summary: RunSummary,
+    /// Captured images by frame index.
+    pub images: Vec<(u64, image::RgbaImage)>,
+}
+
+/// Runs `technique` for `warmup + frames` frames from frame 0; `progress(done, total)` is
+/// called after each frame.
+pub fn run(
+    harness: &mut Harness<'_>,
+    technique: &mut dyn GrassTechnique,
+    options: &RunOptions,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<RunResult> {
+    if options.frames == 0 {
+        return Err(Error::param("frames", 0, "at least 1 measured frame"));
+    }
+    let total = options.warmup + options.frames;
+    let mut frames = Vec::with_capacity(options.frames as usize);
+    let mut images = Vec::new();
+    for frame in 0..total {
+        let out = harness.frame(technique, frame, options.capture.contains(&frame))?;
+        if frame >= options.warmup {
+            frames.push(out.record);
+        }
+        if let Some(image) = out.image {
+            images.push((frame, image));
+        }
+        progress(frame + 1, total);
+    }
+    let summary = RunSummary::from_frames(&frames, &technique.params());
+    Ok(RunResult {
+        frames,
+        summary,
+        images,
+    })
+}
+
+fn ms(since: Instant) -> f64 {
+    since.elapsed().as_secs_f64() * 1e3
+}

@@ -1,0 +1,114 @@
+//! What made a result: written as `meta.toml` next to every CSV.
+
+use crate::gpu::AdapterSummary;
+
+/// The wgpu version this build uses (a test checks it against `Cargo.lock`).
+pub const WGPU_VERSION: &str = "30.0.1";
+
+/// Command, adapter, revision, build and machine behind a set of figures.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize, PartialEq)]
+pub struct Provenance {
+    /// The command line that produced the results.
+    pub command: String,
+    /// `git describe`-like revision of the working tree (`+dirty` when modified), or `unknown`.
+    pub revision: String,
+    /// `release` or `debug`.
+    pub build_profile: String,
+    /// grassbench version.
+    pub grassbench_version: String,
+    /// wgpu version.
+    pub wgpu_version: String,
+    /// CPU model.
+    pub cpu: String,
+    /// Logical CPUs.
+    pub cpu_count: usize,
+    /// Operating system.
+    pub os: String,
+    /// When, UTC (RFC 3339, from the system clock).
+    pub date: String,
+    /// The adapter.
+    pub adapter: AdapterSummary,
+}
+
+impl Provenance {
+    /// Collects everything for `adapter` and the current process.
+    pub fn collect(adapter: &AdapterSummary) -> Self {
+        Self {
+            command: std::env::args().collect::<Vec<_>>().join(" "),
+            revision: git_revision(),
+            build_profile: if cfg!(debug_assertions) {
+                "debug"
+            } else {
+                "release"
+            }
+            .to_owned(),
+            grassbench_version: env!("CARGO_PKG_VERSION").to_owned(),
+            wgpu_version: WGPU_VERSION.to_owned(),
+            cpu: cpu_model(),
+            cpu_count: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
+            date: utc_now(),
+            adapter: adapter.clone(),
+        }
+    }
+
+    /// As TOML text.
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).unwrap_or_default()
+    }
+}
+
+fn git_revision() -> String {
+    let run = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
+    };
+    match run(&["rev-parse", "--short=12", "HEAD"]) {
+        Some(rev) => {
+            let dirty = run(&["status", "--porcelain", "--untracked-files=no"])
+                .is_some_and(|s| !s.is_empty());
+            if dirty { format!("{rev}+dirty") } else { rev }
+        }
+        None => "unknown".to_owned(),
+    }
+}
+
+fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().to_owned())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_owned())
+}
+
+/// Current UTC time as RFC 3339, computed from the Unix epoch (no date crate needed).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rem) = (secs / 86_400, secs % 86_400);
+    // Civil-from-days (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}

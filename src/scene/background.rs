@@ -1,0 +1,96 @@
+//! The sky and the ground, drawn the same way before every technique's grass, so differences
+//! between images come from the grass alone.
+
+use crate::shaders;
+use crate::target::{COLOR_FORMAT, DEPTH_FORMAT};
+use crate::terrain::{GroundVertex, TerrainGpu};
+
+/// Sky and ground pipelines.
+pub struct Background {
+    sky: wgpu::RenderPipeline,
+    ground: wgpu::RenderPipeline,
+}
+
+impl Background {
+    /// Builds both pipelines for `sample_count`.
+    pub fn new(
+        device: &wgpu::Device,
+        scene_layout: &wgpu::BindGroupLayout,
+        sample_count: u32,
+    ) -> Self {
+        let module = shaders::module(device, "background", shaders::BACKGROUND);
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("background"),
+            bind_group_layouts: &[Some(scene_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |label,
+                        vs,
+                        fs,
+                        buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+                        depth_write,
+                        compare| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: Some(wgpu::Face::Back),
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(depth_write),
+                    depth_compare: Some(compare),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: sample_count,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(COLOR_FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        Self {
+            sky: pipeline(
+                "sky",
+                "vs_sky",
+                "fs_sky",
+                &[],
+                false,
+                wgpu::CompareFunction::Always,
+            ),
+            ground: pipeline(
+                "ground",
+                "vs_ground",
+                "fs_ground",
+                &[Some(GroundVertex::LAYOUT)],
+                true,
+                wgpu::CompareFunction::Less,
+            ),
+        }
+    }
+
+    /// Draws the sky, then the ground. Bind group 0 must be set.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, terrain: &TerrainGpu) {
+        pass.set_pipeline(&self.sky);
+        pass.draw(0..3, 0..1);
+        pass.set_pipeline(&self.ground);
+        pass.set_vertex_buffer(0, terrain.ground_vertices.slice(..));
+        pass.set_index_buffer(terrain.ground_indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..terrain.ground_index_count, 0, 0..1);
+    }
+}

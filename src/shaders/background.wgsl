@@ -1,0 +1,51 @@
+// The sky and the ground, drawn identically for every technique before its grass.
+// (Prepended with the prelude by `shaders::compose`.)
+
+struct SkyOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) ndc: vec2<f32>,
+}
+
+@vertex
+fn vs_sky(@builtin(vertex_index) index: u32) -> SkyOut {
+    // One triangle covering the screen, at the far plane.
+    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
+    let ndc = uv * 2.0 - 1.0;
+    var out: SkyOut;
+    out.position = vec4(ndc, 1.0, 1.0);
+    out.ndc = ndc;
+    return out;
+}
+
+@fragment
+fn fs_sky(in: SkyOut) -> @location(0) vec4<f32> {
+    let far = globals.inv_view_proj * vec4(in.ndc, 1.0, 1.0);
+    let dir = normalize(far.xyz / far.w - globals.camera_pos.xyz);
+    return vec4(sky_color(dir), 1.0);
+}
+
+struct GroundOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+}
+
+@vertex
+fn vs_ground(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> GroundOut {
+    var out: GroundOut;
+    out.position = globals.view_proj * vec4(position, 1.0);
+    out.world = position;
+    out.normal = normal;
+    return out;
+}
+
+@fragment
+fn fs_ground(in: GroundOut) -> @location(0) vec4<f32> {
+    let xz = in.world.xz;
+    // Ground under grass is darker and greener (litter, shadow), bare ground is soil.
+    let density = terrain_density(xz) * f32(terrain_covering(xz) == COVER_GRASS);
+    let under_grass = vec3(0.035, 0.06, 0.015);
+    let albedo = mix(globals.ground_color.rgb, under_grass, clamp(density, 0.0, 1.0));
+    let lit = shade(albedo, normalize(in.normal), 1.0);
+    return vec4(apply_fog(lit, in.world), 1.0);
+}

@@ -1,0 +1,25 @@
+//! WGSL shared by every shader: the prelude (bind group 0, terrain and wind lookups, lighting,
+//! fog) and the background (sky and ground).
+//!
+//! Technique shaders are stored without the prelude and composed at load time, so one copy of
+//! the terrain lookup, the wind sampling and the lighting serves every technique.
+
+/// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,
+/// `terrain_covering`, `wind_at`, `shade`, `shade_leaf`, `sky_color`, `apply_fog`, hashes.
+pub const PRELUDE: &str = include_str!("prelude.wgsl");
+
+/// The core's sky and ground shader (without the prelude).
+pub const BACKGROUND: &str = include_str!("background.wgsl");
+
+/// Prelude + `source`.
+pub fn compose(source: &str) -> String {
+    format!("{PRELUDE}\n{source}")
+}
+
+/// Creates a shader module from a technique's WGSL (composed with the prelude).
+pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(compose(source).into()),
+    })
+}

@@ -1,0 +1,146 @@
+// grassbench shared WGSL prelude: prepended to every technique shader (see `shaders::compose`).
+// Bind group 0 is owned by the core and set by the runner before a technique's passes begin;
+// techniques bind their own resources at groups 1 and up.
+
+struct Globals {
+    view_proj: mat4x4<f32>,
+    inv_view_proj: mat4x4<f32>,
+    // xyz: eye position; w: time (s)
+    camera_pos: vec4<f32>,
+    // xyz: unit view direction; w: dt (s)
+    camera_forward: vec4<f32>,
+    // xyz: unit vector towards the sun; w: unused
+    sun_direction: vec4<f32>,
+    // rgb: sun irradiance (linear); w: unused
+    sun_color: vec4<f32>,
+    // rgb: ambient (linear); w: unused
+    ambient: vec4<f32>,
+    sky_zenith: vec4<f32>,
+    sky_horizon: vec4<f32>,
+    // rgb: bare ground albedo; w: fog density (1/m)
+    ground_color: vec4<f32>,
+    // xy: terrain min corner (x, z); zw: terrain size (x, z)
+    terrain: vec4<f32>,
+    // xy: target size in pixels; zw: 1 / size
+    viewport: vec4<f32>,
+    // x: frame index; y: seed (low 32 bits); z: debug view; w: unused
+    frame: vec4<u32>,
+    // x: largest wind speed in the wind texture (m/s); yzw: unused
+    wind_info: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+@group(0) @binding(1) var height_map: texture_2d<f32>;
+@group(0) @binding(2) var density_map: texture_2d<f32>;
+@group(0) @binding(3) var covering_map: texture_2d<u32>;
+@group(0) @binding(4) var wind_map: texture_2d<f32>;
+
+const PI: f32 = 3.14159265358979;
+const COVER_NONE: u32 = 0u;
+const COVER_TREE: u32 = 253u;
+const COVER_STONE: u32 = 254u;
+const COVER_GRASS: u32 = 255u;
+
+// Map coordinates in [0, 1]^2 of a world position (x, z).
+fn terrain_uv(xz: vec2<f32>) -> vec2<f32> {
+    return (xz - globals.terrain.xy) / globals.terrain.zw;
+}
+
+// Bilinear lookup in an unfilterable map, matching the CPU's `Grid::bilinear` (Zhang Eq. 11-13).
+fn bilinear_r(map: texture_2d<f32>, uv: vec2<f32>) -> f32 {
+    let dims = vec2<f32>(textureDimensions(map));
+    let p = clamp(uv, vec2(0.0), vec2(1.0)) * (dims - 1.0);
+    let p0 = floor(p);
+    let f = p - p0;
+    let i0 = vec2<i32>(p0);
+    let i1 = min(i0 + 1, vec2<i32>(dims) - 1);
+    let a = textureLoad(map, i0, 0).r;
+    let b = textureLoad(map, vec2(i1.x, i0.y), 0).r;
+    let c = textureLoad(map, vec2(i0.x, i1.y), 0).r;
+    let d = textureLoad(map, i1, 0).r;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+// Ground height (m) at (x, z).
+fn terrain_height(xz: vec2<f32>) -> f32 {
+    return bilinear_r(height_map, terrain_uv(xz));
+}
+
+// Unit ground normal at (x, z), central differences over one map sample.
+fn terrain_normal(xz: vec2<f32>) -> vec3<f32> {
+    let dims = vec2<f32>(textureDimensions(height_map));
+    let e = globals.terrain.zw / max(dims - 1.0, vec2(1.0)) * 0.5;
+    let dx = terrain_height(xz + vec2(e.x, 0.0)) - terrain_height(xz - vec2(e.x, 0.0));
+    let dz = terrain_height(xz + vec2(0.0, e.y)) - terrain_height(xz - vec2(0.0, e.y));
+    return normalize(vec3(-dx / (2.0 * e.x), 1.0, -dz / (2.0 * e.y)));
+}
+
+// Grass density in [0, 1] at (x, z) (Boulanger Sec. 3.4).
+fn terrain_density(xz: vec2<f32>) -> f32 {
+    return bilinear_r(density_map, terrain_uv(xz));
+}
+
+// Covering ID at (x, z), nearest sample (Zhang Sec. 5.5.2).
+fn terrain_covering(xz: vec2<f32>) -> u32 {
+    let dims = vec2<f32>(textureDimensions(covering_map));
+    let p = vec2<i32>(round(clamp(terrain_uv(xz), vec2(0.0), vec2(1.0)) * (dims - 1.0)));
+    return textureLoad(covering_map, p, 0).r;
+}
+
+// Wind velocity (m/s) at (x, z), bilinear in the wind texture the core bakes every frame.
+fn wind_at(xz: vec2<f32>) -> vec3<f32> {
+    let dims = vec2<f32>(textureDimensions(wind_map));
+    let p = clamp(terrain_uv(xz), vec2(0.0), vec2(1.0)) * (dims - 1.0);
+    let p0 = floor(p);
+    let f = p - p0;
+    let i0 = vec2<i32>(p0);
+    let i1 = min(i0 + 1, vec2<i32>(dims) - 1);
+    let a = textureLoad(wind_map, i0, 0).xyz;
+    let b = textureLoad(wind_map, vec2(i1.x, i0.y), 0).xyz;
+    let c = textureLoad(wind_map, vec2(i0.x, i1.y), 0).xyz;
+    let d = textureLoad(wind_map, i1, 0).xyz;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+// Lambert + ambient with the scene's lights; `ao` darkens the ambient term only.
+fn shade(albedo: vec3<f32>, normal: vec3<f32>, ao: f32) -> vec3<f32> {
+    let ndl = max(dot(normal, globals.sun_direction.xyz), 0.0);
+    return albedo * (globals.ambient.rgb * ao + globals.sun_color.rgb * ndl);
+}
+
+// Two-sided shading for thin leaves: the normal faces the viewer, and light from behind
+// passes through (`translucency` of the back-side irradiance).
+fn shade_leaf(albedo: vec3<f32>, normal: vec3<f32>, world_pos: vec3<f32>, ao: f32, translucency: f32) -> vec3<f32> {
+    let to_eye = normalize(globals.camera_pos.xyz - world_pos);
+    let n = select(-normal, normal, dot(normal, to_eye) >= 0.0);
+    let l = globals.sun_direction.xyz;
+    let front = max(dot(n, l), 0.0);
+    let back = max(dot(-n, l), 0.0) * translucency;
+    return albedo * (globals.ambient.rgb * ao + globals.sun_color.rgb * (front + back) * mix(0.5, 1.0, ao));
+}
+
+// Sky colour in a view direction: horizon to zenith gradient with a sun glow.
+fn sky_color(dir: vec3<f32>) -> vec3<f32> {
+    let up = clamp(dir.y, 0.0, 1.0);
+    let base = mix(globals.sky_horizon.rgb, globals.sky_zenith.rgb, pow(up, 0.6));
+    let sun = pow(max(dot(dir, globals.sun_direction.xyz), 0.0), 256.0);
+    return base + globals.sun_color.rgb * sun * 0.5;
+}
+
+// Aerial perspective: the same haze over every technique's grass and the ground.
+fn apply_fog(color: vec3<f32>, world_pos: vec3<f32>) -> vec3<f32> {
+    let d = distance(world_pos, globals.camera_pos.xyz);
+    let f = 1.0 - exp(-d * globals.ground_color.w);
+    return mix(color, globals.sky_horizon.rgb, f);
+}
+
+// Integer hash (PCG), for per-instance variation in shaders.
+fn hash_u32(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+fn hash_f32(v: u32) -> f32 {
+    return f32(hash_u32(v)) / 4294967295.0;
+}

@@ -1,0 +1,163 @@
+//! The terrain on the GPU: its three maps as textures and the ground mesh every technique
+//! shares (Bakay's shells are copies of it).
+
+use glam::Vec2;
+use wgpu::util::DeviceExt as _;
+
+use super::{Grid, Terrain};
+
+/// A vertex of the ground mesh.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GroundVertex {
+    /// World position on the ground.
+    pub position: [f32; 3],
+    /// Unit surface normal.
+    pub normal: [f32; 3],
+}
+
+impl GroundVertex {
+    /// Vertex layout: location 0 = position, location 1 = normal.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Self>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+    };
+}
+
+/// Most vertices along one side of the ground mesh.
+pub const MAX_GROUND_SIDE: u32 = 257;
+
+/// Height, density and covering textures plus the ground mesh.
+pub struct TerrainGpu {
+    /// Heights in metres (`R32Float`).
+    pub heights: wgpu::TextureView,
+    /// Density in `[0, 1]` (`R32Float`).
+    pub density: wgpu::TextureView,
+    /// Covering IDs (`R8Uint`).
+    pub covering: wgpu::TextureView,
+    /// Ground mesh vertices ([`GroundVertex`]).
+    pub ground_vertices: wgpu::Buffer,
+    /// Ground mesh triangle list (u32 indices).
+    pub ground_indices: wgpu::Buffer,
+    /// Number of indices.
+    pub ground_index_count: u32,
+    /// Vertices along x and z.
+    pub ground_side: (u32, u32),
+    bytes: u64,
+}
+
+impl TerrainGpu {
+    /// Uploads `terrain`. The ground mesh has about one vertex per metre (at most
+    /// [`MAX_GROUND_SIDE`] a side) so per-vertex effects (Bakay's wind vectors) have detail
+    /// even on a flat terrain whose heightmap has 2x2 samples.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, terrain: &Terrain) -> Self {
+        let (heights, hb) = upload(
+            device,
+            queue,
+            "terrain heights",
+            wgpu::TextureFormat::R32Float,
+            terrain.heights(),
+            4,
+        );
+        let (density, db) = upload(
+            device,
+            queue,
+            "terrain density",
+            wgpu::TextureFormat::R32Float,
+            terrain.density(),
+            4,
+        );
+        let (covering, cb) = upload(
+            device,
+            queue,
+            "terrain covering",
+            wgpu::TextureFormat::R8Uint,
+            terrain.covering(),
+            1,
+        );
+        let side = |s: f32| (s.ceil() as u32 + 1).clamp(2, MAX_GROUND_SIDE);
+        let (nx, nz) = (side(terrain.size().x), side(terrain.size().y));
+        let vertices: Vec<GroundVertex> = (0..nz)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let uv = Vec2::new(i as f32 / (nx - 1) as f32, j as f32 / (nz - 1) as f32);
+                let xz = terrain.min_corner() + uv * terrain.size();
+                GroundVertex {
+                    position: terrain.point_at(xz).to_array(),
+                    normal: terrain.normal_at(xz).to_array(),
+                }
+            })
+            .collect();
+        let mut indices = Vec::with_capacity(((nx - 1) * (nz - 1) * 6) as usize);
+        for j in 0..nz - 1 {
+            for i in 0..nx - 1 {
+                let a = j * nx + i;
+                let (b, c, d) = (a + 1, a + nx, a + nx + 1);
+                // Counter-clockwise seen from above (+y).
+                indices.extend_from_slice(&[a, c, b, b, c, d]);
+            }
+        }
+        let ground_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ground vertices"),
+            contents: bytemuck::cast_slice(&vertices),
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
+        });
+        let ground_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ground indices"),
+            contents: bytemuck::cast_slice(&indices),
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
+        });
+        let bytes = hb
+            + db
+            + cb
+            + (vertices.len() * std::mem::size_of::<GroundVertex>() + indices.len() * 4) as u64;
+        Self {
+            heights,
+            density,
+            covering,
+            ground_vertices,
+            ground_indices,
+            ground_index_count: indices.len() as u32,
+            ground_side: (nx, nz),
+            bytes,
+        }
+    }
+
+    /// GPU memory held, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+}
+
+fn upload<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    format: wgpu::TextureFormat,
+    grid: &Grid<T>,
+    texel_bytes: u32,
+) -> (wgpu::TextureView, u64) {
+    let size = wgpu::Extent3d {
+        width: grid.width() as u32,
+        height: grid.height() as u32,
+        depth_or_array_layers: 1,
+    };
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(grid.data()),
+    );
+    let bytes = u64::from(size.width * size.height * texel_bytes);
+    (texture.create_view(&Default::default()), bytes)
+}

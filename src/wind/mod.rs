@@ -1,0 +1,72 @@
+//! Wind: one abstraction, every model, every technique.
+//!
+//! A [`WindField`] gives the wind velocity (m/s) at any world position and time. Every
+//! technique can sample it on the CPU, and the core bakes it each frame into a texture over
+//! the terrain ([`WindTexture`]) that every shader reads through the prelude's `wind_at`, so
+//! any wind model drives any technique.
+//!
+//! Models here: [`Breeze`] (a steady wind with travelling gusts), [`PointSource`] (Bakay et al.
+//! Sec. 3: wind vectors towards a source, intensity waves travelling outwards in animation
+//! steps) and calm air. Stam's stable fluids (Zhang Ch. 2) and Perbet's primitives join the
+//! same trait.
+
+mod breeze;
+mod config;
+mod point_source;
+mod texture;
+
+use glam::Vec3;
+
+pub use breeze::Breeze;
+pub use config::{BreezeConfig, PointSourceConfig, WindConfig};
+pub use point_source::PointSource;
+pub use texture::WindTexture;
+
+use crate::Result;
+
+/// A wind model: velocity in m/s at a position and time.
+///
+/// Fields with state (fluid solvers) advance in [`WindField::advance`]; procedural fields are
+/// pure functions of `(position, time)` and leave `advance` empty. Either way, stepping a
+/// fresh field through frames `0..=n` gives the same field at frame `n`: wind is reproducible.
+pub trait WindField: Send {
+    /// Short name for result files and the UI.
+    fn name(&self) -> &'static str;
+
+    /// Advances the model's state to `time` (seconds), `dt` after the previous call.
+    fn advance(&mut self, time: f32, dt: f32);
+
+    /// Wind velocity (m/s) at world position `p` at `time`.
+    fn velocity(&self, p: Vec3, time: f32) -> Vec3;
+
+    /// Whether the field depends only on `(position, time)` (no state to step).
+    fn is_stateless(&self) -> bool {
+        true
+    }
+}
+
+/// No wind at all.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Calm;
+
+impl WindField for Calm {
+    fn name(&self) -> &'static str {
+        "calm"
+    }
+
+    fn advance(&mut self, _time: f32, _dt: f32) {}
+
+    fn velocity(&self, _p: Vec3, _time: f32) -> Vec3 {
+        Vec3::ZERO
+    }
+}
+
+/// Builds the field a scene's `[wind]` section describes.
+pub fn build(config: &WindConfig, seed: u64) -> Result<Box<dyn WindField>> {
+    config.validate()?;
+    Ok(match config {
+        WindConfig::Calm => Box::new(Calm),
+        WindConfig::Breeze(c) => Box::new(Breeze::new(c.clone(), seed)),
+        WindConfig::PointSource(c) => Box::new(PointSource::new(c.clone())),
+    })
+}

@@ -1,0 +1,106 @@
+// Reference grass: every blade of the scene as a curved strip, built in the vertex shader from
+// a per-blade instance (see `techniques/reference/src/lib.rs`). Composed after the prelude.
+
+struct Params {
+    color_root: vec4<f32>,      // rgb; w: colour variation
+    color_tip: vec4<f32>,       // rgb; w: translucency
+    // x: segments; y: wind response (rad per m/s); z: bend profile exponent; w: max bend (rad)
+    shape: vec4<f32>,
+    // x: flutter amount; yzw: unused
+    motion: vec4<f32>,
+}
+
+@group(1) @binding(0) var<uniform> params: Params;
+
+struct Blade {
+    @location(0) root_facing: vec4<f32>,     // root xyz, facing angle
+    @location(1) shape: vec4<f32>,           // height, width, stiffness, colour variation
+    @location(2) lean_threshold: vec4<f32>,  // lean direction, lean amount, density threshold, -
+}
+
+struct VsOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) albedo: vec3<f32>,
+    @location(3) ao: f32,
+}
+
+// Tilt from vertical of the blade at relative height s in [0, 1]: grows as s^profile, so a
+// large profile keeps the base stiff and bends the top (Bakay Sec. 3's "stiffness").
+fn tilt(s: f32, bend: f32) -> f32 {
+    return bend * pow(s, params.shape.z);
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32, blade: Blade) -> VsOut {
+    var out: VsOut;
+    let root = blade.root_facing.xyz;
+    let height = blade.shape.x;
+    let width = blade.shape.y;
+    let stiffness = blade.shape.z;
+
+    // The density map (Boulanger Sec. 3.4): a blade grows only where the density exceeds its
+    // threshold. Culled blades collapse outside the clip volume.
+    if (blade.lean_threshold.z >= terrain_density(root.xz)) {
+        out.position = vec4(0.0, 0.0, 2.0, 1.0);
+        return out;
+    }
+
+    // Bend: rest lean plus the wind's push, scaled by the blade's stiffness, plus a small
+    // per-blade flutter whose speed follows the wind. Time comes from the globals only.
+    let wind = wind_at(root.xz);
+    let lean = blade.lean_threshold.y * vec2(cos(blade.lean_threshold.x), sin(blade.lean_threshold.x));
+    let speed = length(wind.xz);
+    let phase = hash_f32(instance) * 2.0 * PI;
+    let flutter = params.motion.x * speed * sin(globals.camera_pos.w * (3.0 + speed) + phase);
+    let push = wind.xz * (params.shape.y / stiffness) * (1.0 + flutter);
+    let bend_vec = lean + push;
+    let bend_len = length(bend_vec);
+    let bend = min(bend_len, params.shape.w);
+    let dir2 = select(vec2(1.0, 0.0), bend_vec / bend_len, bend_len > 1e-5);
+    let dir = vec3(dir2.x, 0.0, dir2.y);
+
+    // Walk up the blade segment by segment: each segment keeps its length (height / n), so the
+    // blade never stretches however far it bends.
+    let n = u32(params.shape.x);
+    let level = min(vertex / 2u, n);
+    let seg = height / f32(n);
+    var p = root;
+    for (var i = 0u; i < level; i++) {
+        let a = tilt((f32(i) + 0.5) / f32(n), bend);
+        p += seg * (sin(a) * dir + cos(a) * vec3(0.0, 1.0, 0.0));
+    }
+    let s = f32(level) / f32(n);
+    let a = tilt(s, bend);
+    let tangent = sin(a) * dir + cos(a) * vec3(0.0, 1.0, 0.0);
+    let facing = blade.root_facing.w;
+    let side_axis = vec3(cos(facing), 0.0, sin(facing));
+
+    // Width tapers to a point at the tip; vertices alternate left (even) and right (odd).
+    let half = 0.5 * width * pow(1.0 - s, 0.7);
+    let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
+    let world = p + side_axis * half * side * f32(level < n);
+    // Normal of the blade's face, rounded a little across the width.
+    let face = normalize(cross(side_axis, tangent));
+    let normal = normalize(face + side_axis * side * 0.35);
+
+    let variation = blade.shape.w * params.color_root.w;
+    var albedo = mix(params.color_root.rgb, params.color_tip.rgb, pow(s, 0.8));
+    albedo *= 1.0 + variation;
+    albedo.r *= 1.0 + 0.6 * max(variation, 0.0);
+
+    out.position = globals.view_proj * vec4(world, 1.0);
+    out.world = world;
+    out.normal = normal;
+    out.albedo = albedo;
+    // Darker near the root: neighbouring blades hide the sky (ambient occlusion).
+    out.ao = mix(0.3, 1.0, s);
+    return out;
+}
+
+@fragment
+fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
+    let lit = shade_leaf(in.albedo, normalize(in.normal), in.world, in.ao, params.color_tip.w);
+    return vec4(apply_fog(lit, in.world), 1.0);
+}
