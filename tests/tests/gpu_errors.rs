@@ -1,0 +1,96 @@
+//! wgpu validation errors become errors that fail the run, never just a log line.
+
+use grassbench::runner::Harness;
+use grassbench::technique::{FrameEncoder, GrassTechnique, TechniqueEntry, TechniqueInfo, TechniqueStats};
+use grassbench::{FrameInputs, GpuContext, wgpu};
+use grassbench_tests::{TEST_SIZE, gpu, scene};
+
+const INFO: TechniqueInfo = TechniqueInfo { id: "broken", name: "broken", paper: "-", gpu_state: false };
+
+/// A technique whose pipeline's shader reads a binding its layout does not have.
+const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
+    info: INFO,
+    default_params: toml::Table::new,
+    create: |ctx, _| {
+        let device = &ctx.gpu.device;
+        let module = grassbench::shaders::module(
+            device,
+            "broken",
+            "@group(1) @binding(0) var<uniform> missing: vec4<f32>;\n\
+             @vertex fn vs() -> @builtin(position) vec4<f32> { return missing; }\n\
+             @fragment fn fs() -> @location(0) vec4<f32> { return vec4(1.0); }",
+        );
+        let layout = ctx.scene_gpu.pipeline_layout(device, "broken", &[]);
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("broken"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets: &[Some(grassbench::target::COLOR_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Box::new(BadDraw { pipeline: Some(pipeline) }))
+    },
+};
+
+/// A technique that draws with a pipeline built for another target (no depth, wrong samples).
+struct BadDraw {
+    pipeline: Option<wgpu::RenderPipeline>,
+}
+
+impl GrassTechnique for BadDraw {
+    fn info(&self) -> TechniqueInfo {
+        INFO
+    }
+    fn params(&self) -> toml::Table {
+        toml::Table::new()
+    }
+    fn update(&mut self, _: &FrameInputs<'_>) -> grassbench::Result<()> {
+        Ok(())
+    }
+    fn prepare(&mut self, _: &GpuContext, _: &FrameInputs<'_>) -> grassbench::Result<()> {
+        Ok(())
+    }
+    fn encode(&self, encoder: &mut FrameEncoder<'_>) {
+        let mut pass = encoder.render_pass("bad");
+        if let Some(p) = &self.pipeline {
+            pass.set_pipeline(p);
+        }
+        pass.draw(0..3, 0..1);
+    }
+    fn stats(&self) -> TechniqueStats {
+        TechniqueStats::default()
+    }
+}
+
+#[test]
+fn invalid_pipeline_fails_technique_creation() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let harness = Harness::new(&gpu, scene("meadow", 0.01)?, TEST_SIZE, false)?;
+    let err = harness.create(&BAD_PIPELINE, &toml::Table::new()).err().expect("creation must fail");
+    let text = err.to_string();
+    assert!(matches!(err, grassbench::Error::Validation { .. }), "{text}");
+    assert!(text.contains("creating technique `broken`"), "{text}");
+    Ok(())
+}
+
+#[test]
+fn invalid_draw_fails_the_frame() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let mut harness = Harness::new(&gpu, scene("meadow", 0.01)?, TEST_SIZE, false)?;
+    // No pipeline set at all: the draw is invalid.
+    let mut bad = BadDraw { pipeline: None };
+    let err = harness.frame(&mut bad, 0, false).err().expect("the frame must fail");
+    assert!(err.to_string().contains("frame 0 of `broken`"), "{err}");
+    // The harness keeps working afterwards.
+    harness.frame(&mut grassbench::technique::NoGrass, 1, false)?;
+    Ok(())
+}
