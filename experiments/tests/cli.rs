@@ -100,3 +100,10 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     forced.push("--force");
     assert!(grassbench(&forced).0);
 }
+
+#[test]
+fn missing_backend_names_the_fix() {
+    // No machine this runs on has Metal and DX12 at once; on Linux, neither.
+    let backend = if cfg!(target_os = "macos") { "dx12" } else { "metal" };
+    fails_with(&["render", "-t", "reference", "--backend", backend, "--size", "32x32", "-o", "/tmp/x.png"], &["no GPU adapter", "mesa-vulkan-drivers"]);
+}
