@@ -46,6 +46,7 @@ impl FrameInputs<'_> {
         let s = self.sky();
         let t = &self.scene.terrain;
         let v4 = |v: [f32; 3], w: f32| [v[0], v[1], v[2], w];
+        let (lo, hi) = t.height_range();
         let sun = glam::Vec3::from(l.sun_direction).normalize_or(glam::Vec3::Y);
         FrameGlobals {
             view_proj: view_proj.to_cols_array_2d(),
@@ -72,6 +73,7 @@ impl FrameInputs<'_> {
                 0,
             ],
             wind_info: [max_wind_speed, 0.0, 0.0, 0.0],
+            terrain_range: [lo, hi, self.camera.far, 0.0],
         }
     }
 }
@@ -110,4 +112,6 @@ pub struct FrameGlobals {
     pub frame: [u32; 4],
     /// Largest wind speed.
     pub wind_info: [f32; 4],
+    /// Lowest and highest ground height, camera far plane.
+    pub terrain_range: [f32; 4],
 }

@@ -20,6 +20,8 @@
 //! Techniques live in their own crates under `techniques/`, the `grassbench` command and the
 //! registry of techniques under `experiments/`.
 
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+
 pub mod camera;
 pub mod error;
 pub mod frame;

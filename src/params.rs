@@ -51,6 +51,16 @@ pub fn to_table<P: Serialize>(params: &P) -> toml::Table {
     toml::Table::try_from(params).unwrap_or_default()
 }
 
+/// A parameter value as text; floats print as the `f32` they came from (`0.15`, not
+/// `0.15000000596046448`), since every technique parameter is `f32`.
+pub fn format_value(value: &toml::Value) -> String {
+    match value {
+        toml::Value::Float(f) => format!("{}", *f as f32),
+        toml::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
 /// Parses `key=value` (value in TOML syntax; bare words are strings) into a table entry.
 pub fn parse_assignment(text: &str) -> Result<(String, toml::Value)> {
     let (key, value) = text

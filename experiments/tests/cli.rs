@@ -6,8 +6,15 @@
 use std::process::Command;
 
 fn grassbench(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_grassbench")).args(args).output().expect("binary runs");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    let out = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 fn temp(name: &str) -> std::path::PathBuf {
@@ -31,26 +38,129 @@ fn fails_with(args: &[&str], needles: &[&str]) {
 fn list_shows_techniques_and_scenes() {
     let (ok, out, _) = grassbench(&["list"]);
     assert!(ok);
-    for name in ["reference", "segments", "meadow", "football_field", "prairie_flyover"] {
+    for name in [
+        "reference",
+        "segments",
+        "meadow",
+        "football_field",
+        "prairie_flyover",
+    ] {
         assert!(out.contains(name), "missing {name}: {out}");
     }
 }
 
 #[test]
 fn bad_names_list_valid_ones() {
-    fails_with(&["render", "-t", "nope", "-o", "/tmp/x.png"], &["unknown technique `nope`", "reference"]);
-    fails_with(&["render", "-t", "reference", "-s", "nowhere", "-o", "/tmp/x.png"], &["unknown scene `nowhere`", "meadow"]);
-    fails_with(&["render", "-t", "reference", "--backend", "glide", "-o", "/tmp/x.png"], &["unknown backend `glide`", "vulkan"]);
+    fails_with(
+        &["render", "-t", "nope", "-o", "/tmp/x.png"],
+        &["unknown technique `nope`", "reference"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-s",
+            "nowhere",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["unknown scene `nowhere`", "meadow"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "--backend",
+            "glide",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["unknown backend `glide`", "vulkan"],
+    );
 }
 
 #[test]
 fn bad_sizes_and_params_are_refused_before_gpu_work() {
-    fails_with(&["render", "-t", "reference", "--size", "100000x100000", "-o", "/tmp/x.png"], &["resolution.width"]);
-    fails_with(&["render", "-t", "reference", "--size", "0x10", "-o", "/tmp/x.png"], &["resolution.width"]);
-    fails_with(&["render", "-t", "reference", "--size", "big", "-o", "/tmp/x.png"], &["WIDTHxHEIGHT"]);
-    fails_with(&["render", "-t", "reference", "-p", "segmentz=3", "--size", "32x32", "-o", "/tmp/x.png"], &["reference.segmentz", "reference.segments"]);
-    fails_with(&["render", "-t", "reference", "-p", "segments=1000000", "--size", "32x32", "-o", "/tmp/x.png"], &["reference.segments"]);
-    fails_with(&["render", "-t", "reference", "-p", "wind_response=nan", "--size", "32x32", "-o", "/tmp/x.png"], &["reference.wind_response"]);
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "--size",
+            "100000x100000",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["resolution.width"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "--size",
+            "0x10",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["resolution.width"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "--size",
+            "big",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["WIDTHxHEIGHT"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-p",
+            "segmentz=3",
+            "--size",
+            "32x32",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["reference.segmentz", "reference.segments"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-p",
+            "segments=1000000",
+            "--size",
+            "32x32",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["reference.segments"],
+    );
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-p",
+            "wind_response=nan",
+            "--size",
+            "32x32",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["reference.wind_response"],
+    );
 }
 
 #[test]
@@ -58,14 +168,36 @@ fn bad_scene_files_name_file_and_problem() {
     let d = temp("scenes");
     let malformed = d.join("malformed.toml");
     std::fs::write(&malformed, "name = \"x\"\n[terrain\nsize = 3").unwrap();
-    fails_with(&["render", "-t", "reference", "-s", malformed.to_str().unwrap(), "-o", "/tmp/x.png"], &["malformed.toml", "line"]);
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-s",
+            malformed.to_str().unwrap(),
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["malformed.toml", "line"],
+    );
     let absurd = d.join("absurd.toml");
     std::fs::write(
         &absurd,
         "name = \"absurd\"\n[terrain]\nsize = [1000.0, 1000.0]\n[grass]\ndensity = 5e4\n[camera.path]\nkind = \"fixed\"\neye = [0.0, 2.0, 0.0]\nlook_at = [1.0, 0.0, 0.0]\n",
     )
     .unwrap();
-    fails_with(&["render", "-t", "reference", "-s", absurd.to_str().unwrap(), "-o", "/tmp/x.png"], &["absurd.toml", "grass.density", "blades"]);
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-s",
+            absurd.to_str().unwrap(),
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["absurd.toml", "grass.density", "blades"],
+    );
     let wrong_map = d.join("map.toml");
     std::fs::write(d.join("rgb.png"), []).unwrap();
     std::fs::write(
@@ -73,7 +205,18 @@ fn bad_scene_files_name_file_and_problem() {
         "name = \"map\"\n[terrain]\nsize = [10.0, 10.0]\nheight = { kind = \"png\", path = \"rgb.png\" }\n[camera.path]\nkind = \"fixed\"\neye = [0.0, 2.0, 0.0]\nlook_at = [1.0, 0.0, 0.0]\n",
     )
     .unwrap();
-    fails_with(&["render", "-t", "reference", "-s", wrong_map.to_str().unwrap(), "-o", "/tmp/x.png"], &["rgb.png", "PNG"]);
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "-s",
+            wrong_map.to_str().unwrap(),
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["rgb.png", "PNG"],
+    );
 }
 
 #[test]
@@ -81,17 +224,46 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     let d = temp("run");
     let out = d.join("out");
     let out_s = out.to_str().unwrap();
-    let args = ["run", "-t", "all", "-s", "football_field", "--frames", "2", "--warmup", "1", "--size", "96x64", "-p", "segments=3", "-o", out_s];
+    let args = [
+        "run",
+        "-t",
+        "all",
+        "-s",
+        "football_field",
+        "--frames",
+        "2",
+        "--warmup",
+        "1",
+        "--size",
+        "96x64",
+        "-p",
+        "segments=3",
+        "-o",
+        out_s,
+    ];
     let (ok, _, err) = grassbench(&args);
     assert!(ok, "{err}");
-    for f in ["meta.toml", "runs.csv", "README.md", "football_field/frames.csv", "football_field/runs.csv", "football_field/params.csv", "football_field/images.csv", "football_field/reference_frame0001.png", "football_field/none_frame0002.png"] {
+    for f in [
+        "meta.toml",
+        "runs.csv",
+        "README.md",
+        "football_field/frames.csv",
+        "football_field/runs.csv",
+        "football_field/params.csv",
+        "football_field/images.csv",
+        "football_field/reference_frame0001.png",
+        "football_field/none_frame0002.png",
+    ] {
         assert!(out.join(f).exists(), "missing {f}");
     }
     let frames = std::fs::read_to_string(out.join("football_field/frames.csv")).unwrap();
     assert_eq!(frames.lines().count(), 1 + 2, "{frames}");
     assert!(frames.lines().next().unwrap().contains("gpu_wall_ms"));
     let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
-    assert!(meta.contains("revision") && meta.contains("[adapter]"), "{meta}");
+    assert!(
+        meta.contains("revision") && meta.contains("[adapter]"),
+        "{meta}"
+    );
     let params = std::fs::read_to_string(out.join("football_field/params.csv")).unwrap();
     assert!(params.contains("segments,3"), "{params}");
     // A second run into the same folder is refused without --force.
@@ -104,6 +276,23 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
 #[test]
 fn missing_backend_names_the_fix() {
     // No machine this runs on has Metal and DX12 at once; on Linux, neither.
-    let backend = if cfg!(target_os = "macos") { "dx12" } else { "metal" };
-    fails_with(&["render", "-t", "reference", "--backend", backend, "--size", "32x32", "-o", "/tmp/x.png"], &["no GPU adapter", "mesa-vulkan-drivers"]);
+    let backend = if cfg!(target_os = "macos") {
+        "dx12"
+    } else {
+        "metal"
+    };
+    fails_with(
+        &[
+            "render",
+            "-t",
+            "reference",
+            "--backend",
+            backend,
+            "--size",
+            "32x32",
+            "-o",
+            "/tmp/x.png",
+        ],
+        &["no GPU adapter", "mesa-vulkan-drivers"],
+    );
 }

@@ -77,8 +77,8 @@ pub fn mean_color(img: &image::RgbaImage) -> [f64; 3] {
     let n = f64::from(img.width() * img.height()).max(1.0);
     let mut sum = [0.0; 3];
     for p in img.pixels() {
-        for c in 0..3 {
-            sum[c] += f64::from(p.0[c]);
+        for (s, v) in sum.iter_mut().zip(p.0) {
+            *s += f64::from(v);
         }
     }
     sum.map(|s| s / n)

@@ -210,9 +210,13 @@ impl<'g> Harness<'g> {
         let gpu_wall_ms = ms(submit_at);
 
         let passes = self.timer.as_mut().map(|t| t.read(gpu)).unwrap_or_default();
+        // Sum of the timestamp times of the passes `f` selects; empty when none was timed.
         let sum = |f: &dyn Fn(&crate::technique::PassTime) -> bool| -> Option<f64> {
-            gpu.has_timestamps()
-                .then(|| passes.iter().filter(|p| f(p)).map(|p| p.ms).sum())
+            let mut selected = passes.iter().filter(|p| f(p)).peekable();
+            selected
+                .peek()
+                .is_some()
+                .then(|| selected.map(|p| p.ms).sum())
         };
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();

@@ -136,7 +136,7 @@ impl RunSummary {
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max().unwrap_or(0),
             params: params
                 .iter()
-                .map(|(k, v)| format!("{k}={v}"))
+                .map(|(k, v)| format!("{k}={}", crate::params::format_value(v)))
                 .collect::<Vec<_>>()
                 .join(";"),
         }

@@ -8,6 +8,7 @@ use crate::terrain::{GroundVertex, TerrainGpu};
 /// Sky and ground pipelines.
 pub struct Background {
     sky: wgpu::RenderPipeline,
+    apron: wgpu::RenderPipeline,
     ground: wgpu::RenderPipeline,
 }
 
@@ -29,7 +30,8 @@ impl Background {
                         fs,
                         buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
                         depth_write,
-                        compare| {
+                        compare,
+                        topology| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&layout),
@@ -40,6 +42,7 @@ impl Background {
                     buffers,
                 },
                 primitive: wgpu::PrimitiveState {
+                    topology,
                     cull_mode: Some(wgpu::Face::Back),
                     ..Default::default()
                 },
@@ -64,6 +67,10 @@ impl Background {
                 cache: None,
             })
         };
+        let (list, strip) = (
+            wgpu::PrimitiveTopology::TriangleList,
+            wgpu::PrimitiveTopology::TriangleStrip,
+        );
         Self {
             sky: pipeline(
                 "sky",
@@ -72,6 +79,16 @@ impl Background {
                 &[],
                 false,
                 wgpu::CompareFunction::Always,
+                list,
+            ),
+            apron: pipeline(
+                "apron",
+                "vs_apron",
+                "fs_apron",
+                &[],
+                true,
+                wgpu::CompareFunction::Less,
+                strip,
             ),
             ground: pipeline(
                 "ground",
@@ -80,14 +97,17 @@ impl Background {
                 &[Some(GroundVertex::LAYOUT)],
                 true,
                 wgpu::CompareFunction::Less,
+                list,
             ),
         }
     }
 
-    /// Draws the sky, then the ground. Bind group 0 must be set.
+    /// Draws the sky, the apron beyond the terrain, then the ground. Bind group 0 must be set.
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, terrain: &TerrainGpu) {
         pass.set_pipeline(&self.sky);
         pass.draw(0..3, 0..1);
+        pass.set_pipeline(&self.apron);
+        pass.draw(0..4, 0..1);
         pass.set_pipeline(&self.ground);
         pass.set_vertex_buffer(0, terrain.ground_vertices.slice(..));
         pass.set_index_buffer(terrain.ground_indices.slice(..), wgpu::IndexFormat::Uint32);

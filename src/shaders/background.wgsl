@@ -24,6 +24,9 @@ fn fs_sky(in: SkyOut) -> @location(0) vec4<f32> {
     return vec4(sky_color(dir), 1.0);
 }
 
+// Albedo of the soil under grass: litter and shadow.
+const UNDER_GRASS: vec3<f32> = vec3(0.035, 0.06, 0.015);
+
 struct GroundOut {
     @builtin(position) position: vec4<f32>,
     @location(0) world: vec3<f32>,
@@ -44,8 +47,29 @@ fn fs_ground(in: GroundOut) -> @location(0) vec4<f32> {
     let xz = in.world.xz;
     // Ground under grass is darker and greener (litter, shadow), bare ground is soil.
     let density = terrain_density(xz) * f32(terrain_covering(xz) == COVER_GRASS);
-    let under_grass = vec3(0.035, 0.06, 0.015);
-    let albedo = mix(globals.ground_color.rgb, under_grass, clamp(density, 0.0, 1.0));
+    let albedo = mix(globals.ground_color.rgb, UNDER_GRASS, clamp(density, 0.0, 1.0));
     let lit = shade(albedo, normalize(in.normal), 1.0);
+    return vec4(apply_fog(lit, in.world), 1.0);
+}
+
+// The apron: ground beyond the terrain out to the far plane, just below the lowest terrain
+// point, so the world does not end at the terrain's edge. Its colour is the soil of a sparse
+// field, so distant terrain edges blend in rather than draw a line at the horizon.
+@vertex
+fn vs_apron(@builtin(vertex_index) index: u32) -> GroundOut {
+    let corner = vec2<f32>(f32((index >> 1u) & 1u), f32(index & 1u)) * 2.0 - 1.0;
+    let center = globals.terrain.xy + 0.5 * globals.terrain.zw;
+    let reach = globals.terrain_range.z + max(globals.terrain.z, globals.terrain.w);
+    let world = vec3(center.x + corner.x * reach, globals.terrain_range.x - 0.02, center.y + corner.y * reach);
+    var out: GroundOut;
+    out.position = globals.view_proj * vec4(world, 1.0);
+    out.world = world;
+    out.normal = vec3(0.0, 1.0, 0.0);
+    return out;
+}
+
+@fragment
+fn fs_apron(in: GroundOut) -> @location(0) vec4<f32> {
+    let lit = shade(mix(globals.ground_color.rgb, UNDER_GRASS, 0.6), in.normal, 1.0);
     return vec4(apply_fog(lit, in.world), 1.0);
 }

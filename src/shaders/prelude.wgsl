@@ -27,6 +27,8 @@ struct Globals {
     frame: vec4<u32>,
     // x: largest wind speed in the wind texture (m/s); yzw: unused
     wind_info: vec4<f32>,
+    // x: lowest ground height (m); y: highest; z: camera far plane (m); w: unused
+    terrain_range: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;

@@ -111,9 +111,11 @@ mod tests {
 
     #[test]
     fn gust_fronts_travel_downwind() {
-        let mut c = BreezeConfig::default();
-        c.direction = [1.0, 0.0];
-        c.turbulence = 0.0;
+        let c = BreezeConfig {
+            direction: [1.0, 0.0],
+            turbulence: 0.0,
+            ..Default::default()
+        };
         let b = Breeze::new(c.clone(), 1);
         // The gust pattern at x + speed*dt, time + dt matches the pattern at x, time.
         let (x, t, dt) = (3.0, 2.0, 0.5);

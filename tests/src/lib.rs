@@ -13,7 +13,10 @@ use grassbench::technique::GrassTechnique;
 use grassbench::{GpuContext, Scene};
 
 /// Size most GPU tests render at (small: the rasteriser is software).
-pub const TEST_SIZE: Size = Size { width: 320, height: 180 };
+pub const TEST_SIZE: Size = Size {
+    width: 320,
+    height: 180,
+};
 
 /// The repository root.
 pub fn repo_root() -> PathBuf {
@@ -35,7 +38,14 @@ pub fn scene(name: &str, density_scale: f32) -> anyhow::Result<Scene> {
 }
 
 /// Renders frame `frame` of technique `id` (with parameter overrides) on `scene`.
-pub fn render(gpu: &GpuContext, id: &str, scene: Scene, frame: u64, size: Size, overrides: &toml::Table) -> anyhow::Result<image::RgbaImage> {
+pub fn render(
+    gpu: &GpuContext,
+    id: &str,
+    scene: Scene,
+    frame: u64,
+    size: Size,
+    overrides: &toml::Table,
+) -> anyhow::Result<image::RgbaImage> {
     let entry = grassbench_cli::registry::find(id)?;
     let mut harness = Harness::new(gpu, scene, size, false)?;
     let mut technique = harness.create(entry, overrides)?;
@@ -43,9 +53,16 @@ pub fn render(gpu: &GpuContext, id: &str, scene: Scene, frame: u64, size: Size, 
 }
 
 /// Renders frame `frame` of an existing technique in a harness (earlier frames caught up).
-pub fn render_with(harness: &mut Harness<'_>, technique: &mut dyn GrassTechnique, frame: u64) -> anyhow::Result<image::RgbaImage> {
+pub fn render_with(
+    harness: &mut Harness<'_>,
+    technique: &mut dyn GrassTechnique,
+    frame: u64,
+) -> anyhow::Result<image::RgbaImage> {
     harness.catch_up(technique, 0, frame)?;
-    harness.frame(technique, frame, true)?.image.context("no image captured")
+    harness
+        .frame(technique, frame, true)?
+        .image
+        .context("no image captured")
 }
 
 /// Where failing tests write their actual and difference images.
@@ -56,15 +73,26 @@ pub fn output_dir() -> PathBuf {
 /// Compares `actual` with `tests/snapshots/<name>.png` by mean FLIP. With `UPDATE_SNAPSHOTS=1`
 /// (or no snapshot yet, outside CI) the snapshot is (re)written instead. On failure the actual
 /// image and the FLIP heat map go to `tests/output/`.
-pub fn check_snapshot(name: &str, actual: &image::RgbaImage, max_mean_flip: f32) -> anyhow::Result<f32> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("snapshots").join(format!("{name}.png"));
+pub fn check_snapshot(
+    name: &str,
+    actual: &image::RgbaImage,
+    max_mean_flip: f32,
+) -> anyhow::Result<f32> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("snapshots")
+        .join(format!("{name}.png"));
     let update = std::env::var("UPDATE_SNAPSHOTS").is_ok_and(|v| v == "1");
     if update || (!path.exists() && std::env::var("CI").is_err()) {
         save_png(actual, &path)?;
         return Ok(0.0);
     }
     let expected = image::open(&path)
-        .with_context(|| format!("missing snapshot {} (run with UPDATE_SNAPSHOTS=1 to create it)", path.display()))?
+        .with_context(|| {
+            format!(
+                "missing snapshot {} (run with UPDATE_SNAPSHOTS=1 to create it)",
+                path.display()
+            )
+        })?
         .to_rgba8();
     let flip = grassbench::metrics::flip(&expected, actual)?;
     if flip.mean > max_mean_flip {

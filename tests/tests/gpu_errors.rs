@@ -1,11 +1,20 @@
 //! wgpu validation errors become errors that fail the run, never just a log line.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use grassbench::runner::Harness;
-use grassbench::technique::{FrameEncoder, GrassTechnique, TechniqueEntry, TechniqueInfo, TechniqueStats};
+use grassbench::technique::{
+    FrameEncoder, GrassTechnique, TechniqueEntry, TechniqueInfo, TechniqueStats,
+};
 use grassbench::{FrameInputs, GpuContext, wgpu};
 use grassbench_tests::{TEST_SIZE, gpu, scene};
 
-const INFO: TechniqueInfo = TechniqueInfo { id: "broken", name: "broken", paper: "-", gpu_state: false };
+const INFO: TechniqueInfo = TechniqueInfo {
+    id: "broken",
+    name: "broken",
+    paper: "-",
+    gpu_state: false,
+};
 
 /// A technique whose pipeline's shader reads a binding its layout does not have.
 const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
@@ -24,7 +33,12 @@ const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("broken"),
             layout: Some(&layout),
-            vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
             primitive: Default::default(),
             depth_stencil: None,
             multisample: Default::default(),
@@ -37,7 +51,9 @@ const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
             multiview_mask: None,
             cache: None,
         });
-        Ok(Box::new(BadDraw { pipeline: Some(pipeline) }))
+        Ok(Box::new(BadDraw {
+            pipeline: Some(pipeline),
+        }))
     },
 };
 
@@ -75,9 +91,15 @@ impl GrassTechnique for BadDraw {
 fn invalid_pipeline_fails_technique_creation() -> anyhow::Result<()> {
     let gpu = gpu()?;
     let harness = Harness::new(&gpu, scene("meadow", 0.01)?, TEST_SIZE, false)?;
-    let err = harness.create(&BAD_PIPELINE, &toml::Table::new()).err().expect("creation must fail");
+    let err = harness
+        .create(&BAD_PIPELINE, &toml::Table::new())
+        .err()
+        .expect("creation must fail");
     let text = err.to_string();
-    assert!(matches!(err, grassbench::Error::Validation { .. }), "{text}");
+    assert!(
+        matches!(err, grassbench::Error::Validation { .. }),
+        "{text}"
+    );
     assert!(text.contains("creating technique `broken`"), "{text}");
     Ok(())
 }
@@ -88,7 +110,10 @@ fn invalid_draw_fails_the_frame() -> anyhow::Result<()> {
     let mut harness = Harness::new(&gpu, scene("meadow", 0.01)?, TEST_SIZE, false)?;
     // No pipeline set at all: the draw is invalid.
     let mut bad = BadDraw { pipeline: None };
-    let err = harness.frame(&mut bad, 0, false).err().expect("the frame must fail");
+    let err = harness
+        .frame(&mut bad, 0, false)
+        .err()
+        .expect("the frame must fail");
     assert!(err.to_string().contains("frame 0 of `broken`"), "{err}");
     // The harness keeps working afterwards.
     harness.frame(&mut grassbench::technique::NoGrass, 1, false)?;

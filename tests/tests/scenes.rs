@@ -1,5 +1,7 @@
 //! Built-in scenes load, camera paths stay over the terrain, and recorded versions are right.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use grassbench::glam::Vec2;
 use grassbench_tests::repo_root;
 
@@ -11,7 +13,11 @@ fn built_in_scenes_load_and_cameras_stay_above_ground() {
         for frame in (0..600).step_by(37) {
             let cam = scene.camera_at(frame, size);
             let ground = scene.terrain.height_at(Vec2::new(cam.eye.x, cam.eye.z));
-            assert!(cam.eye.y > ground + 0.5, "{name} frame {frame}: eye {} under ground {ground}", cam.eye);
+            assert!(
+                cam.eye.y > ground + 0.5,
+                "{name} frame {frame}: eye {} under ground {ground}",
+                cam.eye
+            );
             assert!(cam.forward.is_normalized());
         }
         let blades = scene.blades.all_blades(&scene.terrain).len();
@@ -21,8 +27,13 @@ fn built_in_scenes_load_and_cameras_stay_above_ground() {
 
 #[test]
 fn unknown_scene_lists_the_valid_ones() {
-    let e = grassbench_cli::scenes::load("medow").unwrap_err().to_string();
-    assert!(e.contains("medow") && e.contains("meadow") && e.contains("football_field"), "{e}");
+    let e = grassbench_cli::scenes::load("medow")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("medow") && e.contains("meadow") && e.contains("football_field"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -32,7 +43,10 @@ fn malformed_scene_file_names_file_and_line() {
     let path = dir.join("bad.toml");
     std::fs::write(&path, "name = \"bad\"\n[terrain]\nsize = [10.0, 10.0]\nsizee = 3\n[camera.path]\nkind = \"fixed\"\neye = [0.0, 2.0, 0.0]\nlook_at = [1.0, 0.0, 0.0]\n").unwrap();
     let e = grassbench::Scene::load(&path).unwrap_err().to_string();
-    assert!(e.contains("bad.toml") && e.contains("sizee") && e.contains("line 4"), "{e}");
+    assert!(
+        e.contains("bad.toml") && e.contains("sizee") && e.contains("line 4"),
+        "{e}"
+    );
     std::fs::write(&path, "name = \"bad\"\n[terrain]\nsize = [10.0, -1.0]\n[camera.path]\nkind = \"fixed\"\neye = [0.0, 2.0, 0.0]\nlook_at = [1.0, 0.0, 0.0]\n").unwrap();
     let e = grassbench::Scene::load(&path).unwrap_err().to_string();
     assert!(e.contains("terrain.size[1]"), "{e}");
@@ -42,6 +56,13 @@ fn malformed_scene_file_names_file_and_line() {
 #[test]
 fn recorded_wgpu_version_matches_the_lock_file() {
     let lock = std::fs::read_to_string(repo_root().join("Cargo.lock")).unwrap();
-    let needle = format!("name = \"wgpu\"\nversion = \"{}\"", grassbench::runner::WGPU_VERSION);
-    assert!(lock.contains(&needle), "Cargo.lock has a different wgpu than {}", grassbench::runner::WGPU_VERSION);
+    let needle = format!(
+        "name = \"wgpu\"\nversion = \"{}\"",
+        grassbench::runner::WGPU_VERSION
+    );
+    assert!(
+        lock.contains(&needle),
+        "Cargo.lock has a different wgpu than {}",
+        grassbench::runner::WGPU_VERSION
+    );
 }

@@ -1,6 +1,8 @@
 //! Every WGSL shader in the repository parses and validates with naga (no GPU needed), and the
 //! Rust mirrors of uniform structs have the sizes naga computes for the WGSL ones.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use std::path::{Path, PathBuf};
 
 use grassbench::shaders;
@@ -27,12 +29,19 @@ fn all_shaders() -> Vec<PathBuf> {
 fn module_of(path: &Path) -> naga::Module {
     let text = std::fs::read_to_string(path).unwrap();
     // The prelude is standalone; every other shader is composed after it.
-    let source = if path.ends_with("prelude.wgsl") { text } else { shaders::compose(&text) };
+    let source = if path.ends_with("prelude.wgsl") {
+        text
+    } else {
+        shaders::compose(&text)
+    };
     let module = naga::front::wgsl::parse_str(&source)
         .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&source)));
-    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&source)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&source)));
     module
 }
 
@@ -61,7 +70,10 @@ fn wgsl_size(module: &naga::Module, name: &str) -> u32 {
 fn uniform_mirrors_match_wgsl_layouts() {
     let root = repo_root();
     let prelude = module_of(&root.join("src/shaders/prelude.wgsl"));
-    assert_eq!(wgsl_size(&prelude, "Globals") as usize, std::mem::size_of::<grassbench::frame::FrameGlobals>());
+    assert_eq!(
+        wgsl_size(&prelude, "Globals") as usize,
+        std::mem::size_of::<grassbench::frame::FrameGlobals>()
+    );
     let reference = module_of(&root.join("techniques/reference/shaders/blade.wgsl"));
     assert_eq!(
         wgsl_size(&reference, "Params") as usize,
@@ -71,5 +83,9 @@ fn uniform_mirrors_match_wgsl_layouts() {
 
 #[test]
 fn shader_consts_in_crates_match_files() {
-    assert_eq!(grassbench_reference::SHADER, std::fs::read_to_string(repo_root().join("techniques/reference/shaders/blade.wgsl")).unwrap());
+    assert_eq!(
+        grassbench_reference::SHADER,
+        std::fs::read_to_string(repo_root().join("techniques/reference/shaders/blade.wgsl"))
+            .unwrap()
+    );
 }
