@@ -10,6 +10,8 @@ use crate::{Error, GpuContext, Result};
 
 /// Colour format of every target: 8-bit sRGB, so shaders write linear light.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Format of [`RenderTarget::display_view`]: the colour bytes without sRGB decoding.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// Depth format of every target.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Largest side accepted, in pixels (wgpu's default `max_texture_dimension_2d`).
@@ -82,6 +84,9 @@ pub struct RenderTarget {
     pub color_view: wgpu::TextureView,
     /// Single-sample resolve texture when multisampled.
     pub resolve: Option<(wgpu::Texture, wgpu::TextureView)>,
+    /// View of the output in `Rgba8Unorm`: the stored sRGB bytes, undecoded, for UIs that
+    /// composite in gamma space (egui).
+    pub display_view: wgpu::TextureView,
     /// Depth texture.
     pub depth: wgpu::Texture,
     /// View of `depth`.
@@ -102,6 +107,7 @@ impl RenderTarget {
         }
         gpu.scoped("creating the render target", || {
             let texture = |label, format, samples, usage| {
+                let single = samples == 1 && format == COLOR_FORMAT;
                 gpu.device.create_texture(&wgpu::TextureDescriptor {
                     label: Some(label),
                     size: size.extent(),
@@ -110,7 +116,7 @@ impl RenderTarget {
                     dimension: wgpu::TextureDimension::D2,
                     format,
                     usage,
-                    view_formats: &[],
+                    view_formats: if single { &[DISPLAY_FORMAT] } else { &[] },
                 })
             };
             let single = wgpu::TextureUsages::RENDER_ATTACHMENT
@@ -137,9 +143,16 @@ impl RenderTarget {
                 sample_count,
                 wgpu::TextureUsages::RENDER_ATTACHMENT,
             );
+            let output = resolve.as_ref().map_or(&color, |(t, _)| t);
+            let display_view = output.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("target display"),
+                format: Some(DISPLAY_FORMAT),
+                ..Default::default()
+            });
             Self {
                 size,
                 sample_count,
+                display_view,
                 color_view: color.create_view(&Default::default()),
                 color,
                 resolve,

@@ -4,3 +4,4 @@
 pub mod commands;
 pub mod registry;
 pub mod scenes;
+pub mod ui;

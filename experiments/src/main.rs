@@ -21,6 +21,8 @@ enum Command {
     Render(RenderArgs),
     /// Measure techniques on scenes: frames.csv, runs.csv, images, meta.toml, README.md.
     Run(RunArgs),
+    /// Open the side-by-side comparison window.
+    Ui(grassbench_cli::ui::UiArgs),
 }
 
 fn main() -> ExitCode {
@@ -29,6 +31,7 @@ fn main() -> ExitCode {
         Command::List => commands::list(),
         Command::Render(args) => commands::render(args),
         Command::Run(args) => commands::run(args),
+        Command::Ui(args) => grassbench_cli::ui::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

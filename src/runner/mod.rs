@@ -42,6 +42,8 @@ pub struct Harness<'g> {
     pub target: RenderTarget,
     /// Debug view passed to techniques (0 = none).
     pub debug_view: u32,
+    /// Eye and unit view direction replacing the scene's camera path (the UI's free camera).
+    pub camera_override: Option<(glam::Vec3, glam::Vec3)>,
     wind: Box<dyn WindField>,
     wind_frame: Option<u64>,
     timer: Option<PassTimer>,
@@ -70,7 +72,31 @@ impl<'g> Harness<'g> {
             timer: PassTimer::new(gpu),
             scene,
             debug_view: 0,
+            camera_override: None,
         })
+    }
+
+    /// Changes the target size (same sample count) and tells `technique`.
+    pub fn resize(&mut self, technique: &mut dyn GrassTechnique, size: Size) -> Result<()> {
+        if size != self.target.size {
+            self.target = RenderTarget::new(self.gpu, size, self.target.sample_count > 1)?;
+            technique.resize(self.gpu, size)?;
+        }
+        Ok(())
+    }
+
+    /// Replaces the scene's wind (validated) and restarts it from time 0.
+    pub fn set_wind(&mut self, config: crate::wind::WindConfig) -> Result<()> {
+        let wind = crate::wind::build(&config, self.scene.config.seed)?;
+        self.scene.config.wind = config;
+        self.wind = wind;
+        self.wind_frame = None;
+        Ok(())
+    }
+
+    /// The wind as it stands after the last frame.
+    pub fn wind(&self) -> &dyn WindField {
+        self.wind.as_ref()
     }
 
     /// Creates a technique: its defaults, overlaid with the scene file's `[techniques.<id>]`,
@@ -112,11 +138,16 @@ impl<'g> Harness<'g> {
     }
 
     fn inputs(&self, frame: u64) -> FrameInputs<'_> {
+        let mut camera = self.scene.camera_at(frame, self.target.size);
+        if let Some((eye, forward)) = self.camera_override {
+            camera.eye = eye;
+            camera.forward = forward.normalize_or(camera.forward);
+        }
         FrameInputs {
             frame,
             time: self.scene.time_of(frame),
             dt: self.scene.dt(),
-            camera: self.scene.camera_at(frame, self.target.size),
+            camera,
             scene: &self.scene,
             wind: self.wind.as_ref(),
             size: self.target.size,

@@ -32,6 +32,9 @@ pub struct TechniqueInfo {
     /// Whether the technique keeps simulation state on the GPU that every frame must advance
     /// (if not, the runner may skip encoding frames it does not show or measure).
     pub gpu_state: bool,
+    /// Names of the debug views the technique offers; view `k` (1-based, passed in
+    /// [`FrameInputs::debug_view`]) is `debug_views[k - 1]`. Empty when it offers none.
+    pub debug_views: &'static [&'static str],
 }
 
 /// What a technique submitted in its last frame and what it holds.

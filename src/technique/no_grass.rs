@@ -14,6 +14,7 @@ impl GrassTechnique for NoGrass {
             name: "No grass (background only)",
             paper: "-",
             gpu_state: false,
+            debug_views: &[],
         }
     }
 

@@ -88,6 +88,28 @@ impl Default for PointSourceConfig {
 }
 
 impl WindConfig {
+    /// The `model` names, in the order the UI lists them.
+    pub const MODELS: &'static [&'static str] = &["calm", "breeze", "point_source"];
+
+    /// The `model` name of this configuration.
+    pub fn model(&self) -> &'static str {
+        match self {
+            Self::Calm => "calm",
+            Self::Breeze(_) => "breeze",
+            Self::PointSource(_) => "point_source",
+        }
+    }
+
+    /// The default configuration of model `name`.
+    pub fn default_for(name: &str) -> Option<Self> {
+        match name {
+            "calm" => Some(Self::Calm),
+            "breeze" => Some(Self::Breeze(BreezeConfig::default())),
+            "point_source" => Some(Self::PointSource(PointSourceConfig::default())),
+            _ => None,
+        }
+    }
+
     /// Rejects NaN, infinities and absurd values.
     pub fn validate(&self) -> Result<()> {
         match self {

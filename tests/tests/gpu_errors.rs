@@ -14,6 +14,7 @@ const INFO: TechniqueInfo = TechniqueInfo {
     name: "broken",
     paper: "-",
     gpu_state: false,
+    debug_views: &[],
 };
 
 /// A technique whose pipeline's shader reads a binding its layout does not have.

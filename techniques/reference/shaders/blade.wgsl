@@ -32,6 +32,12 @@ fn tilt(s: f32, bend: f32) -> f32 {
     return bend * pow(s, params.shape.z);
 }
 
+// Blue (0) through green to red (1), for debug views.
+fn heat(t: f32) -> vec3<f32> {
+    let x = clamp(t, 0.0, 1.0);
+    return clamp(vec3(2.0 * x - 0.5, 1.0 - abs(2.0 * x - 1.0), 1.5 - 2.0 * x), vec3(0.0), vec3(1.0)) * 0.6;
+}
+
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32, blade: Blade) -> VsOut {
     var out: VsOut;
@@ -89,6 +95,13 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     var albedo = mix(params.color_root.rgb, params.color_tip.rgb, pow(s, 0.8));
     albedo *= 1.0 + variation;
     albedo.r *= 1.0 + 0.6 * max(variation, 0.0);
+
+    // Debug views (`TechniqueInfo::debug_views`): 1 = wind speed, 2 = bend, blue to red.
+    if (globals.frame.z == 1u) {
+        albedo = heat(speed / max(globals.wind_info.x, 0.1));
+    } else if (globals.frame.z == 2u) {
+        albedo = heat(bend / max(params.shape.w, 1e-3));
+    }
 
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;

@@ -58,6 +58,7 @@ const INFO: TechniqueInfo = TechniqueInfo {
     name: "Reference (every blade as geometry)",
     paper: "brute force; blade model after Bakay et al. 2002 Sec. 3 and Zhang 2006 Ch. 3",
     gpu_state: false,
+    debug_views: &["wind speed (blue calm → red strong)", "bend amount"],
 };
 
 /// The registry line for this technique.

@@ -1,0 +1,83 @@
+//! The difference view: two panes compared live with FLIP or an absolute difference.
+
+use eframe::egui;
+use grassbench::metrics;
+
+/// Which difference to show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffMode {
+    /// FLIP error map (magma) and mean FLIP.
+    Flip,
+    /// Absolute RGB difference x4 and mean absolute difference.
+    Absolute,
+}
+
+/// State of the difference view.
+pub struct DiffView {
+    /// Shown at all.
+    pub enabled: bool,
+    /// First pane.
+    pub a: usize,
+    /// Second pane.
+    pub b: usize,
+    /// FLIP or absolute.
+    pub mode: DiffMode,
+    /// The difference image.
+    pub texture: Option<egui::TextureHandle>,
+    /// Mean FLIP, or mean absolute difference in 0..255.
+    pub mean: Option<f64>,
+    /// What went wrong last time (e.g. panes of different sizes).
+    pub error: Option<String>,
+}
+
+impl Default for DiffView {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            a: 0,
+            b: 1,
+            mode: DiffMode::Flip,
+            texture: None,
+            mean: None,
+            error: None,
+        }
+    }
+}
+
+impl DiffView {
+    /// Recomputes the difference of two images.
+    pub fn update(&mut self, ctx: &egui::Context, a: &image::RgbaImage, b: &image::RgbaImage) {
+        let result = match self.mode {
+            DiffMode::Flip => metrics::flip(a, b).map(|f| (f.heatmap, f64::from(f.mean))),
+            DiffMode::Absolute => metrics::abs_diff_image(a, b, 4.0).map(|d| {
+                let sum: f64 = d
+                    .pixels()
+                    .map(|p| f64::from(p.0[0]) + f64::from(p.0[1]) + f64::from(p.0[2]))
+                    .sum();
+                let mean = sum / (3.0 * 4.0 * f64::from(d.width() * d.height()).max(1.0));
+                (d, mean)
+            }),
+        };
+        match result {
+            Ok((img, mean)) => {
+                let color = egui::ColorImage::from_rgba_unmultiplied(
+                    [img.width() as usize, img.height() as usize],
+                    img.as_raw(),
+                );
+                match &mut self.texture {
+                    Some(t) => t.set(color, egui::TextureOptions::LINEAR),
+                    None => {
+                        self.texture = Some(ctx.load_texture(
+                            "difference",
+                            color,
+                            egui::TextureOptions::LINEAR,
+                        ))
+                    }
+                }
+                self.mean = Some(mean);
+                self.error = None;
+            }
+            Err(e) => self.error = Some(e.to_string()),
+        }
+    }
+}

@@ -1,0 +1,129 @@
+//! `grassbench ui`: an eframe window comparing techniques live, side by side.
+//!
+//! Techniques render offscreen through the same [`Harness`](grassbench::runner::Harness) and
+//! [`RenderTarget`](grassbench::RenderTarget) as headless runs; the UI only displays the
+//! resulting textures, so what it shows is what sweeps measure.
+//!
+//! | file | concept |
+//! |---|---|
+//! | `app.rs` | the window: side panel, panes, the frame loop |
+//! | `pane.rs` | one pane: a harness, a technique, its figures and texture |
+//! | `camera.rs` | the shared camera: scene path, walker, orbit |
+//! | `editor.rs` | widgets generated from parameter tables (technique parameters, wind) |
+//! | `diff.rs` | the difference view between two panes |
+//! | `script.rs` | scripted mode: play N frames, save screenshots, exit |
+
+mod app;
+mod camera;
+mod diff;
+mod editor;
+mod pane;
+mod script;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::Context as _;
+use grassbench::GpuContext;
+use grassbench::gpu::BackendChoice;
+
+pub use script::Layout;
+
+/// Arguments of `grassbench ui`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct UiArgs {
+    /// Built-in scene name or path to a scene TOML.
+    #[arg(long, short, default_value = "meadow")]
+    pub scene: String,
+    /// Number of panes: 1, 2 or 4.
+    #[arg(long, default_value_t = 2)]
+    pub panes: usize,
+    /// Techniques of the panes, comma-separated (repeated to fill the panes).
+    #[arg(long, short, default_value = "reference")]
+    pub techniques: String,
+    /// Render size of each pane, WxH.
+    #[arg(long, default_value = "480x270")]
+    pub size: String,
+    /// 4x MSAA.
+    #[arg(long)]
+    pub msaa: bool,
+    /// Graphics backend for the window and the renders (default: $GRASSBENCH_BACKEND or auto).
+    #[arg(long)]
+    pub backend: Option<String>,
+    /// Scripted mode: play this many frames, save screenshots to `--screenshot`, exit.
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Scripted mode: where to save the window screenshot (PNG); pane images and the layout
+    /// (`<name>.layout.toml`) go beside it.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Folder the screenshot button saves into.
+    #[arg(long, default_value = "screenshots")]
+    pub screenshot_dir: PathBuf,
+}
+
+/// Opens the window and runs until it is closed (or the script ends).
+pub fn run(args: &UiArgs) -> anyhow::Result<()> {
+    // Validate everything that can be validated before opening a window.
+    crate::scenes::load(&args.scene)?;
+    crate::registry::select(&args.techniques)?;
+    grassbench::target::Size::parse(&args.size)?;
+    if ![1, 2, 4].contains(&args.panes) {
+        anyhow::bail!("--panes must be 1, 2 or 4 (got {})", args.panes);
+    }
+    let choice = match &args.backend {
+        Some(b) => b.parse::<BackendChoice>()?,
+        None => BackendChoice::from_env()?,
+    };
+    let mut setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.instance_descriptor.backends = choice.backends();
+    let setup = eframe::egui_wgpu::WgpuSetupCreateNew {
+        device_descriptor: Arc::new(|adapter: &eframe::wgpu::Adapter| {
+            eframe::wgpu::DeviceDescriptor {
+                label: Some("grassbench ui"),
+                required_features: adapter.features() & eframe::wgpu::Features::TIMESTAMP_QUERY,
+                required_limits: adapter.limits(),
+                ..Default::default()
+            }
+        }),
+        ..setup
+    };
+    let options = eframe::NativeOptions {
+        viewport: eframe::egui::ViewportBuilder::default()
+            .with_inner_size([1280.0, 800.0])
+            .with_title("grassbench"),
+        renderer: eframe::Renderer::Wgpu,
+        wgpu_options: eframe::egui_wgpu::WgpuConfiguration {
+            wgpu_setup: eframe::egui_wgpu::WgpuSetup::CreateNew(setup),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let args = args.clone();
+    let outcome = Arc::new(std::sync::Mutex::new(None::<anyhow::Error>));
+    let outcome_app = outcome.clone();
+    eframe::run_native(
+        "grassbench",
+        options,
+        Box::new(move |cc| {
+            let state = cc
+                .wgpu_render_state
+                .as_ref()
+                .context("eframe started without its wgpu renderer")?;
+            // The window lives as long as the process: leak the context so panes can borrow it.
+            let gpu: &'static GpuContext = Box::leak(Box::new(GpuContext::from_device(
+                state.instance.clone(),
+                state.adapter.clone(),
+                state.device.clone(),
+                state.queue.clone(),
+            )));
+            let app = app::App::new(cc, gpu, args, outcome_app)?;
+            Ok(Box::new(app))
+        }),
+    )
+    .map_err(|e| anyhow::anyhow!("the window could not be opened: {e}. On a machine without a display run it under Xvfb: `xvfb-run -a grassbench ui ...`"))?;
+    if let Some(e) = outcome.lock().ok().and_then(|mut o| o.take()) {
+        return Err(e);
+    }
+    Ok(())
+}

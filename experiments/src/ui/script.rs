@@ -1,0 +1,34 @@
+//! Scripted mode (`--frames N --screenshot FILE`): play N frames, save the window, every pane's
+//! image and the pane layout, exit. CI runs it under Xvfb and checks each pane of the window.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+/// Where each pane lies in the window screenshot, in physical pixels.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Layout {
+    /// Technique of each pane.
+    pub techniques: Vec<String>,
+    /// `[x, y, width, height]` of each pane's picture.
+    pub rects: Vec<[u32; 4]>,
+    /// Frame shown.
+    pub frame: u64,
+}
+
+impl Layout {
+    /// `<screenshot>.layout.toml` beside a screenshot.
+    pub fn path_for(screenshot: &Path) -> PathBuf {
+        screenshot.with_extension("layout.toml")
+    }
+}
+
+/// Progress of a script.
+pub struct Script {
+    /// Frames to play before the screenshot.
+    pub frames: u64,
+    /// Window screenshot file.
+    pub screenshot: PathBuf,
+    /// Screenshot requested, waiting for it.
+    pub requested: bool,
+}
