@@ -22,6 +22,7 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod calibration;
 pub mod camera;
 pub mod error;
 pub mod frame;
@@ -33,6 +34,7 @@ pub mod rng;
 pub mod runner;
 pub mod scene;
 pub mod shaders;
+pub mod sweep;
 pub mod target;
 pub mod technique;
 pub mod terrain;

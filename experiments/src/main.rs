@@ -3,7 +3,9 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use grassbench_cli::commands::{self, RenderArgs, RunArgs};
+use grassbench_cli::commands::{
+    self, CalibrateArgs, MergeArgs, RenderArgs, ReportArgs, RunArgs, SweepArgs,
+};
 
 /// Compare real-time grass techniques on the same terrain, camera path, wind and GPU.
 #[derive(Parser)]
@@ -21,6 +23,14 @@ enum Command {
     Render(RenderArgs),
     /// Measure techniques on scenes: frames.csv, runs.csv, images, meta.toml, README.md.
     Run(RunArgs),
+    /// Run a sweep file: results/<sweep>/{runs,frames,params}.csv, meta.toml; resumable.
+    Sweep(SweepArgs),
+    /// Join the outputs of sweep shards.
+    Merge(MergeArgs),
+    /// Measure the adapter's raw limits (triangles/s, fill rate, bandwidth).
+    Calibrate(CalibrateArgs),
+    /// Write REPORT.md with tables and plots for a sweep's results folder.
+    Report(ReportArgs),
     /// Open the side-by-side comparison window.
     Ui(grassbench_cli::ui::UiArgs),
 }
@@ -31,6 +41,10 @@ fn main() -> ExitCode {
         Command::List => commands::list(),
         Command::Render(args) => commands::render(args),
         Command::Run(args) => commands::run(args),
+        Command::Sweep(args) => commands::sweep(args),
+        Command::Merge(args) => commands::merge(args),
+        Command::Calibrate(args) => commands::calibrate(args),
+        Command::Report(args) => commands::report(args),
         Command::Ui(args) => grassbench_cli::ui::run(args),
     };
     match result {

@@ -252,6 +252,7 @@ impl<'g> Harness<'g> {
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
         let record = FrameRecord {
+            run_id: String::new(),
             technique: info.id.to_owned(),
             scene: self.scene.name().to_owned(),
             width: self.target.size.width,
@@ -285,6 +286,8 @@ pub struct RunOptions {
     pub frames: u64,
     /// Frame indices whose images to return.
     pub capture: Vec<u64>,
+    /// Run id written into every record.
+    pub run_id: String,
 }
 
 /// A measured run.
@@ -312,8 +315,9 @@ pub fn run(
     let mut frames = Vec::with_capacity(options.frames as usize);
     let mut images = Vec::new();
     for frame in 0..total {
-        let out = harness.frame(technique, frame, options.capture.contains(&frame))?;
+        let mut out = harness.frame(technique, frame, options.capture.contains(&frame))?;
         if frame >= options.warmup {
+            out.record.run_id.clone_from(&options.run_id);
             frames.push(out.record);
         }
         if let Some(image) = out.image {

@@ -6,6 +6,8 @@ use super::Percentiles;
 /// One measured frame (a row of `frames.csv`).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct FrameRecord {
+    /// Run this frame belongs to (empty outside sweeps).
+    pub run_id: String,
     /// Technique id.
     pub technique: String,
     /// Scene name.
@@ -49,6 +51,16 @@ pub struct FrameRecord {
 /// A run summarised (a row of `runs.csv`).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct RunSummary {
+    /// Run id (`<configuration>-r<repetition>` in sweeps, empty otherwise).
+    pub run_id: String,
+    /// Repetition, from 0.
+    pub repetition: u32,
+    /// `ok`, or `failed` (then `error` says why and the figures are zero).
+    pub status: String,
+    /// Why the run failed.
+    pub error: String,
+    /// Scene overrides of this configuration (`key=value;...`).
+    pub scene_variant: String,
     /// Technique id.
     pub technique: String,
     /// Scene name.
@@ -95,6 +107,18 @@ pub struct RunSummary {
     pub gpu_bytes: u64,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
+    /// Median GPU wall time over the reference's in the same configuration and repetition.
+    pub gpu_wall_ratio_to_reference: Option<f64>,
+    /// Mean FLIP of the last frame against the reference's, full resolution.
+    pub flip_vs_reference: Option<f64>,
+    /// Mean FLIP against the reference after 4x downsampling (placement-insensitive).
+    pub flip_vs_reference_quarter: Option<f64>,
+    /// GPU wall time per blade represented, ns.
+    pub blade_cost_ns: Option<f64>,
+    /// The adapter's raw cost of a reference blade's triangles from calibration, ns.
+    pub raw_blade_cost_ns: Option<f64>,
+    /// `raw_blade_cost_ns / blade_cost_ns`: 1 = as fast as the rasteriser allows.
+    pub efficiency: Option<f64>,
 }
 
 impl RunSummary {
@@ -111,7 +135,13 @@ impl RunSummary {
         let wall = pct(&|r| r.gpu_wall_ms);
         let total = pct(&|r| r.wind_ms + r.update_ms + r.upload_ms + r.encode_ms + r.gpu_wall_ms);
         let first = frames.first();
+        let blades = median_u64(&|r| r.blades);
         Self {
+            run_id: first.map(|r| r.run_id.clone()).unwrap_or_default(),
+            repetition: 0,
+            status: "ok".to_owned(),
+            error: String::new(),
+            scene_variant: String::new(),
             technique: first.map(|r| r.technique.clone()).unwrap_or_default(),
             scene: first.map(|r| r.scene.clone()).unwrap_or_default(),
             width: first.map_or(0, |r| r.width),
@@ -130,7 +160,7 @@ impl RunSummary {
             frame_ms_median: total.median,
             frame_ms_p5: total.p5,
             frame_ms_p95: total.p95,
-            blades: median_u64(&|r| r.blades),
+            blades,
             triangles: median_u64(&|r| r.triangles),
             draw_calls: median_u64(&|r| r.draw_calls),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max().unwrap_or(0),
@@ -139,6 +169,23 @@ impl RunSummary {
                 .map(|(k, v)| format!("{k}={}", crate::params::format_value(v)))
                 .collect::<Vec<_>>()
                 .join(";"),
+            gpu_wall_ratio_to_reference: None,
+            flip_vs_reference: None,
+            flip_vs_reference_quarter: None,
+            blade_cost_ns: (blades > 0).then(|| wall.median * 1e6 / blades as f64),
+            raw_blade_cost_ns: None,
+            efficiency: None,
         }
+    }
+
+    /// The row of a run that failed before producing frames.
+    pub fn failed(run_id: &str, technique: &str, scene: &str, error: &str) -> Self {
+        let mut row = Self::from_frames(&[], &toml::Table::new());
+        row.run_id = run_id.to_owned();
+        row.technique = technique.to_owned();
+        row.scene = scene.to_owned();
+        row.status = "failed".to_owned();
+        row.error = error.to_owned();
+        row
     }
 }

@@ -1,12 +1,20 @@
 //! The subcommands of `grassbench`.
 
+mod calibrate;
 mod list;
+mod merge;
 mod render;
+mod report;
 mod run;
+mod sweep;
 
+pub use calibrate::{CalibrateArgs, calibrate};
 pub use list::list;
+pub use merge::{MergeArgs, merge};
 pub use render::{RenderArgs, render};
+pub use report::{ReportArgs, report};
 pub use run::{RunArgs, run};
+pub use sweep::{SweepArgs, SweepMeta, parse_shard, sweep};
 
 use anyhow::Context as _;
 use grassbench::GpuContext;

@@ -109,6 +109,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         warmup: args.warmup,
         frames: args.frames,
         capture: capture.clone(),
+        run_id: String::new(),
     };
     let mut failures = Vec::new();
     let mut all_runs: Vec<RunSummary> = Vec::new();

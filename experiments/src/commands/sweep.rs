@@ -1,0 +1,329 @@
+//! `grassbench sweep FILE`: scenes x techniques x parameter grids x resolutions x repetitions,
+//! appended run by run to `results/<sweep>/`, resumable, shardable.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use grassbench::calibration::{Calibration, calibrate};
+use grassbench::metrics::{downsample, flip};
+use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
+use grassbench::sweep::{ParamRow, PlannedRun, SweepSpec, SweepStore, apply_overrides};
+use grassbench::target::save_png;
+use grassbench::{GpuContext, Scene};
+
+use super::GpuArgs;
+use crate::{registry, scenes};
+
+/// Arguments of `sweep`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct SweepArgs {
+    /// The sweep file (TOML).
+    pub file: PathBuf,
+    /// Results folder (default: `results/<sweep name>`).
+    #[arg(long, short)]
+    pub out: Option<PathBuf>,
+    /// Run only shard I of N (`I/N`, I from 0): every N-th run, deterministic.
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Replace a results folder that holds a different sweep.
+    #[arg(long)]
+    pub force: bool,
+    /// Skip the calibration workloads.
+    #[arg(long)]
+    pub no_calibration: bool,
+    /// GPU options.
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+/// Parses `I/N`.
+pub fn parse_shard(text: &str) -> anyhow::Result<(usize, usize)> {
+    let bad = || anyhow::anyhow!("--shard takes I/N with 0 <= I < N, e.g. 0/4 (got `{text}`)");
+    let (i, n) = text.split_once('/').ok_or_else(bad)?;
+    let (i, n): (usize, usize) = (
+        i.trim().parse().map_err(|_| bad())?,
+        n.trim().parse().map_err(|_| bad())?,
+    );
+    if n == 0 || i >= n {
+        return Err(bad());
+    }
+    Ok((i, n))
+}
+
+/// What `meta.toml` of a sweep holds.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct SweepMeta {
+    /// Sweep name.
+    pub sweep: String,
+    /// Hash of the sweep file's text: a results folder holds one version of one sweep.
+    pub sweep_key: String,
+    /// `I/N` or `all`.
+    pub shard: String,
+    /// The sweep file, verbatim.
+    pub sweep_file: String,
+    /// Provenance.
+    pub provenance: Provenance,
+    /// Calibration, if measured.
+    pub calibration: Option<Calibration>,
+}
+
+/// Runs the sweep.
+pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(&args.file)
+        .with_context(|| format!("cannot read sweep file `{}`", args.file.display()))?;
+    let spec = SweepSpec::from_toml(&text, &args.file)?;
+    let ids: Vec<&str> = if spec.techniques.iter().any(|t| t == "all") {
+        registry::ids()
+    } else {
+        spec.techniques
+            .iter()
+            .map(|t| registry::find(t).map(|e| e.info.id))
+            .collect::<Result<_, _>>()?
+    };
+    for (technique, grid) in &spec.params {
+        let entry = registry::find(technique)
+            .with_context(|| format!("[params.{technique}] in {}", args.file.display()))?;
+        let defaults = (entry.default_params)();
+        for key in grid
+            .as_table()
+            .map(|t| t.keys().collect::<Vec<_>>())
+            .unwrap_or_default()
+        {
+            if !defaults.contains_key(key) {
+                let valid: Vec<String> = defaults
+                    .keys()
+                    .map(|k| format!("{technique}.{k}"))
+                    .collect();
+                anyhow::bail!(
+                    "{}: unknown parameter `{technique}.{key}`; valid: {}",
+                    args.file.display(),
+                    valid.join(", ")
+                );
+            }
+        }
+    }
+    // Load every scene variant up front: a bad scene fails before hours of work, not after.
+    let plan = spec.expand(&ids)?;
+    let mut scene_cache: HashMap<String, Scene> = HashMap::new();
+    for run in &plan {
+        let key = scene_key(run);
+        if let std::collections::hash_map::Entry::Vacant(e) = scene_cache.entry(key) {
+            let base = scenes::load(&run.scene)?;
+            let mut config = apply_overrides(&base.config, &run.scene_overrides)?;
+            if let Some(seed) = spec.seed {
+                config.seed = seed;
+            }
+            let scene = Scene::from_config(config, base.base_dir.clone())
+                .with_context(|| format!("scene `{}` with {}", run.scene, run.scene_variant()))?;
+            e.insert(scene);
+        }
+    }
+    let (shard_i, shard_n) = args
+        .shard
+        .as_deref()
+        .map(parse_shard)
+        .transpose()?
+        .unwrap_or((0, 1));
+    let mine: Vec<&PlannedRun> = plan
+        .iter()
+        .filter(|r| r.index % shard_n == shard_i)
+        .collect();
+
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("results").join(&spec.name));
+    let sweep_key = format!("{:016x}", fnv(&text));
+    let mut store = SweepStore::open(&out, &sweep_key, args.force)?;
+    let gpu = args.gpu.context()?;
+    let calibration = if args.no_calibration {
+        None
+    } else {
+        eprintln!("calibrating {} …", gpu.summary.name);
+        let size = plan
+            .first()
+            .and_then(|r| r.size)
+            .unwrap_or(grassbench::target::Size {
+                width: 640,
+                height: 360,
+            });
+        let c = calibrate(&gpu, size)?;
+        eprintln!(
+            "  {:.1} M triangles/s, {:.1} M blended pixels/s, {:.2} GB/s copy; raw reference blade {:.0} ns",
+            c.triangles_per_s / 1e6,
+            c.fill_pixels_per_s / 1e6,
+            c.compute_bytes_per_s / 1e9,
+            c.raw_blade_cost_ns
+        );
+        Some(c)
+    };
+    let meta = SweepMeta {
+        sweep: spec.name.clone(),
+        sweep_key,
+        shard: if shard_n == 1 {
+            "all".into()
+        } else {
+            format!("{shard_i}/{shard_n}")
+        },
+        sweep_file: text.clone(),
+        provenance: Provenance::collect(&gpu.summary),
+        calibration: calibration.clone(),
+    };
+    store.write_meta(&toml::to_string_pretty(&meta)?)?;
+
+    let todo: Vec<&PlannedRun> = mine
+        .iter()
+        .copied()
+        .filter(|r| !store.is_finished(&r.id))
+        .collect();
+    eprintln!(
+        "sweep `{}`: {} runs planned, {} in this shard, {} already done, {} to run → {}",
+        spec.name,
+        plan.len(),
+        mine.len(),
+        mine.len() - todo.len(),
+        todo.len(),
+        out.display()
+    );
+    let bar = indicatif::ProgressBar::new(todo.len() as u64);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "[{elapsed_precise}] [{bar:40}] {pos}/{len} runs, ETA {eta} {msg}",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    // Reference gpu time and last image per group, for ratios and FLIP.
+    let mut reference: HashMap<String, (f64, Option<image::RgbaImage>)> = HashMap::new();
+    let mut failed = 0usize;
+    for run in todo {
+        bar.set_message(format!("{} on {}", run.technique, run.scene));
+        let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
+        match execute(
+            &gpu,
+            &spec,
+            scene,
+            run,
+            calibration.as_ref(),
+            &mut reference,
+            store.dir(),
+        ) {
+            Ok((row, frames, params)) => store.append(&row, &frames, &params)?,
+            Err(e) => {
+                // A failed run is recorded as failed and the sweep goes on.
+                failed += 1;
+                let mut row =
+                    RunSummary::failed(&run.id, &run.technique, scene.name(), &format!("{e:#}"));
+                row.repetition = run.repetition;
+                row.scene_variant = run.scene_variant();
+                store.append(&row, &[], &[])?;
+                bar.println(format!(
+                    "run {} ({} on {}) failed: {e:#}",
+                    run.id, run.technique, run.scene
+                ));
+            }
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    eprintln!(
+        "sweep `{}`: {} runs recorded in {} ({failed} failed this time)",
+        spec.name,
+        store.finished_count(),
+        out.display()
+    );
+    Ok(())
+}
+
+fn scene_key(run: &PlannedRun) -> String {
+    format!("{}|{}", run.scene, run.scene_variant())
+}
+
+type Executed = (RunSummary, Vec<runner::FrameRecord>, Vec<ParamRow>);
+
+/// One run: measure, compare with the group's reference, save its last frame for repetition 0.
+fn execute(
+    gpu: &GpuContext,
+    spec: &SweepSpec,
+    scene: &Scene,
+    run: &PlannedRun,
+    calibration: Option<&Calibration>,
+    reference: &mut HashMap<String, (f64, Option<image::RgbaImage>)>,
+    dir: &std::path::Path,
+) -> anyhow::Result<Executed> {
+    let entry = registry::find(&run.technique)?;
+    let size = run.size.unwrap_or(scene.resolution());
+    let mut harness = Harness::new(gpu, scene.clone(), size, run.msaa)?;
+    let mut technique = harness.create(entry, &run.params)?;
+    let last = spec.warmup + spec.frames - 1;
+    let options = RunOptions {
+        warmup: spec.warmup,
+        frames: spec.frames,
+        capture: vec![last],
+        run_id: run.id.clone(),
+    };
+    let result = runner::run(&mut harness, technique.as_mut(), &options, &mut |_, _| {})?;
+    let mut row = result.summary;
+    row.repetition = run.repetition;
+    row.scene_variant = run.scene_variant();
+    let image = result.images.into_iter().next().map(|(_, img)| img);
+    if run.technique == "reference" {
+        reference.insert(run.group.clone(), (row.gpu_wall_ms_median, image.clone()));
+    }
+    if let Some((ref_ms, ref_img)) = reference.get(&run.group) {
+        row.gpu_wall_ratio_to_reference = Some(row.gpu_wall_ms_median / ref_ms);
+        if let (Some(img), Some(ref_img)) = (&image, ref_img) {
+            row.flip_vs_reference = Some(f64::from(flip(ref_img, img)?.mean));
+            row.flip_vs_reference_quarter = Some(f64::from(
+                flip(&downsample(ref_img, 4), &downsample(img, 4))?.mean,
+            ));
+        }
+    }
+    if let Some(c) = calibration {
+        row.raw_blade_cost_ns = Some(c.raw_blade_cost_ns);
+        row.efficiency = row.blade_cost_ns.map(|b| c.raw_blade_cost_ns / b);
+    }
+    if run.repetition == 0
+        && let Some(img) = &image
+    {
+        save_png(
+            img,
+            &dir.join("images").join(format!("{}.png", run.config_id)),
+        )?;
+    }
+    let mut params: Vec<ParamRow> = technique
+        .params()
+        .iter()
+        .map(|(k, v)| ParamRow {
+            run_id: run.id.clone(),
+            owner: run.technique.clone(),
+            key: k.clone(),
+            value: grassbench::params::format_value(v),
+        })
+        .collect();
+    params.extend(run.scene_overrides.iter().map(|(k, v)| ParamRow {
+        run_id: run.id.clone(),
+        owner: "scene".into(),
+        key: k.clone(),
+        value: grassbench::params::format_value(v),
+    }));
+    params.push(ParamRow {
+        run_id: run.id.clone(),
+        owner: "run".into(),
+        key: "config_id".into(),
+        value: run.config_id.clone(),
+    });
+    params.push(ParamRow {
+        run_id: run.id.clone(),
+        owner: "run".into(),
+        key: "group".into(),
+        value: run.group.clone(),
+    });
+    Ok((row, result.frames, params))
+}
+
+/// FNV-1a of text.
+pub fn fnv(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}

@@ -1,0 +1,381 @@
+//! Sweeps end to end: a tiny sweep runs; an interrupted sweep resumes to exactly the rows of an
+//! uninterrupted one; shards merge into the unsharded run set; reports are generated.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+const SMOKE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/fixtures/smoke_sweep.toml"
+);
+
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("grassbench-sweep-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn grassbench(args: &[&str]) -> (bool, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Column `name` of every row of a CSV file.
+fn column(path: &Path, name: &str) -> Vec<String> {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let k = r.headers().unwrap().iter().position(|h| h == name).unwrap();
+    r.records()
+        .map(|x| x.unwrap().get(k).unwrap().to_owned())
+        .collect()
+}
+
+/// Run id → number of rows, for a CSV file.
+fn counts(path: &Path) -> BTreeMap<String, usize> {
+    let mut m = BTreeMap::new();
+    for id in column(path, "run_id") {
+        *m.entry(id).or_default() += 1;
+    }
+    m
+}
+
+#[test]
+fn tiny_sweep_runs_and_reports() {
+    let out = temp("full");
+    let (ok, err) = grassbench(&["sweep", SMOKE, "-o", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let runs = counts(&out.join("runs.csv"));
+    // 2 repetitions x 2 scenes x reference with 2 segment counts (+ other techniques' 1 each).
+    let techniques = grassbench_cli::registry::ids().len();
+    assert_eq!(runs.len(), 2 * 2 * (2 + techniques - 1), "{runs:?}");
+    assert!(runs.values().all(|&n| n == 1));
+    let frames = counts(&out.join("frames.csv"));
+    assert_eq!(
+        frames.keys().collect::<Vec<_>>(),
+        runs.keys().collect::<Vec<_>>()
+    );
+    assert!(
+        frames.values().all(|&n| n == 2),
+        "2 measured frames per run: {frames:?}"
+    );
+    assert!(
+        column(&out.join("runs.csv"), "status")
+            .iter()
+            .all(|s| s == "ok")
+    );
+    let ratio = column(&out.join("runs.csv"), "gpu_wall_ratio_to_reference");
+    assert!(
+        ratio.iter().all(|r| !r.is_empty()),
+        "every run has a reference in its group"
+    );
+    let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
+    assert!(
+        meta.contains("[calibration]")
+            && meta.contains("triangles_per_s")
+            && meta.contains("sweep_file"),
+        "{meta}"
+    );
+
+    let (ok, err) = grassbench(&["report", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    assert!(
+        report.contains("| meadow |")
+            && report.contains("reference")
+            && report.contains("plots/frame_time.svg"),
+        "{report}"
+    );
+    assert!(out.join("plots/frame_time.svg").exists() && out.join("plots/pareto.svg").exists());
+
+    // Running the finished sweep again does nothing and changes nothing.
+    let before = std::fs::read(out.join("runs.csv")).unwrap();
+    let (ok, err) = grassbench(&[
+        "sweep",
+        SMOKE,
+        "-o",
+        out.to_str().unwrap(),
+        "--no-calibration",
+    ]);
+    assert!(ok && err.contains("0 to run"), "{err}");
+    assert_eq!(before, std::fs::read(out.join("runs.csv")).unwrap());
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn killed_sweep_resumes_to_the_same_rows() {
+    let full = temp("uninterrupted");
+    assert!(
+        grassbench(&[
+            "sweep",
+            SMOKE,
+            "-o",
+            full.to_str().unwrap(),
+            "--no-calibration"
+        ])
+        .0
+    );
+    let expected = counts(&full.join("runs.csv"));
+
+    let out = temp("killed");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .args([
+            "sweep",
+            SMOKE,
+            "-o",
+            out.to_str().unwrap(),
+            "--no-calibration",
+        ])
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Kill it (SIGKILL: no chance to clean up) once a few runs are recorded.
+    let runs = out.join("runs.csv");
+    let start = std::time::Instant::now();
+    loop {
+        let rows = std::fs::read_to_string(&runs)
+            .map(|t| t.lines().count())
+            .unwrap_or(0);
+        if rows >= 3 || start.elapsed().as_secs() > 120 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let partial = counts(&runs);
+    assert!(
+        partial.len() < expected.len(),
+        "the sweep finished before it could be killed"
+    );
+    // A crash in the middle of an append leaves a torn line: simulate one.
+    std::fs::OpenOptions::new()
+        .append(true)
+        .open(out.join("frames.csv"))
+        .and_then(|mut f| std::io::Write::write_all(&mut f, b"torn,row,with"))
+        .unwrap();
+
+    let (ok, err) = grassbench(&[
+        "sweep",
+        SMOKE,
+        "-o",
+        out.to_str().unwrap(),
+        "--no-calibration",
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(
+        counts(&runs),
+        expected,
+        "resumed sweep has other runs than an uninterrupted one"
+    );
+    let frames = counts(&out.join("frames.csv"));
+    assert_eq!(
+        frames,
+        counts(&full.join("frames.csv")),
+        "frames lost or duplicated"
+    );
+    let params = counts(&out.join("params.csv"));
+    assert_eq!(params, counts(&full.join("params.csv")));
+    std::fs::remove_dir_all(&out).unwrap();
+    std::fs::remove_dir_all(&full).unwrap();
+}
+
+#[test]
+fn shards_merge_into_the_whole_sweep_and_mixing_is_refused() {
+    let whole = temp("whole");
+    assert!(
+        grassbench(&[
+            "sweep",
+            SMOKE,
+            "-o",
+            whole.to_str().unwrap(),
+            "--no-calibration"
+        ])
+        .0
+    );
+    let (a, b, merged) = (temp("shard0"), temp("shard1"), temp("merged"));
+    assert!(
+        grassbench(&[
+            "sweep",
+            SMOKE,
+            "-o",
+            a.to_str().unwrap(),
+            "--shard",
+            "0/2",
+            "--no-calibration"
+        ])
+        .0
+    );
+    assert!(
+        grassbench(&[
+            "sweep",
+            SMOKE,
+            "-o",
+            b.to_str().unwrap(),
+            "--shard",
+            "1/2",
+            "--no-calibration"
+        ])
+        .0
+    );
+    let (na, nb) = (
+        counts(&a.join("runs.csv")).len(),
+        counts(&b.join("runs.csv")).len(),
+    );
+    assert!(na > 0 && nb > 0);
+    let (ok, err) = grassbench(&[
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "-o",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(
+        counts(&merged.join("runs.csv")),
+        counts(&whole.join("runs.csv"))
+    );
+    assert_eq!(
+        counts(&merged.join("frames.csv")),
+        counts(&whole.join("frames.csv"))
+    );
+
+    // A shard of another sweep is refused.
+    let other = temp("other");
+    let spec = std::fs::read_to_string(SMOKE)
+        .unwrap()
+        .replace("frames = 2", "frames = 1");
+    let other_file = other.with_extension("toml");
+    std::fs::write(&other_file, spec).unwrap();
+    assert!(
+        grassbench(&[
+            "sweep",
+            other_file.to_str().unwrap(),
+            "-o",
+            other.to_str().unwrap(),
+            "--no-calibration"
+        ])
+        .0
+    );
+    let (ok, err) = grassbench(&[
+        "merge",
+        a.to_str().unwrap(),
+        other.to_str().unwrap(),
+        "-o",
+        temp("bad").to_str().unwrap(),
+    ]);
+    assert!(!ok && err.contains("another sweep"), "{err}");
+    // And a results folder is never silently reused for another sweep.
+    let (ok, err) = grassbench(&[
+        "sweep",
+        other_file.to_str().unwrap(),
+        "-o",
+        a.to_str().unwrap(),
+        "--no-calibration",
+    ]);
+    assert!(!ok && err.contains("--force"), "{err}");
+    for d in [whole, a, b, merged, other] {
+        std::fs::remove_dir_all(d).unwrap();
+    }
+    std::fs::remove_file(other_file).unwrap();
+}
+
+#[test]
+fn report_on_a_fixture_writes_tables_and_plots() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/report");
+    let out = temp("report");
+    std::fs::create_dir_all(&out).unwrap();
+    for f in ["runs.csv", "meta.toml"] {
+        std::fs::copy(fixture.join(f), out.join(f)).unwrap();
+    }
+    let (ok, err) = grassbench(&["report", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    for needle in [
+        "# Report: fixture",
+        "| football_field |",
+        "| bakay |",
+        "## CPU and GPU stages",
+        "plots/pareto.svg",
+        "plots/scaling_blades.svg",
+        "llvmpipe",
+    ] {
+        assert!(
+            report.contains(needle),
+            "REPORT.md lacks `{needle}`:\n{report}"
+        );
+    }
+    for plot in ["frame_time.svg", "pareto.svg", "scaling_blades.svg"] {
+        let svg = std::fs::read_to_string(out.join("plots").join(plot)).unwrap();
+        assert!(
+            svg.starts_with("<svg") && (svg.contains("<circle") || svg.contains("<rect")),
+            "{plot}"
+        );
+    }
+    // A failed run is counted, not plotted.
+    assert!(report.contains("| 1 |"), "{report}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn bad_sweep_files_are_refused_with_the_reason() {
+    let d = temp("bad");
+    std::fs::create_dir_all(&d).unwrap();
+    let cases = [
+        (
+            "name = \"x\"\nscenes = [\"meadow\"]\ntechniques = [\"nope\"]\n",
+            "unknown technique `nope`",
+        ),
+        (
+            "name = \"x\"\nscenes = [\"nowhere\"]\n",
+            "unknown scene `nowhere`",
+        ),
+        (
+            "name = \"x\"\nscenes = [\"meadow\"]\n[scene_params]\n\"grass.densty\" = [1.0]\n",
+            "grass.densty",
+        ),
+        (
+            "name = \"x\"\nscenes = [\"meadow\"]\n[params.reference]\nsegmentz = [1]\n",
+            "reference.segmentz",
+        ),
+        (
+            "name = \"x\"\nscenes = [\"meadow\"]\nrepetitions = 0\n",
+            "repetitions",
+        ),
+        ("name = \"x\"\nscenes = [\"meadow\"\n", "line"),
+    ];
+    for (k, (text, needle)) in cases.iter().enumerate() {
+        let f = d.join(format!("bad{k}.toml"));
+        std::fs::write(&f, text).unwrap();
+        let (ok, err) = grassbench(&[
+            "sweep",
+            f.to_str().unwrap(),
+            "-o",
+            d.join(format!("out{k}")).to_str().unwrap(),
+            "--no-calibration",
+        ]);
+        assert!(
+            !ok && err.contains(needle) && !err.contains("panicked"),
+            "case {k}: {err}"
+        );
+    }
+    assert!(
+        !grassbench(&[
+            "sweep",
+            SMOKE,
+            "--shard",
+            "2/2",
+            "-o",
+            d.join("s").to_str().unwrap()
+        ])
+        .0
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
