@@ -6,7 +6,7 @@ CARGO ?= cargo
 # Vulkan loaders complain without a private runtime folder; any mode-700 folder will do.
 export XDG_RUNTIME_DIR ?= /tmp/grassbench-runtime-$(shell id -u)
 
-.PHONY: setup results test
+.PHONY: setup results test bench
 setup:
 	@bash .ci/install-deps
 	@mkdir -p -m 700 $(XDG_RUNTIME_DIR)
@@ -17,3 +17,8 @@ results: setup
 
 test: setup
 	$(CARGO) test --release --workspace
+	# Smoke-run the criterion benchmarks on a tiny workload (each once).
+	GRASSBENCH_BENCH_SMALL=1 $(CARGO) test --release -p grassbench-cli --bench techniques
+
+bench: setup
+	$(CARGO) bench -p grassbench-cli --bench techniques

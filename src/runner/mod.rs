@@ -175,6 +175,33 @@ impl<'g> Harness<'g> {
         Ok(())
     }
 
+    /// Uploads and records frame `frame` of `technique` without submitting it (for benchmarks
+    /// of `prepare` + `encode`); `update` must have run for this frame.
+    pub fn record(
+        &mut self,
+        technique: &mut dyn GrassTechnique,
+        frame: u64,
+    ) -> Result<wgpu::CommandBuffer> {
+        self.advance_wind(frame)?;
+        let gpu = self.gpu;
+        let prefix = format!("{}.", technique.info().id);
+        gpu.scoped("recording a frame", || -> Result<_> {
+            let inputs = self.inputs(frame);
+            self.scene_gpu.upload(&gpu.queue, &inputs);
+            technique.prepare(gpu, &inputs)?;
+            let mut enc = FrameEncoder::new(gpu, &self.target, &self.scene_gpu, None, &prefix);
+            technique.encode(&mut enc);
+            Ok(enc.finish().finish())
+        })?
+    }
+
+    /// Runs only `technique.update` for `frame` (for benchmarks of the CPU stage).
+    pub fn update_only(&mut self, technique: &mut dyn GrassTechnique, frame: u64) -> Result<()> {
+        self.advance_wind(frame)?;
+        let inputs = self.inputs(frame);
+        technique.update(&inputs)
+    }
+
     /// Renders one frame of `technique` and measures it; returns the image if `capture`.
     pub fn frame(
         &mut self,
