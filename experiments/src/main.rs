@@ -4,7 +4,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use grassbench_cli::commands::{
-    self, CalibrateArgs, MergeArgs, RenderArgs, ReportArgs, RunArgs, SweepArgs,
+    self, CalibrateArgs, CompareArgs, MergeArgs, RenderArgs, ReportArgs, RunArgs, SweepArgs,
 };
 
 /// Compare real-time grass techniques on the same terrain, camera path, wind and GPU.
@@ -31,6 +31,8 @@ enum Command {
     Calibrate(CalibrateArgs),
     /// Write REPORT.md with tables and plots for a sweep's results folder.
     Report(ReportArgs),
+    /// Image differences: LOD fidelity, cross-technique matrix, temporal stability.
+    Compare(CompareArgs),
     /// Open the side-by-side comparison window.
     Ui(grassbench_cli::ui::UiArgs),
 }
@@ -45,6 +47,7 @@ fn main() -> ExitCode {
         Command::Merge(args) => commands::merge(args),
         Command::Calibrate(args) => commands::calibrate(args),
         Command::Report(args) => commands::report(args),
+        Command::Compare(args) => commands::compare(args),
         Command::Ui(args) => grassbench_cli::ui::run(args),
     };
     match result {

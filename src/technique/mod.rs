@@ -91,15 +91,46 @@ pub trait GrassTechnique {
     fn stats(&self) -> TechniqueStats;
 }
 
+/// A named set of parameter overrides a technique offers to the comparison suite.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Variant {
+    /// `finest` (its finest representation everywhere, for LOD fidelity) or
+    /// `no_transitions` (LOD switches without blending, to show the popping metric works).
+    pub name: &'static str,
+    /// Parameter overrides, in TOML (`"shells = 128"`).
+    pub params: &'static str,
+}
+
+/// Name of the variant that forces a technique's finest representation everywhere.
+pub const FINEST: &str = "finest";
+/// Name of the variant that switches levels of detail without transitions.
+pub const NO_TRANSITIONS: &str = "no_transitions";
+
 /// One line of the registry: how to make a technique.
 #[derive(Clone, Copy)]
 pub struct TechniqueEntry {
     /// Id, name and paper.
     pub info: TechniqueInfo,
+    /// Parameter variants for the comparison suite (see [`FINEST`], [`NO_TRANSITIONS`]).
+    pub variants: &'static [Variant],
     /// The defaults of its parameter struct.
     pub default_params: fn() -> toml::Table,
     /// Creates it with parameter overrides (unknown keys and bad values are errors).
     pub create: fn(&InitContext<'_>, &toml::Table) -> Result<Box<dyn GrassTechnique>>,
+}
+
+impl TechniqueEntry {
+    /// The overrides of variant `name`, if the technique offers it.
+    pub fn variant(&self, name: &str) -> Option<crate::Result<toml::Table>> {
+        self.variants.iter().find(|v| v.name == name).map(|v| {
+            v.params
+                .parse::<toml::Table>()
+                .map_err(|e| crate::Error::Technique {
+                    technique: self.info.id.to_owned(),
+                    message: format!("variant `{name}` is not valid TOML: {e}"),
+                })
+        })
+    }
 }
 
 impl std::fmt::Debug for TechniqueEntry {

@@ -70,13 +70,25 @@ pub fn output_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("output")
 }
 
-/// Compares `actual` with `tests/snapshots/<name>.png` by mean FLIP. With `UPDATE_SNAPSHOTS=1`
-/// (or no snapshot yet, outside CI) the snapshot is (re)written instead. On failure the actual
-/// image and the FLIP heat map go to `tests/output/`.
+/// Compares `actual` with `tests/snapshots/<name>.png` by mean FLIP (see
+/// [`check_snapshot_flip`]).
 pub fn check_snapshot(
     name: &str,
     actual: &image::RgbaImage,
     max_mean_flip: f32,
+) -> anyhow::Result<f32> {
+    check_snapshot_flip(name, actual, max_mean_flip, 1.0)
+}
+
+/// Compares `actual` with `tests/snapshots/<name>.png` by mean and 95th-percentile FLIP, the
+/// way wgpu's image tests do. With `UPDATE_SNAPSHOTS=1` (or no snapshot yet, outside CI) the
+/// snapshot is (re)written instead. On failure `tests/output/<name>-actual.png` and
+/// `<name>-diff.png` (the FLIP heat map) are written.
+pub fn check_snapshot_flip(
+    name: &str,
+    actual: &image::RgbaImage,
+    max_mean_flip: f32,
+    max_p95_flip: f32,
 ) -> anyhow::Result<f32> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("snapshots")
@@ -95,13 +107,14 @@ pub fn check_snapshot(
         })?
         .to_rgba8();
     let flip = grassbench::metrics::flip(&expected, actual)?;
-    if flip.mean > max_mean_flip {
+    if flip.mean > max_mean_flip || flip.p95 > max_p95_flip {
         let out = output_dir();
-        save_png(actual, &out.join(format!("{name}.actual.png")))?;
-        save_png(&flip.heatmap, &out.join(format!("{name}.flip.png")))?;
+        save_png(actual, &out.join(format!("{name}-actual.png")))?;
+        save_png(&flip.heatmap, &out.join(format!("{name}-diff.png")))?;
         bail!(
-            "snapshot `{name}`: mean FLIP {:.4} > {max_mean_flip}; actual and FLIP heat map written to {}",
+            "snapshot `{name}`: FLIP mean {:.4} (limit {max_mean_flip}), p95 {:.4} (limit {max_p95_flip}); actual and FLIP heat map written to {}",
             flip.mean,
+            flip.p95,
             out.display()
         );
     }

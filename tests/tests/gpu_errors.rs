@@ -20,6 +20,7 @@ const INFO: TechniqueInfo = TechniqueInfo {
 /// A technique whose pipeline's shader reads a binding its layout does not have.
 const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
     info: INFO,
+    variants: &[],
     default_params: toml::Table::new,
     create: |ctx, _| {
         let device = &ctx.gpu.device;

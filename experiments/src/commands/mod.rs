@@ -1,6 +1,7 @@
 //! The subcommands of `grassbench`.
 
 mod calibrate;
+mod compare;
 mod list;
 mod merge;
 mod render;
@@ -9,6 +10,7 @@ mod run;
 mod sweep;
 
 pub use calibrate::{CalibrateArgs, calibrate};
+pub use compare::{CompareArgs, MOTIONS, compare};
 pub use list::list;
 pub use merge::{MergeArgs, merge};
 pub use render::{RenderArgs, render};

@@ -42,7 +42,7 @@
 
 use grassbench::glam::Vec3;
 use grassbench::params::{TechniqueParams, check, check_int};
-use grassbench::technique::TechniqueEntry;
+use grassbench::technique::{TechniqueEntry, Variant};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
@@ -64,6 +64,11 @@ const INFO: TechniqueInfo = TechniqueInfo {
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = TechniqueEntry {
     info: INFO,
+    // No levels of detail: the default is already the finest representation.
+    variants: &[Variant {
+        name: grassbench::technique::FINEST,
+        params: "",
+    }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Reference::new(ctx, overrides)?)),
 };

@@ -1,0 +1,187 @@
+//! `grassbench compare`: LOD fidelity, the cross-technique matrix and temporal stability for
+//! every selected technique on every selected scene, as CSV and difference images.
+
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use grassbench::compare::{self, CameraMotion};
+use grassbench::metrics;
+use grassbench::runner::{Provenance, write_atomic, write_csv};
+use grassbench::target::{Size, save_png};
+use grassbench::technique::{NO_TRANSITIONS, NoGrass};
+
+use super::GpuArgs;
+use crate::{registry, scenes};
+
+/// Arguments of `compare`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct CompareArgs {
+    /// Scene names or paths, comma-separated, or `default`.
+    #[arg(long, short, default_value = "default")]
+    pub scene: String,
+    /// Technique ids, comma-separated, or `all`.
+    #[arg(long, short, default_value = "all")]
+    pub technique: String,
+    /// Frame compared.
+    #[arg(long, short, default_value_t = 30)]
+    pub frame: u64,
+    /// Target size WxH.
+    #[arg(long, default_value = "640x360")]
+    pub size: String,
+    /// Frame steps along each camera motion for temporal stability (0 skips it).
+    #[arg(long, default_value_t = 24)]
+    pub motion_frames: u32,
+    /// Output folder.
+    #[arg(long, short, default_value = "results/compare")]
+    pub out: PathBuf,
+    /// GPU options.
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+#[derive(serde::Serialize)]
+struct LodRow {
+    technique: String,
+    scene: String,
+    flip_mean: f64,
+    flip_p95: f64,
+    ssim: f64,
+    psnr: f64,
+}
+
+#[derive(serde::Serialize)]
+struct TemporalRow {
+    technique: String,
+    variant: String,
+    scene: String,
+    motion: String,
+    peak: f64,
+    p95: f64,
+}
+
+/// The two motions every technique is followed along.
+pub const MOTIONS: [CameraMotion; 2] = [CameraMotion::Dolly(0.25), CameraMotion::Pan(0.6)];
+
+/// Runs the comparisons.
+pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
+    let entries = registry::select(&args.technique)?;
+    let names: Vec<String> = if args.scene == "default" {
+        scenes::DEFAULT_SCENES
+            .iter()
+            .map(|s| (*s).to_owned())
+            .collect()
+    } else {
+        args.scene.split(',').map(|s| s.trim().to_owned()).collect()
+    };
+    let scenes = names
+        .iter()
+        .map(|n| scenes::load(n))
+        .collect::<Result<Vec<_>, _>>()?;
+    let size = Size::parse(&args.size)?;
+    let gpu = args.gpu.context()?;
+    write_atomic(&args.out.join("meta.toml"), |f| {
+        std::io::Write::write_all(f, Provenance::collect(&gpu.summary).to_toml().as_bytes())
+    })?;
+    let reference = registry::find("reference")?;
+    for scene in &scenes {
+        let name = scene.name().to_owned();
+        let dir = args.out.join(&name);
+        eprintln!(
+            "{name}: rendering frame {} of {} techniques",
+            args.frame,
+            entries.len()
+        );
+        let background = {
+            let mut h = grassbench::runner::Harness::new(&gpu, scene.clone(), size, false)?;
+            compare::render_in(&mut h, &mut NoGrass, args.frame)?
+        };
+        save_png(&background, &dir.join("none.png"))?;
+        let mut images = Vec::new();
+        let mut lod_rows = Vec::new();
+        for entry in &entries {
+            let id = entry.info.id;
+            let image = compare::render(&gpu, scene, entry, &toml::Table::new(), args.frame, size)
+                .with_context(|| format!("{id} on {name}"))?;
+            save_png(&image, &dir.join(format!("{id}.png")))?;
+            if let Some(lod) = compare::lod_fidelity(&gpu, scene, entry, args.frame, size)? {
+                save_png(
+                    &metrics::flip(&lod.finest_image, &lod.default_image)?.heatmap,
+                    &dir.join(format!("lod_{id}_flip.png")),
+                )?;
+                lod_rows.push(LodRow {
+                    technique: id.into(),
+                    scene: name.clone(),
+                    flip_mean: lod.scores.flip_mean,
+                    flip_p95: lod.scores.flip_p95,
+                    ssim: lod.scores.ssim,
+                    psnr: lod.scores.psnr,
+                });
+            }
+            images.push((id.to_owned(), image));
+        }
+        let matrix = compare::cross_compare(&images, &background)?;
+        for pair in &matrix {
+            let (a, b) = (
+                &images
+                    .iter()
+                    .find(|(n, _)| *n == pair.a)
+                    .context("image")?
+                    .1,
+                &images
+                    .iter()
+                    .find(|(n, _)| *n == pair.b)
+                    .context("image")?
+                    .1,
+            );
+            save_png(
+                &metrics::flip(a, b)?.heatmap,
+                &dir.join(format!("diff_{}_{}.png", pair.a, pair.b)),
+            )?;
+        }
+        write_csv(&dir.join("matrix.csv"), &matrix)?;
+        write_csv(&dir.join("lod.csv"), &lod_rows)?;
+        if args.motion_frames > 0 {
+            let mut rows = Vec::new();
+            for motion in MOTIONS {
+                let base = compare::frame_differences(
+                    &gpu,
+                    scene,
+                    reference,
+                    &toml::Table::new(),
+                    motion,
+                    args.motion_frames,
+                    size,
+                )?;
+                for entry in &entries {
+                    let mut variants = vec![("default", toml::Table::new())];
+                    if let Some(v) = entry.variant(NO_TRANSITIONS) {
+                        variants.push((NO_TRANSITIONS, v?));
+                    }
+                    for (variant, overrides) in variants {
+                        let diffs = compare::frame_differences(
+                            &gpu,
+                            scene,
+                            entry,
+                            &overrides,
+                            motion,
+                            args.motion_frames,
+                            size,
+                        )?;
+                        let s = compare::temporal_stability(motion, &diffs, &base);
+                        rows.push(TemporalRow {
+                            technique: entry.info.id.into(),
+                            variant: variant.into(),
+                            scene: name.clone(),
+                            motion: s.motion.into(),
+                            peak: s.peak,
+                            p95: s.p95,
+                        });
+                    }
+                }
+            }
+            write_csv(&dir.join("temporal.csv"), &rows)?;
+        }
+        eprintln!("{name}: wrote {}", dir.display());
+    }
+    Ok(())
+}
