@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use grassbench_cli::commands::{
     self, CalibrateArgs, CompareArgs, MergeArgs, RenderArgs, ReportArgs, RunArgs, SweepArgs,
+    ValidateArgs,
 };
 
 /// Compare real-time grass techniques on the same terrain, camera path, wind and GPU.
@@ -33,6 +34,8 @@ enum Command {
     Report(ReportArgs),
     /// Image differences: LOD fidelity, cross-technique matrix, temporal stability.
     Compare(CompareArgs),
+    /// Check scene and sweep files without rendering.
+    Validate(ValidateArgs),
     /// Open the side-by-side comparison window.
     Ui(grassbench_cli::ui::UiArgs),
 }
@@ -48,6 +51,7 @@ fn main() -> ExitCode {
         Command::Calibrate(args) => commands::calibrate(args),
         Command::Report(args) => commands::report(args),
         Command::Compare(args) => commands::compare(args),
+        Command::Validate(args) => commands::validate(args),
         Command::Ui(args) => grassbench_cli::ui::run(args),
     };
     match result {

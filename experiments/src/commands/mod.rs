@@ -8,6 +8,7 @@ mod render;
 mod report;
 mod run;
 mod sweep;
+mod validate;
 
 pub use calibrate::{CalibrateArgs, calibrate};
 pub use compare::{CompareArgs, MOTIONS, compare};
@@ -17,6 +18,7 @@ pub use render::{RenderArgs, render};
 pub use report::{ReportArgs, report};
 pub use run::{RunArgs, run};
 pub use sweep::{SweepArgs, SweepMeta, parse_shard, sweep};
+pub use validate::{ValidateArgs, validate};
 
 use anyhow::Context as _;
 use grassbench::GpuContext;
