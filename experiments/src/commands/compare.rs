@@ -34,6 +34,9 @@ pub struct CompareArgs {
     /// Output folder.
     #[arg(long, short, default_value = "results/compare")]
     pub out: PathBuf,
+    /// Replace a non-empty output folder.
+    #[arg(long)]
+    pub force: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -78,6 +81,7 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
         .map(|n| scenes::load(n))
         .collect::<Result<Vec<_>, _>>()?;
     let size = Size::parse(&args.size)?;
+    super::run::prepare_out_dir(&args.out, args.force)?;
     let gpu = args.gpu.context()?;
     write_atomic(&args.out.join("meta.toml"), |f| {
         std::io::Write::write_all(f, Provenance::collect(&gpu.summary).to_toml().as_bytes())

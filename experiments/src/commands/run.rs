@@ -211,7 +211,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
 }
 
 /// Refuses to mix new results into an old folder unless `force`.
-fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
+pub(crate) fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
     let non_empty = std::fs::read_dir(dir)
         .map(|mut d| d.next().is_some())
         .unwrap_or(false);
