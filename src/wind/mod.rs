@@ -12,6 +12,7 @@
 
 mod breeze;
 mod config;
+pub mod fluid;
 mod point_source;
 mod texture;
 
