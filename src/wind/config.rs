@@ -2,10 +2,12 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::fluid::FluidConfig;
 use crate::params::check;
 use crate::{Error, Result};
 
-/// `[wind]` in a scene file: `model = "breeze" | "point_source" | "calm"` plus the model's keys.
+/// `[wind]` in a scene file: `model = "breeze" | "point_source" | "fluid" | "calm"` plus the
+/// model's keys.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum WindConfig {
@@ -15,6 +17,8 @@ pub enum WindConfig {
     Breeze(BreezeConfig),
     /// Bakay et al.'s point source.
     PointSource(PointSourceConfig),
+    /// Stam's stable fluids (Zhang Ch. 2), tiled or stretched over the terrain.
+    Fluid(FluidConfig),
 }
 
 impl Default for WindConfig {
@@ -119,6 +123,7 @@ impl WindConfig {
                 check("wind.step_delay", c.step_delay, 0.0..=10_000.0)?;
                 check("wind.bias", c.bias, -2.0..=2.0)
             }
+            Self::Fluid(c) => c.validate(),
         }
     }
 }

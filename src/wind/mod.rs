@@ -7,8 +7,8 @@
 //!
 //! Models here: [`Breeze`] (a steady wind with travelling gusts), [`PointSource`] (Bakay et al.
 //! Sec. 3: wind vectors towards a source, intensity waves travelling outwards in animation
-//! steps) and calm air. Stam's stable fluids (Zhang Ch. 2) and Perbet's primitives join the
-//! same trait.
+//! steps), [`FluidWind`] (Stam's stable fluids, Zhang Ch. 2 and Sec. 5.1; stateful, stepped by
+//! [`WindField::advance`]) and calm air. Perbet's primitives join the same trait.
 
 mod breeze;
 mod config;
@@ -19,11 +19,13 @@ mod texture;
 use glam::Vec3;
 
 pub use breeze::Breeze;
+pub use fluid::{FluidConfig, FluidMapping, FluidWind};
 pub use config::{BreezeConfig, PointSourceConfig, WindConfig};
 pub use point_source::PointSource;
 pub use texture::WindTexture;
 
 use crate::Result;
+use crate::terrain::Terrain;
 
 /// A wind model: velocity in m/s at a position and time.
 ///
@@ -62,12 +64,14 @@ impl WindField for Calm {
     }
 }
 
-/// Builds the field a scene's `[wind]` section describes.
-pub fn build(config: &WindConfig, seed: u64) -> Result<Box<dyn WindField>> {
+/// Builds the field a scene's `[wind]` section describes over `terrain` (the fluid model maps
+/// its grid onto the terrain and follows the ground).
+pub fn build(config: &WindConfig, seed: u64, terrain: &Terrain) -> Result<Box<dyn WindField>> {
     config.validate()?;
     Ok(match config {
         WindConfig::Calm => Box::new(Calm),
         WindConfig::Breeze(c) => Box::new(Breeze::new(c.clone(), seed)),
         WindConfig::PointSource(c) => Box::new(PointSource::new(c.clone())),
+        WindConfig::Fluid(c) => Box::new(FluidWind::new(c.clone(), seed, terrain)?),
     })
 }

@@ -3,6 +3,10 @@
 //! the terrain (tiled per grass grid, or stretched over the whole terrain) and samples it
 //! trilinearly (Sec. 3.2.2).
 
+mod config;
+mod field;
 mod solver;
 
+pub use config::{FluidConfig, FluidMapping, MAX_SUBSTEPS};
+pub use field::FluidWind;
 pub use solver::{MAX_ITERATIONS, MAX_N, MIN_N, Poisson, StamParams, StamSolver};
