@@ -19,8 +19,8 @@ mod texture;
 use glam::Vec3;
 
 pub use breeze::Breeze;
-pub use fluid::{FluidConfig, FluidMapping, FluidWind};
 pub use config::{BreezeConfig, PointSourceConfig, WindConfig};
+pub use fluid::{FluidConfig, FluidMapping, FluidWind};
 pub use point_source::PointSource;
 pub use texture::WindTexture;
 
@@ -45,6 +45,15 @@ pub trait WindField: Send {
     /// Whether the field depends only on `(position, time)` (no state to step).
     fn is_stateless(&self) -> bool {
         true
+    }
+
+    /// [`WindField::velocity`] at every point of `points`, written to `out` (the shorter of
+    /// the two sets the count). One virtual call for many samples: techniques that animate
+    /// many points per frame use it; models may override it with a faster loop.
+    fn velocities(&self, points: &[Vec3], time: f32, out: &mut [Vec3]) {
+        for (o, p) in out.iter_mut().zip(points) {
+            *o = self.velocity(*p, time);
+        }
     }
 }
 

@@ -32,14 +32,32 @@ pub struct FluidWind {
     min_corner: Vec2,
     size: Vec2,
     seed: u64,
+    /// Offsets of the tiles over the terrain (row-major, `tiles.0` per row), so sampling
+    /// hashes only for tiles beyond it.
+    offsets: Vec<Vec2>,
+    tiles: (i64, i64),
 }
 
 impl FluidWind {
     /// A fluid at rest over `terrain`; `seed` drives the source and the tile offsets.
     pub fn new(config: FluidConfig, seed: u64, terrain: &Terrain) -> Result<Self> {
         config.validate()?;
-        let solver = StamSolver::new(config.solver_params(seed ^ 0x464c_5549_44))?;
+        let solver = StamSolver::new(config.solver_params(seed ^ 0x46_4c55_4944))?;
+        let (tiles, offsets) = match config.mapping {
+            FluidMapping::Stretched => ((0, 0), Vec::new()),
+            FluidMapping::Tiled => {
+                let count = |s: f32| ((s / config.tile_size).ceil() as i64 + 1).clamp(1, 4096);
+                let tiles = (count(terrain.size().x), count(terrain.size().y));
+                let offsets = (0..tiles.1)
+                    .flat_map(|b| (0..tiles.0).map(move |a| (a, b)))
+                    .map(|(a, b)| tile_offset(seed, a, b, config.tile_offset))
+                    .collect();
+                (tiles, offsets)
+            }
+        };
         Ok(Self {
+            offsets,
+            tiles,
             config,
             solver,
             ground: terrain.heights().clone(),
@@ -71,10 +89,11 @@ impl FluidWind {
                 let q = (xz - self.min_corner) / c.tile_size;
                 let tile = q.floor();
                 let (a, b) = (tile.x as i64, tile.y as i64);
-                let offset = Vec2::new(
-                    hash_f32(self.seed, &[a, b, 0]),
-                    hash_f32(self.seed, &[a, b, 1]),
-                ) * c.tile_offset;
+                let offset = if (0..self.tiles.0).contains(&a) && (0..self.tiles.1).contains(&b) {
+                    self.offsets[(b * self.tiles.0 + a) as usize]
+                } else {
+                    tile_offset(self.seed, a, b, c.tile_offset)
+                };
                 (q - tile + offset).fract_gl()
             }
         };
@@ -82,6 +101,11 @@ impl FluidWind {
         let h = (p.y - ground) / c.height;
         Vec3::new(local.x, h, local.y) * n + Vec3::splat(0.5)
     }
+}
+
+/// The seeded sampling offset of tile `(a, b)`, in tiles.
+fn tile_offset(seed: u64, a: i64, b: i64, max: f32) -> Vec2 {
+    Vec2::new(hash_f32(seed, &[a, b, 0]), hash_f32(seed, &[a, b, 1])) * max
 }
 
 impl WindField for FluidWind {
@@ -108,6 +132,12 @@ impl WindField for FluidWind {
 
     fn is_stateless(&self) -> bool {
         false
+    }
+
+    fn velocities(&self, points: &[Vec3], _time: f32, out: &mut [Vec3]) {
+        for (o, p) in out.iter_mut().zip(points) {
+            *o = self.solver.velocity_at(self.grid_coords(*p)) * self.config.speed_scale;
+        }
     }
 }
 
@@ -180,7 +210,10 @@ mod tests {
         // to rounding).
         let long = run(0.2, 1, 1);
         let short = run(1.0 / 30.0, 6, 1);
-        assert!((long - short).length() <= 1e-3 * short.length().max(1e-3), "{long} {short}");
+        assert!(
+            (long - short).length() <= 1e-3 * short.length().max(1e-3),
+            "{long} {short}"
+        );
         // Bad dt: no change.
         let mut w = field(|_| {});
         w.advance(0.0, 0.1);

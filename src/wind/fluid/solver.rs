@@ -155,10 +155,7 @@ impl StamParams {
                 return Err(Error::param(
                     format!("wind.source_cell[{axis}]"),
                     c,
-                    format!(
-                        "an interior cell index in [1, {}] (n = {})",
-                        self.n, self.n
-                    ),
+                    format!("an interior cell index in [1, {}] (n = {})", self.n, self.n),
                 ));
             }
         }
@@ -1152,7 +1149,10 @@ mod tests {
         // White noise: reduced, but discretisation-limited (measured 1.6x / 1.5x).
         for n in [8, 16] {
             let (ratio, _) = reduction(n, 20, false, compact);
-            assert!(ratio > 1.4 && ratio < 2.0, "n={n}: white-noise ratio {ratio}");
+            assert!(
+                ratio > 1.4 && ratio < 2.0,
+                "n={n}: white-noise ratio {ratio}"
+            );
             let (converged, _) = reduction(n, 1000, false, compact);
             assert!(converged < 2.0, "n={n}: converged ratio {converged}");
         }
@@ -1331,7 +1331,10 @@ mod tests {
         bad(|p| p.n = 0, "wind.n");
         bad(|p| p.n = 100_000, "wind.n");
         bad(|p| p.diffusion = -1.0, "wind.diffusion");
-        bad(|p| p.source_strength = f32::INFINITY, "wind.source_strength");
+        bad(
+            |p| p.source_strength = f32::INFINITY,
+            "wind.source_strength",
+        );
         bad(|p| p.source_density = 1.0e30, "wind.source_density");
         bad(|p| p.iterations = 0, "wind.iterations");
         bad(|p| p.iterations = 1001, "wind.iterations");

@@ -25,6 +25,9 @@ pub struct Animation {
     /// Per flower: petal centre, spin, stalk axis, texture layer.
     pub flower_out: Vec<FlowerInstance>,
     spins: Vec<(f32, u32)>,
+    /// Sample points and wind of one frame (3 per blade, then 1 per flower), reused.
+    points: Vec<Vec3>,
+    winds: Vec<Vec3>,
 }
 
 impl Animation {
@@ -47,7 +50,12 @@ impl Animation {
             blades,
             flowers,
             spins,
+            points: Vec::new(),
+            winds: Vec::new(),
         };
+        let samples = 3 * a.blades.len() + a.flowers.len();
+        a.points = vec![Vec3::ZERO; samples];
+        a.winds = vec![Vec3::ZERO; samples];
         a.write_out();
         a
     }
@@ -74,7 +82,8 @@ impl Animation {
 
     /// Advances every blade and flower by `dt` in `wind` at `time`: the wind is read once per
     /// frame at each moving control point (`P1..P3`; the root's wind is irrelevant, its
-    /// inverse mass is 0) and at each petal, then `ceil(dt / MAX_STEP)` Verlet steps follow.
+    /// inverse mass is 0) and at each petal, in one batched [`WindField::velocities`] call,
+    /// then `ceil(dt / MAX_STEP)` Verlet steps follow. No allocation.
     /// A `dt` that is not positive and finite does nothing.
     pub fn step(
         &mut self,
@@ -90,19 +99,24 @@ impl Animation {
         }
         let steps = ((dt / MAX_STEP).ceil() as u32).clamp(1, MAX_SUBSTEPS);
         let k = Dynamics::new(dt / steps as f32, wind_response, spring, damping);
-        for b in &mut self.blades {
-            let w = [
-                wind.velocity(b.pos[1], time),
-                wind.velocity(b.pos[2], time),
-                wind.velocity(b.pos[3], time),
-            ];
+        // One batched wind query for every sample point of the frame.
+        let (blade_points, flower_points) = self.points.split_at_mut(3 * self.blades.len());
+        for (p, b) in blade_points.chunks_exact_mut(3).zip(&self.blades) {
+            p.copy_from_slice(&b.pos[1..]);
+        }
+        for (p, f) in flower_points.iter_mut().zip(&self.flowers) {
+            *p = f.pos;
+        }
+        wind.velocities(&self.points, time, &mut self.winds);
+        let (blade_winds, flower_winds) = self.winds.split_at(3 * self.blades.len());
+        for (b, w) in self.blades.iter_mut().zip(blade_winds.chunks_exact(3)) {
+            let w = [w[0], w[1], w[2]];
             let ground = b.pos[0].y;
             for _ in 0..steps {
                 b.step(&w, &k, ground);
             }
         }
-        for f in &mut self.flowers {
-            let w = wind.velocity(f.pos, time);
+        for (f, &w) in self.flowers.iter_mut().zip(flower_winds) {
             for _ in 0..steps {
                 f.step(w, &k);
             }
@@ -120,7 +134,12 @@ impl Animation {
                 p3: v(b.pos[3], 0.0),
             };
         }
-        for ((out, f), &(spin, layer)) in self.flower_out.iter_mut().zip(&self.flowers).zip(&self.spins) {
+        for ((out, f), &(spin, layer)) in self
+            .flower_out
+            .iter_mut()
+            .zip(&self.flowers)
+            .zip(&self.spins)
+        {
             let axis = (f.pos - f.root).normalize_or(Vec3::Y);
             *out = FlowerInstance {
                 pos_spin: [f.pos.x, f.pos.y, f.pos.z, spin],

@@ -7,6 +7,17 @@ use grassbench::glam::{Vec2, Vec3};
 /// Control points per blade (Sec. 3.1.1).
 pub const CONTROL_POINTS: usize = 4;
 
+/// Relative length error the constraint leaves alone (f32 rounding of the rest pose).
+pub const CONSTRAINT_SLACK: f32 = 1e-6;
+
+/// The length error below which a constraint leaves a point alone: `CONSTRAINT_SLACK` of the
+/// length plus a few ulps of the coordinates (far from the origin f32 cannot place a point at
+/// an exact distance; correcting ulp errors would keep a resting blade jittering).
+pub fn slack(length: f32, a: Vec3, b: Vec3) -> f32 {
+    CONSTRAINT_SLACK * length
+        + 8.0 * f32::EPSILON * a.abs().max_element().max(b.abs().max_element())
+}
+
 /// A point on the backbone: the cubic Bezier curve of Eq. (5),
 /// `p = P0(1−t)³ + 3P1t(1−t)² + 3P2t²(1−t) + P3t³`. The vertex shader evaluates the same
 /// polynomial (`bezier` in `shaders/blade.wgsl`).
@@ -111,7 +122,9 @@ impl BladeState {
             let x = self.pos[i];
             let a = wind[i - 1] * push + (self.rest[i] - x) * pull;
             let mut next = x + (x - self.old[i]) * k.keep + a * dt2;
-            next.y = ground + (next.y - ground).abs();
+            if next.y < ground {
+                next.y = 2.0 * ground - next.y;
+            }
             self.old[i] = x;
             self.pos[i] = next;
         }
@@ -128,7 +141,11 @@ impl BladeState {
             let prev = self.pos[i - 1];
             let delta = self.pos[i] - prev;
             let len = delta.length();
-            let mut p = if len > 1e-9 {
+            let mut p = if (len - self.segment).abs() <= slack(self.segment, prev, self.pos[i]) {
+                // Already at length (to rounding): leave it, so a blade at rest stays
+                // bit-for-bit at rest instead of jittering by an ulp per step.
+                self.pos[i]
+            } else if len > 1e-9 {
                 self.pos[i] - delta * ((len - self.segment) / len)
             } else {
                 prev + Vec3::Y * self.segment
@@ -241,7 +258,10 @@ mod tests {
             b.step(&[Vec3::ZERO; 3], &dynamics(), 1.0);
         }
         for i in 0..CONTROL_POINTS {
-            assert!((b.pos[i] - rest.pos[i]).length() < 1e-5, "{i}: moved at rest");
+            assert!(
+                (b.pos[i] - rest.pos[i]).length() < 1e-5,
+                "{i}: moved at rest"
+            );
         }
         // Blown over, then calm: back at rest within a few seconds (damped spring).
         for _ in 0..30 {

@@ -245,7 +245,10 @@ impl Pipelines {
             "zhang blades",
             "vs_blade",
             "fs_blade",
-            &[Some(BLADE_LAYOUTS[0].clone()), Some(BLADE_LAYOUTS[1].clone())],
+            &[
+                Some(BLADE_LAYOUTS[0].clone()),
+                Some(BLADE_LAYOUTS[1].clone()),
+            ],
         );
         let flowers = pipeline(
             "zhang flowers",

@@ -128,7 +128,12 @@ pub struct Zhang {
     gpu_bytes: u64,
 }
 
-fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+fn buffer(
+    device: &wgpu::Device,
+    label: &str,
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
     // An empty buffer cannot be bound: keep 64 zero bytes (drawn with 0 instances).
     let zeros = [0u8; 64];
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -144,8 +149,7 @@ impl Zhang {
         let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
         let scene = ctx.scene;
         let grass = &scene.config.grass;
-        let (_, planted) =
-            prairie::plant(&params, grass, &scene.terrain, scene.config.seed);
+        let (_, planted) = prairie::plant(&params, grass, &scene.terrain, scene.config.seed);
         let animation = Animation::new(&planted, params.flower_mass);
         let statics: Vec<BladeStatic> = planted
             .iter()
@@ -167,7 +171,12 @@ impl Zhang {
             });
         }
         let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
-        let statics_buf = buffer(device, "zhang blades (static)", bytemuck::cast_slice(&statics), usage);
+        let statics_buf = buffer(
+            device,
+            "zhang blades (static)",
+            bytemuck::cast_slice(&statics),
+            usage,
+        );
         let dynamics = buffer(
             device,
             "zhang blades (control points)",
@@ -237,12 +246,18 @@ impl GrassTechnique for Zhang {
 
     fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
         if !self.animation.blade_out.is_empty() {
-            gpu.queue
-                .write_buffer(&self.dynamics, 0, bytemuck::cast_slice(&self.animation.blade_out));
+            gpu.queue.write_buffer(
+                &self.dynamics,
+                0,
+                bytemuck::cast_slice(&self.animation.blade_out),
+            );
         }
         if !self.animation.flower_out.is_empty() {
-            gpu.queue
-                .write_buffer(&self.flowers, 0, bytemuck::cast_slice(&self.animation.flower_out));
+            gpu.queue.write_buffer(
+                &self.flowers,
+                0,
+                bytemuck::cast_slice(&self.animation.flower_out),
+            );
         }
         Ok(())
     }

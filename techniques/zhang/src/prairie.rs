@@ -86,7 +86,7 @@ pub fn plant(
     let layout = Layout::new(params, terrain);
     let side = i64::from(layout.grids * layout.per_side);
     let spacing = layout.spacing();
-    let seed = seed ^ 0x5a48_414e_47;
+    let seed = seed ^ 0x5a_4841_4e47;
     let lerp = |r: [f32; 2], t: f32| r[0] + (r[1] - r[0]) * t;
     let mut out = Vec::new();
     for j in 0..side {
@@ -138,10 +138,20 @@ mod tests {
         let (layout, blades) = plant(&params, &GrassConfig::default(), &terrain, 1);
         assert_eq!(layout.grid_size, Vec2::new(20.0, 10.0));
         assert_eq!(blades.len() as u64, layout.candidates()); // flat terrain: density 1
-        assert!(blades.iter().all(|b| terrain.contains(Vec2::new(b.root.x, b.root.z))));
+        assert!(
+            blades
+                .iter()
+                .all(|b| terrain.contains(Vec2::new(b.root.x, b.root.z)))
+        );
         let flowers = blades.iter().filter(|b| b.flower.is_some()).count();
         assert!(flowers > 0 && flowers < 40, "{flowers} flowers");
-        assert_eq!(blades, plant(&params, &GrassConfig::default(), &terrain, 1).1);
-        assert_ne!(blades, plant(&params, &GrassConfig::default(), &terrain, 2).1);
+        assert_eq!(
+            blades,
+            plant(&params, &GrassConfig::default(), &terrain, 1).1
+        );
+        assert_ne!(
+            blades,
+            plant(&params, &GrassConfig::default(), &terrain, 2).1
+        );
     }
 }
