@@ -414,8 +414,6 @@ impl StamSolver {
         let g = self.grid;
         let iters = self.params.iterations;
         let visc = self.params.viscosity;
-        let poisson = self.params.poisson;
-        let t = &mut self.row_scratch;
 
         // add force
         add_source(&mut self.u, &self.u_prev, dt);
@@ -423,24 +421,14 @@ impl StamSolver {
         add_source(&mut self.w, &self.w_prev, dt);
         // viscous diffusion
         std::mem::swap(&mut self.u_prev, &mut self.u);
+        let t = &mut self.row_scratch;
         diffuse(g, Bound::U, &mut self.u, &self.u_prev, visc, dt, iters, t);
         std::mem::swap(&mut self.v_prev, &mut self.v);
         diffuse(g, Bound::V, &mut self.v, &self.v_prev, visc, dt, iters, t);
         std::mem::swap(&mut self.w_prev, &mut self.w);
         diffuse(g, Bound::W, &mut self.w, &self.w_prev, visc, dt, iters, t);
         // mass conserving (u0 = pressure, v0 = divergence scratch)
-        project(
-            g,
-            [&mut self.u, &mut self.v, &mut self.w],
-            &mut self.u_prev,
-            &mut self.v_prev,
-            Solve {
-                iters,
-                poisson,
-                wide: &self.wide,
-                scratch: t,
-            },
-        );
+        self.project_with_iterations(iters);
         std::mem::swap(&mut self.u_prev, &mut self.u);
         std::mem::swap(&mut self.v_prev, &mut self.v);
         std::mem::swap(&mut self.w_prev, &mut self.w);
@@ -450,18 +438,7 @@ impl StamSolver {
         advect(g, Bound::V, &mut self.v, &self.v_prev, vel0, dt);
         advect(g, Bound::W, &mut self.w, &self.w_prev, vel0, dt);
         // mass conserving
-        project(
-            g,
-            [&mut self.u, &mut self.v, &mut self.w],
-            &mut self.u_prev,
-            &mut self.v_prev,
-            Solve {
-                iters,
-                poisson,
-                wide: &self.wide,
-                scratch: t,
-            },
-        );
+        self.project_with_iterations(iters);
     }
 
     /// Density step, thesis Sec. 2.3.4 (`dens_step`): add source (2.3.1),
@@ -490,7 +467,7 @@ impl StamSolver {
     /// Projects the current velocity onto its divergence-free part
     /// (Sec. 2.3.6) with `iterations` Gauss–Seidel sweeps for the Poisson
     /// solve (clamped to `1..=1000`). Uses `u0`/`v0` as pressure/divergence
-    /// scratch, exactly like `vel_step`.
+    /// scratch; `vel_step` calls it twice with the configured sweep count.
     pub fn project_with_iterations(&mut self, iterations: u32) {
         project(
             self.grid,
@@ -514,10 +491,11 @@ impl StamSolver {
     pub fn velocity_at(&self, p: impl Into<Vec3>) -> Vec3 {
         let p = p.into();
         let c = self.sample_coords(p);
+        let (corner, weights) = trilerp_weights(self.grid, c);
         Vec3::new(
-            trilerp(self.grid, &self.u, c),
-            trilerp(self.grid, &self.v, c),
-            trilerp(self.grid, &self.w, c),
+            trilerp_with(self.grid, &self.u, corner, weights),
+            trilerp_with(self.grid, &self.v, corner, weights),
+            trilerp_with(self.grid, &self.w, corner, weights),
         )
     }
 
@@ -715,13 +693,26 @@ fn advect(g: Grid, b: Bound, d: &mut [f32], d0: &[f32], vel: [&[f32]; 3], dt: f3
 /// out-of-bounds access) and propagates NaN through the weights.
 #[inline(always)]
 fn trilerp(g: Grid, f: &[f32], p: Vec3) -> f32 {
+    let (corner, weights) = trilerp_weights(g, p);
+    trilerp_with(g, f, corner, weights)
+}
+
+/// The lower corner cell and the fractional weights `(r1, s1, t1)` of `p` (see [`trilerp`]),
+/// computed once when several fields are sampled at the same point.
+#[inline(always)]
+fn trilerp_weights(g: Grid, p: Vec3) -> (usize, Vec3) {
     let top = g.n; // lower corner index at most N, so +1 stays in the wall
     let i0 = (p.x as usize).min(top);
     let j0 = (p.y as usize).min(top);
     let k0 = (p.z as usize).min(top);
-    let (r1, s1, t1) = (p.x - i0 as f32, p.y - j0 as f32, p.z - k0 as f32);
+    let w = Vec3::new(p.x - i0 as f32, p.y - j0 as f32, p.z - k0 as f32);
+    (g.ix(i0, j0, k0), w)
+}
+
+#[inline(always)]
+fn trilerp_with(g: Grid, f: &[f32], c: usize, w: Vec3) -> f32 {
+    let (r1, s1, t1) = (w.x, w.y, w.z);
     let (r0, s0, t0) = (1.0 - r1, 1.0 - s1, 1.0 - t1);
-    let c = g.ix(i0, j0, k0);
     let (dy, dz) = (g.s, g.plane);
     let lerp_x = |c: usize| r0 * f[c] + r1 * f[c + 1];
     let plane = |c: usize| s0 * lerp_x(c) + s1 * lerp_x(c + dy);
