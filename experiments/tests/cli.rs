@@ -224,10 +224,12 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     let d = temp("run");
     let out = d.join("out");
     let out_s = out.to_str().unwrap();
+    // `-p` applies to every technique run, and `segments` is a reference parameter: with more
+    // than one technique registered, `-t all` would (rightly) refuse it for the others.
     let args = [
         "run",
         "-t",
-        "all",
+        "reference",
         "-s",
         "football_field",
         "--frames",

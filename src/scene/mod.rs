@@ -167,7 +167,7 @@ impl Scene {
 
     /// A fresh wind field at time 0.
     pub fn wind(&self) -> Result<Box<dyn WindField>> {
-        wind::build(&self.config.wind, self.config.seed)
+        wind::build(&self.config.wind, self.config.seed, &self.terrain)
     }
 
     /// The scene file's overrides for technique `id` (empty when none).

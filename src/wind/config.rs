@@ -2,10 +2,12 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::fluid::FluidConfig;
 use crate::params::check;
 use crate::{Error, Result};
 
-/// `[wind]` in a scene file: `model = "breeze" | "point_source" | "calm"` plus the model's keys.
+/// `[wind]` in a scene file: `model = "breeze" | "point_source" | "fluid" | "calm"` plus the
+/// model's keys.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum WindConfig {
@@ -15,6 +17,8 @@ pub enum WindConfig {
     Breeze(BreezeConfig),
     /// Bakay et al.'s point source.
     PointSource(PointSourceConfig),
+    /// Stam's stable fluids (Zhang Ch. 2), tiled or stretched over the terrain.
+    Fluid(FluidConfig),
 }
 
 impl Default for WindConfig {
@@ -89,7 +93,7 @@ impl Default for PointSourceConfig {
 
 impl WindConfig {
     /// The `model` names, in the order the UI lists them.
-    pub const MODELS: &'static [&'static str] = &["calm", "breeze", "point_source"];
+    pub const MODELS: &'static [&'static str] = &["calm", "breeze", "point_source", "fluid"];
 
     /// The `model` name of this configuration.
     pub fn model(&self) -> &'static str {
@@ -97,6 +101,7 @@ impl WindConfig {
             Self::Calm => "calm",
             Self::Breeze(_) => "breeze",
             Self::PointSource(_) => "point_source",
+            Self::Fluid(_) => "fluid",
         }
     }
 
@@ -106,6 +111,7 @@ impl WindConfig {
             "calm" => Some(Self::Calm),
             "breeze" => Some(Self::Breeze(BreezeConfig::default())),
             "point_source" => Some(Self::PointSource(PointSourceConfig::default())),
+            "fluid" => Some(Self::Fluid(FluidConfig::default())),
             _ => None,
         }
     }
@@ -141,6 +147,7 @@ impl WindConfig {
                 check("wind.step_delay", c.step_delay, 0.0..=10_000.0)?;
                 check("wind.bias", c.bias, -2.0..=2.0)
             }
+            Self::Fluid(c) => c.validate(),
         }
     }
 }

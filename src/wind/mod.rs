@@ -7,11 +7,12 @@
 //!
 //! Models here: [`Breeze`] (a steady wind with travelling gusts), [`PointSource`] (Bakay et al.
 //! Sec. 3: wind vectors towards a source, intensity waves travelling outwards in animation
-//! steps) and calm air. Stam's stable fluids (Zhang Ch. 2) and Perbet's primitives join the
-//! same trait.
+//! steps), [`FluidWind`] (Stam's stable fluids, Zhang Ch. 2 and Sec. 5.1; stateful, stepped by
+//! [`WindField::advance`]) and calm air. Perbet's primitives join the same trait.
 
 mod breeze;
 mod config;
+pub mod fluid;
 mod point_source;
 mod texture;
 
@@ -19,10 +20,12 @@ use glam::Vec3;
 
 pub use breeze::Breeze;
 pub use config::{BreezeConfig, PointSourceConfig, WindConfig};
+pub use fluid::{FluidConfig, FluidMapping, FluidWind};
 pub use point_source::PointSource;
 pub use texture::WindTexture;
 
 use crate::Result;
+use crate::terrain::Terrain;
 
 /// A wind model: velocity in m/s at a position and time.
 ///
@@ -43,6 +46,15 @@ pub trait WindField: Send {
     fn is_stateless(&self) -> bool {
         true
     }
+
+    /// [`WindField::velocity`] at every point of `points`, written to `out` (the shorter of
+    /// the two sets the count). One virtual call for many samples: techniques that animate
+    /// many points per frame use it; models may override it with a faster loop.
+    fn velocities(&self, points: &[Vec3], time: f32, out: &mut [Vec3]) {
+        for (o, p) in out.iter_mut().zip(points) {
+            *o = self.velocity(*p, time);
+        }
+    }
 }
 
 /// No wind at all.
@@ -61,12 +73,14 @@ impl WindField for Calm {
     }
 }
 
-/// Builds the field a scene's `[wind]` section describes.
-pub fn build(config: &WindConfig, seed: u64) -> Result<Box<dyn WindField>> {
+/// Builds the field a scene's `[wind]` section describes over `terrain` (the fluid model maps
+/// its grid onto the terrain and follows the ground).
+pub fn build(config: &WindConfig, seed: u64, terrain: &Terrain) -> Result<Box<dyn WindField>> {
     config.validate()?;
     Ok(match config {
         WindConfig::Calm => Box::new(Calm),
         WindConfig::Breeze(c) => Box::new(Breeze::new(c.clone(), seed)),
         WindConfig::PointSource(c) => Box::new(PointSource::new(c.clone())),
+        WindConfig::Fluid(c) => Box::new(FluidWind::new(c.clone(), seed, terrain)?),
     })
 }

@@ -87,7 +87,14 @@ fn snapshots_and_lod_fidelity_of_every_technique_and_scene() -> anyhow::Result<(
             ) {
                 failures.push(format!("{e:#}"));
             }
-            match compare::lod_fidelity(&gpu, &scene, entry, FRAME, TEST_SIZE)? {
+            let lod = compare::lod_fidelity(&gpu, &scene, entry, FRAME, TEST_SIZE)?;
+            if let Some(l) = &lod {
+                eprintln!(
+                    "measured: {id} on {name}: LOD fidelity FLIP mean {:.4} p95 {:.4}",
+                    l.scores.flip_mean, l.scores.flip_p95
+                );
+            }
+            match lod {
                 Some(lod) if lod.scores.flip_mean > t.lod_flip => {
                     failures.push(format!(
                         "{id} on {name}: LOD fidelity FLIP {:.4} > {}",
@@ -148,6 +155,16 @@ fn every_technique_agrees_with_the_reference_at_reduced_scale() -> anyhow::Resul
             .filter(|p| p.a == "reference")
         {
             let t = thresholds(&pair.b);
+            eprintln!(
+                "measured: {} on {name}: FLIP full {:.3} 1/4 {:.3} 1/16 {:.3}, colour {:.1}, coverage per tile {:.3}, silhouette {:.3}",
+                pair.b,
+                pair.flip_full,
+                pair.flip_quarter,
+                pair.flip_sixteenth,
+                pair.color_error_quarter,
+                pair.coverage_tile_error,
+                pair.silhouette_error
+            );
             if pair.flip_sixteenth > t.cross_flip_sixteenth
                 || pair.coverage_tile_error > t.cross_coverage
             {
@@ -195,6 +212,10 @@ fn popping_is_bounded_and_the_metric_catches_it() -> anyhow::Result<()> {
                 TEST_SIZE,
             )?;
             let s = compare::temporal_stability(motion, &diffs, &base);
+            eprintln!(
+                "measured: {id}: {} popping peak {:.2} p95 {:.2}",
+                s.motion, s.peak, s.p95
+            );
             if s.p95 > thresholds(id).popping_p95 {
                 failures.push(format!(
                     "{id}: {} popping p95 {:.2} > {}",

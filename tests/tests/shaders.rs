@@ -79,6 +79,11 @@ fn uniform_mirrors_match_wgsl_layouts() {
         wgsl_size(&reference, "Params") as usize,
         std::mem::size_of::<grassbench_reference::ParamsUniform>()
     );
+    let zhang = module_of(&root.join("techniques/zhang/shaders/blade.wgsl"));
+    assert_eq!(
+        wgsl_size(&zhang, "Params") as usize,
+        std::mem::size_of::<grassbench_zhang::ParamsUniform>()
+    );
 }
 
 #[test]
@@ -87,5 +92,9 @@ fn shader_consts_in_crates_match_files() {
         grassbench_reference::SHADER,
         std::fs::read_to_string(repo_root().join("techniques/reference/shaders/blade.wgsl"))
             .unwrap()
+    );
+    assert_eq!(
+        grassbench_zhang::SHADER,
+        std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/blade.wgsl")).unwrap()
     );
 }

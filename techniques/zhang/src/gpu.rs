@@ -1,0 +1,269 @@
+//! GPU side: instance layouts, the parameter uniform, the procedural textures, the blade and
+//! flower pipelines (group 1 = uniform + blade texture + petal texture array + sampler).
+
+use grassbench::wgpu::util::DeviceExt as _;
+use grassbench::{InitContext, bytemuck, shaders, target, wgpu};
+
+use crate::prairie::PETAL_TEXTURES;
+use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
+
+/// Static per-blade data (vertex buffer 0 of the blade pipeline, instance step).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct BladeStatic {
+    /// Root `P0` xyz, facing angle (width axis, radians around y).
+    pub root_facing: [f32; 4],
+    /// Height, width, colour variation, unused.
+    pub shape: [f32; 4],
+}
+
+/// Per-frame per-blade data (vertex buffer 1, instance step): the moving control points.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct BladeDynamic {
+    /// `P1` xyz; w = rotation θ of the top segment points (Sec. 3.2.5).
+    pub p1_rotation: [f32; 4],
+    /// `P2` xyz; w unused.
+    pub p2: [f32; 4],
+    /// `P3` xyz; w unused.
+    pub p3: [f32; 4],
+}
+
+/// Per-frame per-flower data (instance step).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FlowerInstance {
+    /// Petal centre xyz; w = spin around the petal normal.
+    pub pos_spin: [f32; 4],
+    /// Petal normal (the stalk direction) xyz; w = petal texture layer.
+    pub axis_layer: [f32; 4],
+}
+
+/// Mirror of the shader's `Params` uniform.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ParamsUniform {
+    /// Root colour; w = colour variation.
+    pub color_root: [f32; 4],
+    /// Tip colour; w = translucency.
+    pub color_tip: [f32; 4],
+    /// Backbone points, alpha cut-off, petal size (m), unused.
+    pub shape: [f32; 4],
+}
+
+const BLADE_LAYOUTS: [wgpu::VertexBufferLayout<'static>; 2] = [
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<BladeStatic>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
+    },
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<BladeDynamic>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &wgpu::vertex_attr_array![2 => Float32x4, 3 => Float32x4, 4 => Float32x4],
+    },
+];
+
+const FLOWER_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<FlowerInstance>() as u64,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
+};
+
+/// The technique's pipelines and group-1 resources.
+pub struct Pipelines {
+    /// Blade strips.
+    pub blades: wgpu::RenderPipeline,
+    /// Petal quads.
+    pub flowers: wgpu::RenderPipeline,
+    /// Group 1.
+    pub bind_group: wgpu::BindGroup,
+    /// Bytes of textures and uniform.
+    pub bytes: u64,
+}
+
+fn texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    (width, height, layers): (u32, u32, u32),
+    texels: &[[u8; 4]],
+) -> wgpu::Texture {
+    device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(texels),
+    )
+}
+
+impl Pipelines {
+    /// Creates textures, uniform, bind group and both pipelines.
+    pub fn new(ctx: &InitContext<'_>, uniform: &ParamsUniform, seed: u64) -> Self {
+        let device = &ctx.gpu.device;
+        let queue = &ctx.gpu.queue;
+        let blade_tex = texture(
+            device,
+            queue,
+            "zhang blade texture",
+            (BLADE_SIZE.0, BLADE_SIZE.1, 1),
+            &blade_texture(seed),
+        );
+        let petal_tex = texture(
+            device,
+            queue,
+            "zhang petal textures",
+            (PETAL_SIZE, PETAL_SIZE, PETAL_TEXTURES),
+            &petal_textures(),
+        );
+        let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("zhang params"),
+            contents: bytemuck::bytes_of(uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("zhang textures"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let tex_entry = |binding, dim| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: dim,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("zhang (group 1)"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                tex_entry(1, wgpu::TextureViewDimension::D2),
+                tex_entry(2, wgpu::TextureViewDimension::D2Array),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let blade_view = blade_tex.create_view(&Default::default());
+        let petal_view = petal_tex.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("zhang (group 1)"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&blade_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&petal_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
+            ],
+        });
+        let module = shaders::module(device, "zhang", crate::SHADER);
+        let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
+        let pipeline = |label, vs, fs, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleStrip,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: target::DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: ctx.sample_count,
+                    // With MSAA the texture's alpha also drives coverage (smoother cut-outs);
+                    // the alpha test still discards the clear part.
+                    alpha_to_coverage_enabled: ctx.sample_count > 1,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(target::COLOR_FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let blades = pipeline(
+            "zhang blades",
+            "vs_blade",
+            "fs_blade",
+            &[
+                Some(BLADE_LAYOUTS[0].clone()),
+                Some(BLADE_LAYOUTS[1].clone()),
+            ],
+        );
+        let flowers = pipeline(
+            "zhang flowers",
+            "vs_flower",
+            "fs_flower",
+            &[Some(FLOWER_LAYOUT.clone())],
+        );
+        let bytes = u64::from(BLADE_SIZE.0 * BLADE_SIZE.1 * 4)
+            + u64::from(PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES)
+            + std::mem::size_of::<ParamsUniform>() as u64;
+        Self {
+            blades,
+            flowers,
+            bind_group,
+            bytes,
+        }
+    }
+}

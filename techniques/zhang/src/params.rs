@@ -1,0 +1,95 @@
+//! The technique's parameters (`[techniques.zhang]` in scene files, `--param` on the command
+//! line).
+
+use grassbench::Result;
+use grassbench::params::{TechniqueParams, check, check_int};
+use serde::{Deserialize, Serialize};
+
+/// Parameters of [`crate::Zhang`]. Defaults follow the thesis where it gives numbers.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Params {
+    /// Grass grids per terrain side (Sec. 5.1: 16 x 16).
+    pub grids: u32,
+    /// Blades per grass-grid side (Sec. 3.1.2 and 5.1: 32 x 32 per grid).
+    pub blades_per_side: u32,
+    /// Random placement offset, as a fraction of the blade spacing (1 = anywhere in its cell).
+    pub jitter: f32,
+    /// Backbone points per blade, `n` of Eq. (5) (Fig. 5 uses 4; segments = n − 1).
+    pub backbone_points: u32,
+    /// Wind acceleration per m/s of wind, per metre of blade height, 1/s (Eq. 7's `a`).
+    pub wind_response: f32,
+    /// Pull of each control point back to its rest position, 1/s² (see the essay: an
+    /// addition, the thesis has no restoring force).
+    pub spring: f32,
+    /// Velocity damping of the Verlet step, 1/s (an addition, see the essay).
+    pub damping: f32,
+    /// Mass of a flower's petal point relative to a blade control point (Sec. 3.4: heavier
+    /// moves slower and less).
+    pub flower_mass: f32,
+    /// Fraction of blade positions that also carry a flower (Sec. 3.3).
+    pub flower_fraction: f32,
+    /// Petal quad side, m.
+    pub petal_size: f32,
+    /// Fraction of back-side sunlight passing through a blade.
+    pub translucency: f32,
+    /// Alpha below which texels are discarded (alpha test).
+    pub alpha_cutoff: f32,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            grids: 16,
+            blades_per_side: 32,
+            jitter: 1.0,
+            backbone_points: 5,
+            wind_response: 2.5,
+            spring: 40.0,
+            damping: 4.0,
+            flower_mass: 4.0,
+            flower_fraction: 0.02,
+            petal_size: 0.07,
+            translucency: 0.35,
+            alpha_cutoff: 0.5,
+        }
+    }
+}
+
+impl TechniqueParams for Params {
+    fn validate(&self) -> Result<()> {
+        check_int("zhang.grids", self.grids, 1..=256)?;
+        check_int("zhang.blades_per_side", self.blades_per_side, 1..=512)?;
+        check("zhang.jitter", self.jitter, 0.0..=1.0)?;
+        check_int("zhang.backbone_points", self.backbone_points, 2..=16)?;
+        check("zhang.wind_response", self.wind_response, 0.0..=1000.0)?;
+        check("zhang.spring", self.spring, 0.0..=10_000.0)?;
+        check("zhang.damping", self.damping, 0.0..=1000.0)?;
+        check("zhang.flower_mass", self.flower_mass, 0.01..=1000.0)?;
+        check("zhang.flower_fraction", self.flower_fraction, 0.0..=1.0)?;
+        check("zhang.petal_size", self.petal_size, 0.001..=10.0)?;
+        check("zhang.translucency", self.translucency, 0.0..=1.0)?;
+        check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_validate_and_bad_values_name_the_key() {
+        Params::default().validate().unwrap();
+        let bad = |f: fn(&mut Params), key: &str| {
+            let mut p = Params::default();
+            f(&mut p);
+            let e = p.validate().unwrap_err().to_string();
+            assert!(e.contains(key), "{e}");
+        };
+        bad(|p| p.grids = 0, "zhang.grids");
+        bad(|p| p.backbone_points = 1, "zhang.backbone_points");
+        bad(|p| p.wind_response = f32::NAN, "zhang.wind_response");
+        bad(|p| p.flower_fraction = 2.0, "zhang.flower_fraction");
+        bad(|p| p.blades_per_side = 100_000, "zhang.blades_per_side");
+    }
+}
