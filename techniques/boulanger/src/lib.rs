@@ -55,8 +55,9 @@
 //!   meaningless, so the expected fraction `ρ · mean_t(1 − opacity_g)` of the uniformly spread
 //!   thresholds is drawn instead.
 //! - **Semi-transparency** (Sec. 4.2, `transparency`). `blend`: alpha test with a low threshold
-//!   (`alpha_threshold`, 0.1) plus blending, no sorting (geometry cells are drawn near to far so
-//!   the depth test rejects hidden fragments early); `alpha_to_coverage`: alpha to
+//!   (`alpha_threshold`, 0.1) plus blending, no sorting of blades (geometry cells are drawn far
+//!   to near, which costs nothing on the CPU and keeps Eq. 5's semi-transparent blades from
+//!   hiding whole cells drawn after them); `alpha_to_coverage`: alpha to
 //!   coverage on the 4x MSAA target (needs `--msaa`; refused without it).
 //! - **Wind.** The paper has no wind; here the shared wind pushes each geometric blade's
 //!   particle sideways (`wind_response` per m/s, plus a small per-blade flutter), so near blades
@@ -781,10 +782,11 @@ impl GrassTechnique for Boulanger {
             slice_blades += f64::from(s.density) * per_patch;
         }
         self.selection = selection;
-        // Near to far, so the depth test rejects most hidden fragments of this dense grass
-        // early; blending is left unsorted, as the paper's alpha test + blending allows
-        // (Sec. 4.2: errors only on one-pixel borders).
-        self.geometry.sort_by(|a, b| a.near.total_cmp(&b.near));
+        // Far to near. Blades are not sorted (Sec. 4.2), but cells are, for free: Eq. 5 leaves
+        // many blades of the transition semi-transparent, and with cells drawn near to far
+        // (18 % faster here, thanks to early depth rejection) faint near blades hid whole
+        // cells drawn after them, which showed as cell-sized blotches.
+        self.geometry.sort_by(|a, b| b.near.total_cmp(&a.near));
         self.quads.sort_by(|a, b| a.tess[0].total_cmp(&b.tess[0]));
         self.quad_groups.clear();
         let mut start = 0u32;

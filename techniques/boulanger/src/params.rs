@@ -67,9 +67,9 @@ impl Default for Params {
         Self {
             patch_size: 0.5,
             blades_per_m2: 87_800.0,
-            segments: 4,
+            segments: 3,
             min_geom: 2.5,
-            max_geom: 4.0,
+            max_geom: 3.5,
             min_btf: 12.0,
             max_btf: 30.0,
             omega: 0.4,
