@@ -37,7 +37,7 @@ pub fn texels() -> Vec<[u8; 4]> {
             let k = 1.0 + midrib + veins + rim + fleck;
             // Drier, yellower tip.
             let dry = ((v - 0.8) / 0.2).clamp(0.0, 1.0);
-            let rgb = [k * (1.0 + 0.35 * dry), k, k * (1.0 - 0.4 * dry)];
+            let rgb = [k * (1.0 + 0.15 * dry), k, k * (1.0 - 0.25 * dry)];
             let q = |c: f32| ((c * 0.5).clamp(0.0, 1.0) * 255.0).round() as u8;
             out.push([q(rgb[0]), q(rgb[1]), q(rgb[2]), q(alpha * 2.0)]);
         }
