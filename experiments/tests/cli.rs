@@ -257,7 +257,9 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
         assert!(out.join(f).exists(), "missing {f}");
     }
     let frames = std::fs::read_to_string(out.join("football_field/frames.csv")).unwrap();
-    assert_eq!(frames.lines().count(), 1 + 2, "{frames}");
+    // A header, then 2 measured frames of every registered technique (`-t all`).
+    let techniques = grassbench_cli::registry::TECHNIQUES.len();
+    assert_eq!(frames.lines().count(), 1 + 2 * techniques, "{frames}");
     assert!(frames.lines().next().unwrap().contains("gpu_wall_ms"));
     let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
     assert!(

@@ -93,6 +93,7 @@
 pub mod lod;
 pub mod params;
 pub mod patch;
+pub mod pipeline;
 pub mod quadtree;
 pub mod slice;
 pub mod texture;
@@ -110,6 +111,8 @@ pub use lod::LodDistances;
 pub use params::{Params, Transparency};
 pub use patch::{Orientation, Patch, PatchBlade};
 pub use quadtree::{CellGrid, Quadtree, Selection, Walk};
+
+use pipeline::{PipelineSpec, depth_less, render_pipeline};
 
 /// The blade, bake and slice shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/grass.wgsl");
@@ -454,15 +457,6 @@ impl Boulanger {
             blend,
             write_mask: wgpu::ColorWrites::ALL,
         })];
-        let depth = |write| {
-            Some(wgpu::DepthStencilState {
-                format: target::DEPTH_FORMAT,
-                depth_write_enabled: Some(write),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            })
-        };
         let multisample = wgpu::MultisampleState {
             count: ctx.sample_count,
             alpha_to_coverage_enabled: a2c,
@@ -473,82 +467,66 @@ impl Boulanger {
             cull_mode: None,
             ..Default::default()
         };
-        let blade_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("boulanger blades"),
-            layout: Some(&blade_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_blade"),
-                compilation_options: Default::default(),
-                buffers: &[Some(BLADE_LAYOUT)],
-            },
+        let spec = |label, layout, vertex, fragment, buffers| PipelineSpec {
+            label,
+            layout,
+            module: &module,
+            vertex,
+            fragment,
+            buffers,
             primitive: strip,
-            depth_stencil: depth(true),
+            depth: depth_less(target::DEPTH_FORMAT, true),
             multisample,
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_blade"),
-                compilation_options: Default::default(),
-                targets: &color_target,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let slice_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("boulanger horizontal slice"),
-            layout: Some(&slice_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_slice"),
-                compilation_options: Default::default(),
-                buffers: &[Some(SliceQuad::LAYOUT)],
+            targets: &color_target,
+        };
+        let blade_buffers = [Some(BLADE_LAYOUT)];
+        let blade_pipeline = render_pipeline(
+            device,
+            &spec(
+                "boulanger blades",
+                &blade_layout,
+                "vs_blade",
+                "fs_blade",
+                &blade_buffers,
+            ),
+        );
+        let quad_buffers = [Some(SliceQuad::LAYOUT)];
+        let slice_pipeline = render_pipeline(
+            device,
+            &PipelineSpec {
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                ..spec(
+                    "boulanger horizontal slice",
+                    &slice_pipeline_layout,
+                    "vs_slice",
+                    "fs_slice",
+                    &quad_buffers,
+                )
             },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: depth(true),
-            multisample,
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_slice"),
-                compilation_options: Default::default(),
-                targets: &color_target,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         let bake_target = Some(wgpu::ColorTargetState::from(slice::FORMAT));
-        let bake_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("boulanger slice bake"),
-            layout: Some(&blade_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_blade"),
-                compilation_options: Default::default(),
-                buffers: &[Some(BLADE_LAYOUT)],
+        let bake_targets = [bake_target.clone(), bake_target];
+        let bake_pipeline = render_pipeline(
+            device,
+            &PipelineSpec {
+                depth: depth_less(wgpu::TextureFormat::Depth32Float, true),
+                multisample: wgpu::MultisampleState {
+                    count: 4,
+                    ..Default::default()
+                },
+                targets: &bake_targets,
+                ..spec(
+                    "boulanger slice bake",
+                    &blade_layout,
+                    "vs_blade",
+                    "fs_bake",
+                    &blade_buffers,
+                )
             },
-            primitive: strip,
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: 4,
-                ..Default::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_bake"),
-                compilation_options: Default::default(),
-                targets: &[bake_target.clone(), bake_target],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         let vertices = 2 * params.segments + 2;
         let baked = slice::bake(
             ctx,

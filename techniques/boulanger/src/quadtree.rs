@@ -346,7 +346,7 @@ mod tests {
         #[test]
         fn culling_never_drops_a_visible_cell(
             x in -40.0f32..40.0, z in -30.0f32..30.0, y in 0.5f32..30.0,
-            yaw in 0.0f32..6.28, pitch in -1.2f32..0.3, fov in 20.0f32..90.0,
+            yaw in 0.0f32..std::f32::consts::TAU, pitch in -1.2f32..0.3, fov in 20.0f32..90.0,
             cell_distance in 0.0f32..20.0, macro_factor in 0.5f32..8.0,
         ) {
             let terrain = hills();

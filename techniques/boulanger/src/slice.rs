@@ -16,6 +16,7 @@ use grassbench::{InitContext, Result, bytemuck, shaders, wgpu};
 
 use crate::CellUniform;
 use crate::patch::Orientation;
+use crate::pipeline::{PipelineSpec, render_pipeline};
 use crate::quadtree::CellGrid;
 
 /// The mip chain shader (without the prelude).
@@ -241,27 +242,22 @@ fn build_mips(
         .scene_gpu
         .pipeline_layout(device, "boulanger mip", &[&layout]);
     let target = Some(wgpu::ColorTargetState::from(FORMAT));
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("boulanger mip"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
+    let targets = [target.clone(), target];
+    let pipeline = render_pipeline(
+        device,
+        &PipelineSpec {
+            label: "boulanger mip",
+            layout: &pipeline_layout,
             module: &module,
-            entry_point: Some("vs_mip"),
-            compilation_options: Default::default(),
+            vertex: "vs_mip",
+            fragment: "fs_mip",
             buffers: &[],
+            primitive: Default::default(),
+            depth: None,
+            multisample: Default::default(),
+            targets: &targets,
         },
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_mip"),
-            compilation_options: Default::default(),
-            targets: &[target.clone(), target],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
+    );
     let view = |t: &wgpu::Texture, level: u32| {
         t.create_view(&wgpu::TextureViewDescriptor {
             base_mip_level: level,
