@@ -5,7 +5,11 @@ use grassbench::technique::TechniqueEntry;
 use grassbench::{Error, Result};
 
 /// The registry, in the order techniques appear in tables and the UI.
-pub const TECHNIQUES: &[TechniqueEntry] = &[grassbench_reference::ENTRY, grassbench_zhang::ENTRY];
+pub const TECHNIQUES: &[TechniqueEntry] = &[
+    grassbench_reference::ENTRY,
+    grassbench_zhang::ENTRY,
+    grassbench_boulanger::ENTRY,
+];
 
 /// The entry with id `id`.
 pub fn find(id: &str) -> Result<&'static TechniqueEntry> {

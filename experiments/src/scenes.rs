@@ -16,6 +16,10 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "prairie_flyover",
         include_str!("../scenes/prairie_flyover.toml"),
     ),
+    (
+        "football_field_human",
+        include_str!("../scenes/football_field_human.toml"),
+    ),
 ];
 
 /// The scenes the default comparison runs.

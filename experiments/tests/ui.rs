@@ -126,25 +126,19 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
     for a in 0..4 {
         for b in a + 1..4 {
             let same = layout.techniques[a] == layout.techniques[b];
-            let psnr = grassbench::metrics::psnr(&panes[a], &panes[b]).unwrap();
-            if same {
-                assert!(
-                    psnr > 40.0,
-                    "panes {} and {} show `{}` but differ ({psnr:.1} dB)",
-                    a + 1,
-                    b + 1,
-                    layout.techniques[a]
-                );
-            } else {
-                assert!(
-                    psnr < 40.0,
-                    "panes {} ({}) and {} ({}) look identical",
-                    a + 1,
-                    layout.techniques[a],
-                    b + 1,
-                    layout.techniques[b]
-                );
-            }
+            // Rendering is deterministic: the same technique at the same frame gives the same
+            // bytes, and two techniques never do (their pictures may still be close: seen from
+            // the stands, a lawn is a lawn however it is drawn).
+            let identical = panes[a].as_raw() == panes[b].as_raw();
+            assert_eq!(
+                same,
+                identical,
+                "panes {} ({}) and {} ({}): same technique {same}, identical pictures {identical}",
+                a + 1,
+                layout.techniques[a],
+                b + 1,
+                layout.techniques[b]
+            );
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();

@@ -278,6 +278,7 @@ impl<'g> Harness<'g> {
         };
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
+        let lod = technique.lod_blades();
         let record = FrameRecord {
             run_id: String::new(),
             technique: info.id.to_owned(),
@@ -296,6 +297,9 @@ impl<'g> Harness<'g> {
             gpu_ts_render_ms: sum(&|p| !p.label.starts_with("core.") && p.kind == PassKind::Render),
             gpu_ts_compute_ms: sum(&|p| p.kind == PassKind::Compute),
             blades: stats.blades,
+            blades_geometry: lod.map(|l| l.geometry),
+            blades_vertical_slices: lod.map(|l| l.vertical_slices),
+            blades_horizontal_slices: lod.map(|l| l.horizontal_slices),
             triangles: stats.triangles,
             draw_calls: stats.draw_calls.max(draw_calls),
             gpu_bytes: stats.gpu_bytes,

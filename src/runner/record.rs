@@ -40,6 +40,12 @@ pub struct FrameRecord {
     pub gpu_ts_compute_ms: Option<f64>,
     /// Blades represented.
     pub blades: u64,
+    /// Blades drawn as geometry (empty for techniques without levels of detail).
+    pub blades_geometry: Option<u64>,
+    /// Blades represented by vertical slices (empty without levels of detail).
+    pub blades_vertical_slices: Option<u64>,
+    /// Blades represented by horizontal slices (empty without levels of detail).
+    pub blades_horizontal_slices: Option<u64>,
     /// Triangles submitted.
     pub triangles: u64,
     /// Draw calls.
@@ -99,6 +105,12 @@ pub struct RunSummary {
     pub frame_ms_p95: f64,
     /// Median blades.
     pub blades: u64,
+    /// Median blades drawn as geometry (empty without levels of detail).
+    pub blades_geometry: Option<u64>,
+    /// Median blades represented by vertical slices.
+    pub blades_vertical_slices: Option<u64>,
+    /// Median blades represented by horizontal slices.
+    pub blades_horizontal_slices: Option<u64>,
     /// Median triangles.
     pub triangles: u64,
     /// Median draw calls.
@@ -132,6 +144,10 @@ impl RunSummary {
         };
         let median_u64 =
             |f: &dyn Fn(&FrameRecord) -> u64| pct(&|r| f(r) as f64).median.round() as u64;
+        let median_opt_u64 = |f: &dyn Fn(&FrameRecord) -> Option<u64>| {
+            Percentiles::of(frames.iter().filter_map(f).map(|v| v as f64))
+                .map(|p| p.median.round() as u64)
+        };
         let wall = pct(&|r| r.gpu_wall_ms);
         let total = pct(&|r| r.wind_ms + r.update_ms + r.upload_ms + r.encode_ms + r.gpu_wall_ms);
         let first = frames.first();
@@ -161,6 +177,9 @@ impl RunSummary {
             frame_ms_p5: total.p5,
             frame_ms_p95: total.p95,
             blades,
+            blades_geometry: median_opt_u64(&|r| r.blades_geometry),
+            blades_vertical_slices: median_opt_u64(&|r| r.blades_vertical_slices),
+            blades_horizontal_slices: median_opt_u64(&|r| r.blades_horizontal_slices),
             triangles: median_u64(&|r| r.triangles),
             draw_calls: median_u64(&|r| r.draw_calls),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max().unwrap_or(0),

@@ -50,6 +50,18 @@ pub struct TechniqueStats {
     pub gpu_bytes: u64,
 }
 
+/// Blades drawn by each level of detail in the last frame (Boulanger Sec. 3.1's three levels;
+/// other techniques map their own levels onto these three or report none).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct LodBlades {
+    /// Blades drawn as geometry.
+    pub geometry: u64,
+    /// Blades represented by vertical (volume) slices.
+    pub vertical_slices: u64,
+    /// Blades represented by horizontal slices or other flat impostors.
+    pub horizontal_slices: u64,
+}
+
 /// What a technique is created with.
 pub struct InitContext<'a> {
     /// Device and queue (borrowed: techniques never store them).
@@ -89,6 +101,12 @@ pub trait GrassTechnique {
 
     /// Counts for the last frame.
     fn stats(&self) -> TechniqueStats;
+
+    /// Blades per level of detail in the last frame, for techniques that have levels (`None`
+    /// leaves the CSV columns empty).
+    fn lod_blades(&self) -> Option<LodBlades> {
+        None
+    }
 }
 
 /// A named set of parameter overrides a technique offers to the comparison suite.

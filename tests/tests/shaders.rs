@@ -84,14 +84,31 @@ fn uniform_mirrors_match_wgsl_layouts() {
         wgsl_size(&zhang, "Params") as usize,
         std::mem::size_of::<grassbench_zhang::ParamsUniform>()
     );
+    let boulanger = module_of(&root.join("techniques/boulanger/shaders/grass.wgsl"));
+    assert_eq!(
+        wgsl_size(&boulanger, "Params") as usize,
+        std::mem::size_of::<grassbench_boulanger::ParamsUniform>()
+    );
+    assert_eq!(
+        wgsl_size(&boulanger, "Cell") as usize,
+        std::mem::size_of::<grassbench_boulanger::CellUniform>()
+    );
 }
 
 #[test]
 fn shader_consts_in_crates_match_files() {
+    let file = |p: &str| std::fs::read_to_string(repo_root().join(p)).unwrap();
     assert_eq!(
         grassbench_reference::SHADER,
-        std::fs::read_to_string(repo_root().join("techniques/reference/shaders/blade.wgsl"))
-            .unwrap()
+        file("techniques/reference/shaders/blade.wgsl")
+    );
+    assert_eq!(
+        grassbench_boulanger::SHADER,
+        file("techniques/boulanger/shaders/grass.wgsl")
+    );
+    assert_eq!(
+        grassbench_boulanger::slice::MIP_SHADER,
+        file("techniques/boulanger/shaders/mip.wgsl")
     );
     assert_eq!(
         grassbench_zhang::SHADER,

@@ -30,6 +30,9 @@ pub struct RenderArgs {
     /// 4x MSAA.
     #[arg(long)]
     pub msaa: bool,
+    /// Debug view of the technique (1-based, see `grassbench list`; 0 = none).
+    #[arg(long, default_value_t = 0)]
+    pub debug_view: u32,
     /// Technique parameter override KEY=VALUE (repeatable).
     #[arg(long = "param", short = 'p')]
     pub params: Vec<String>,
@@ -49,6 +52,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let overrides = param_table(&args.params)?;
     let gpu = args.gpu.context()?;
     let mut harness = Harness::new(&gpu, scene, size, args.msaa)?;
+    harness.debug_view = args.debug_view;
     let mut technique = harness.create(entry, &overrides)?;
     harness.catch_up(technique.as_mut(), 0, args.frame)?;
     let out = harness.frame(technique.as_mut(), args.frame, true)?;

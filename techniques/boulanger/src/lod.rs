@@ -1,0 +1,238 @@
+//! Level-of-detail weights and the share of each blade between geometry and slices
+//! (Boulanger Sec. 3.4, Eq. 1-5).
+//!
+//! Every function here has a WGSL twin in `shaders/lod.wgsl`; the two are kept line for line
+//! alike so the property tests below speak for the GPU too.
+//!
+//! ## Which method draws a blade
+//! A blade with density threshold `dth` exists where the local density `ρ` exceeds it
+//! (Sec. 3.4). Between two levels the paper splits the existing blades with the weights: the
+//! slices compare `dth` with `ρ·w_s`, the geometry compares `1 − dth` with `ρ·w_g`, so that the
+//! two take complementary sets. Taken literally this holds only for `ρ = 1` (for `ρ = 0.5` and
+//! `w_g = 1`, `1 − dth < 0.5` would draw exactly the blades the density map removed), so the
+//! comparison is made on the threshold normalised by the local density, `t = dth / ρ ∈ [0, 1)`
+//! for every existing blade: geometry draws when `1 − t ≤ w_g`, the slices take the rest, which
+//! is `t < 1 − w_g = w_hs` (Eq. 2 and Eq. 4 are complementary). At `ρ = 1` this is the paper's
+//! rule unchanged.
+//!
+//! ## Smooth opacity (Eq. 5)
+//! `opacity(density, dth) = clamp((density − dth + ω) / 2ω, 0, 1)`. Applied as written, a weight
+//! of 1 would leave every blade with `1 − t < ω` half transparent even right in front of the
+//! camera (the ramp is centred on the step), so the weight is first stretched to
+//! `w·(1 + 2ω) − ω`: weight 1 draws every blade fully, weight 0 none, and the ramp of half-width
+//! `ω` lies in between. The slices take `1 − opacity_g`, so the opacities of a blade's two
+//! representations always sum to 1 and no blade is lost or doubled in a transition. `ω = 0`
+//! gives the hard test of Fig. 14(a).
+
+/// Eq. 1: `clamp(x, 0, 1)`; NaN maps to 0.
+pub fn clamp01(x: f32) -> f32 {
+    if x >= 1.0 {
+        1.0
+    } else if x > 0.0 {
+        x
+    } else {
+        0.0
+    }
+}
+
+/// The four user distances of Fig. 13 (metres from the eye).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LodDistances {
+    /// Geometry at full weight up to here.
+    pub min_geom: f32,
+    /// No geometry beyond here.
+    pub max_geom: f32,
+    /// Vertical slices at full weight up to here.
+    pub min_btf: f32,
+    /// No vertical slices beyond here.
+    pub max_btf: f32,
+}
+
+impl LodDistances {
+    /// Eq. 2: weight of geometry at distance `d`.
+    pub fn w_g(&self, d: f32) -> f32 {
+        clamp01((d - self.max_geom) / (self.min_geom - self.max_geom))
+    }
+
+    /// Eq. 3: weight of the vertical slices at distance `d` (drawn in part 2, issue 9).
+    pub fn w_vs(&self, d: f32) -> f32 {
+        clamp01((d - self.min_geom) / (self.max_geom - self.min_geom))
+            * clamp01((d - self.max_btf) / (self.min_btf - self.max_btf))
+    }
+
+    /// Eq. 4: weight of the horizontal slice at distance `d`.
+    pub fn w_hs(&self, d: f32) -> f32 {
+        clamp01((d - self.min_geom) / (self.max_geom - self.min_geom))
+    }
+}
+
+/// Eq. 5 for the geometric representation of a blade with normalised threshold `t = dth / ρ`,
+/// at geometry weight `w_g`: compares `1 − t` with the stretched weight (see the module docs).
+/// `omega = 0` is the hard test `1 − t ≤ w_g`.
+pub fn geometry_opacity(w_g: f32, t: f32, omega: f32) -> f32 {
+    let key = 1.0 - t;
+    if omega <= 0.0 {
+        return if key <= w_g { 1.0 } else { 0.0 };
+    }
+    clamp01((w_g * (1.0 + 2.0 * omega) - key) / (2.0 * omega))
+}
+
+/// How much of one blade each method draws.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Share {
+    /// Opacity of the blade drawn as geometry.
+    pub geometry: f32,
+    /// Opacity of the blade in the slices.
+    pub slices: f32,
+}
+
+/// The share of a blade with threshold `dth` where the local density is `density`, at geometry
+/// weight `w_g`: nothing where the blade does not exist (`dth ≥ ρ`, Sec. 3.4), otherwise
+/// geometry by Eq. 5 on `1 − dth/ρ` and the slices the complement.
+pub fn blade_share(density: f32, dth: f32, w_g: f32, omega: f32) -> Share {
+    if dth >= density || density <= 0.0 {
+        return Share {
+            geometry: 0.0,
+            slices: 0.0,
+        };
+    }
+    let g = geometry_opacity(w_g, dth / density, omega);
+    Share {
+        geometry: g,
+        slices: 1.0 - g,
+    }
+}
+
+/// Smallest normalised threshold `t` whose Eq. 5 opacity as geometry reaches `min_opacity`
+/// at geometry weight up to `w_g_max` (blades below it would be alpha-tested away entirely):
+/// lets the CPU skip them per cell and the vertex shader collapse them.
+pub fn geometry_min_t(w_g_max: f32, omega: f32, min_opacity: f32) -> f32 {
+    if omega <= 0.0 {
+        1.0 - w_g_max
+    } else {
+        1.0 - w_g_max * (1.0 + 2.0 * omega) + 2.0 * omega * min_opacity
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const LOD: LodDistances = LodDistances {
+        min_geom: 2.0,
+        max_geom: 5.0,
+        min_btf: 12.0,
+        max_btf: 30.0,
+    };
+
+    fn lods() -> impl Strategy<Value = LodDistances> {
+        (0.1f32..20.0, 0.1f32..20.0, 0.0f32..50.0, 0.1f32..50.0).prop_map(|(a, b, c, e)| {
+            LodDistances {
+                min_geom: a,
+                max_geom: a + b,
+                min_btf: a + b + c,
+                max_btf: a + b + c + e,
+            }
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+
+        /// The property issue 8 asks for: for every distance and threshold, a blade under the
+        /// local density is drawn by exactly one method (hard test), and a blade over it by
+        /// none.
+        #[test]
+        fn exactly_one_method_draws_an_existing_blade(
+            lod in lods(), d in 0.0f32..200.0, density in 0.0f32..=1.0, dth in 0.0f32..1.0,
+        ) {
+            let s = blade_share(density, dth, lod.w_g(d), 0.0);
+            let geometry = s.geometry > 0.5;
+            let slices = s.slices > 0.5;
+            if dth < density {
+                prop_assert!(geometry != slices, "d {d} ρ {density} dth {dth}: {s:?}");
+            } else {
+                prop_assert!(!geometry && !slices);
+            }
+        }
+
+        /// With the smooth opacity the two representations of a blade always add up to one
+        /// opaque blade, each share in [0, 1].
+        #[test]
+        fn smooth_shares_sum_to_one(
+            lod in lods(), d in 0.0f32..200.0, density in 0.01f32..=1.0, dth in 0.0f32..1.0,
+            omega in 0.0f32..1.0,
+        ) {
+            let s = blade_share(density, dth, lod.w_g(d), omega);
+            prop_assert!((0.0..=1.0).contains(&s.geometry) && (0.0..=1.0).contains(&s.slices));
+            let total = s.geometry + s.slices;
+            if dth < density {
+                prop_assert!((total - 1.0).abs() < 1e-6, "{s:?}");
+            } else {
+                prop_assert_eq!(total, 0.0);
+            }
+        }
+
+        /// Eq. 2-4 stay in [0, 1], are continuous (Lipschitz with the steepest slope of the
+        /// ramps), and the horizontal slice's weight is the complement of geometry's.
+        #[test]
+        fn weights_are_continuous_and_in_unit_range(lod in lods(), d in 0.0f32..200.0, h in 1e-4f32..0.05) {
+            let slope = 1.0 / (lod.max_geom - lod.min_geom)
+                + 1.0 / (lod.max_btf - lod.min_btf).max(1e-6);
+            for w in [LodDistances::w_g, LodDistances::w_vs, LodDistances::w_hs] {
+                let (a, b) = (w(&lod, d), w(&lod, d + h));
+                prop_assert!((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b));
+                prop_assert!((a - b).abs() <= slope * h * 1.001 + 1e-5, "jump {a} → {b} over {h}");
+            }
+            prop_assert!((lod.w_g(d) + lod.w_hs(d) - 1.0).abs() < 1e-5);
+        }
+
+        /// Below the CPU's per-cell cut geometry's opacity stays under the alpha-test threshold
+        /// (zero for a zero threshold), so skipping those blades changes no pixel.
+        #[test]
+        fn cpu_cut_is_conservative(
+            w in 0.0f32..=1.0, t in 0.0f32..1.0, omega in 0.0f32..1.0, a in 0.0f32..0.5,
+        ) {
+            if t < geometry_min_t(w, omega, a) - 1e-4 {
+                let o = geometry_opacity(w, t, omega);
+                prop_assert!(if a > 0.0 { o < a } else { o == 0.0 }, "{o} vs {a}");
+            }
+        }
+    }
+
+    #[test]
+    fn weights_match_fig_13() {
+        assert_eq!(LOD.w_g(0.0), 1.0);
+        assert_eq!(LOD.w_g(2.0), 1.0);
+        assert!((LOD.w_g(3.5) - 0.5).abs() < 1e-6);
+        assert_eq!(LOD.w_g(5.0), 0.0);
+        assert_eq!(LOD.w_vs(1.0), 0.0);
+        assert!((LOD.w_vs(3.5) - 0.5).abs() < 1e-6);
+        assert_eq!(LOD.w_vs(8.0), 1.0);
+        assert!((LOD.w_vs(21.0) - 0.5).abs() < 1e-6);
+        assert_eq!(LOD.w_vs(40.0), 0.0);
+        assert_eq!(LOD.w_hs(40.0), 1.0);
+    }
+
+    /// With the hard test, the fraction of uniformly spread thresholds each method draws is its
+    /// weight: geometry `w_g`, the horizontal slice `w_hs` (Eq. 4), at any density.
+    #[test]
+    fn hard_shares_are_the_weights() {
+        let n = 100_000;
+        for d in [0.0, 2.5, 3.1, 3.5, 4.2, 4.9, 6.0] {
+            for density in [1.0, 0.6, 0.3] {
+                let (mut g, mut s) = (0usize, 0usize);
+                for k in 0..n {
+                    let dth = (k as f32 + 0.5) / n as f32;
+                    let share = blade_share(density, dth, LOD.w_g(d), 0.0);
+                    g += usize::from(share.geometry > 0.5);
+                    s += usize::from(share.slices > 0.5);
+                }
+                let (g, s) = (g as f32 / n as f32, s as f32 / n as f32);
+                assert!((g - density * LOD.w_g(d)).abs() < 1e-3, "d {d}: {g}");
+                assert!((s - density * LOD.w_hs(d)).abs() < 1e-3, "d {d}: {s}");
+            }
+        }
+    }
+}

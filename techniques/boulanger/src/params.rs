@@ -1,0 +1,195 @@
+//! Parameters of the technique (`[techniques.boulanger]` in scene files, `--param` on the
+//! command line).
+
+use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// How semi-transparent blades and slices are composited (Sec. 4.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Transparency {
+    /// Alpha test with a low threshold removes what is clearly outside a blade, blending
+    /// smooths the one-pixel borders; no sorting.
+    Blend,
+    /// Alpha to coverage on a 4x MSAA target (needs `--msaa`).
+    AlphaToCoverage,
+}
+
+/// Most blades one patch may hold (its instance buffer and the start-up bake grow with it).
+pub const MAX_BLADES_PER_PATCH: u32 = 512 * 512;
+
+/// The technique's parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Params {
+    /// Side of the base patch and of a grid cell, m (Sec. 3.1).
+    pub patch_size: f32,
+    /// Blades per square metre in the patch, tiled over the whole terrain; 0 (the default)
+    /// takes the scene's `[grass] density`, so the field is comparable with the other
+    /// techniques'. 87 800 gives the paper's ~627 M virtual blades on the 105 x 68 m football
+    /// field (`football_field_human` sets it).
+    pub blades_per_m2: f32,
+    /// Quads per blade strip (Sec. 3.2).
+    pub segments: u32,
+    /// Geometry at full weight up to this distance, m (Fig. 13).
+    pub min_geom: f32,
+    /// No geometry beyond this distance, m.
+    pub max_geom: f32,
+    /// Vertical slices at full weight up to this distance, m (drawn in part 2).
+    pub min_btf: f32,
+    /// No vertical slices beyond this distance, m.
+    pub max_btf: f32,
+    /// Half width of the smooth opacity transition, Eq. 5's ω (0 = hard test).
+    pub omega: f32,
+    /// A macro-cell is drawn whole only when at least this many times its side away.
+    pub macro_factor: f32,
+    /// Semi-transparency: `blend` or `alpha_to_coverage` (Sec. 4.2).
+    pub transparency: Transparency,
+    /// Alpha-test threshold of the `blend` mode.
+    pub alpha_threshold: f32,
+    /// Side of the horizontal slice texture, texels.
+    pub slice_resolution: u32,
+    /// Height of the horizontal slice above the ground, as a fraction of the tallest blade.
+    pub slice_height: f32,
+    /// Largest launch angle of a blade's particle from the vertical, radians.
+    pub max_tilt: f32,
+    /// Gravity on the blade's particle, relative to its launch speed (droop).
+    pub gravity: f32,
+    /// Wind push on the particle per m/s of wind, relative to gravity's scale.
+    pub wind_response: f32,
+    /// Fraction of back-side sunlight passing through a blade.
+    pub translucency: f32,
+    /// Ambient occlusion at the root (1 at the tip, linear in height: Sec. 3.2).
+    pub ao_root: f32,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            patch_size: 0.5,
+            blades_per_m2: 0.0,
+            segments: 3,
+            min_geom: 2.5,
+            max_geom: 3.5,
+            min_btf: 12.0,
+            max_btf: 30.0,
+            omega: 0.4,
+            macro_factor: 4.0,
+            transparency: Transparency::Blend,
+            alpha_threshold: 0.1,
+            slice_resolution: 512,
+            slice_height: 0.2,
+            max_tilt: 0.4,
+            gravity: 0.6,
+            wind_response: 0.12,
+            translucency: 0.35,
+            ao_root: 0.35,
+        }
+    }
+}
+
+impl Params {
+    /// The patch density in use: `blades_per_m2`, or the scene's grass density when it is 0.
+    pub fn effective_blades_per_m2(&self, scene_density: f32) -> f32 {
+        if self.blades_per_m2 == 0.0 {
+            scene_density.max(1.0)
+        } else {
+            self.blades_per_m2
+        }
+    }
+}
+
+impl TechniqueParams for Params {
+    fn validate(&self) -> Result<()> {
+        check("boulanger.patch_size", self.patch_size, 0.05..=16.0)?;
+        if self.blades_per_m2 != 0.0 {
+            check("boulanger.blades_per_m2", self.blades_per_m2, 1.0..=1e7)?;
+        }
+        let per_patch = f64::from(self.blades_per_m2) * f64::from(self.patch_size).powi(2);
+        if per_patch > f64::from(MAX_BLADES_PER_PATCH) {
+            return Err(Error::param(
+                "boulanger.blades_per_m2",
+                self.blades_per_m2,
+                format!(
+                    "at most {MAX_BLADES_PER_PATCH} blades per patch ({per_patch:.0} with boulanger.patch_size = {})",
+                    self.patch_size
+                ),
+            ));
+        }
+        check_int("boulanger.segments", self.segments, 1..=16)?;
+        check("boulanger.min_geom", self.min_geom, 0.0..=1e4)?;
+        check("boulanger.max_geom", self.max_geom, 0.0..=1e4)?;
+        check("boulanger.min_btf", self.min_btf, 0.0..=1e5)?;
+        check("boulanger.max_btf", self.max_btf, 0.0..=1e5)?;
+        for (name, lo, hi) in [
+            ("boulanger.max_geom", self.min_geom, self.max_geom),
+            ("boulanger.min_btf", self.max_geom, self.min_btf),
+            ("boulanger.max_btf", self.min_btf, self.max_btf),
+        ] {
+            // Eq. 2-4 divide by these differences.
+            let strict = name != "boulanger.min_btf";
+            if hi < lo || (strict && hi <= lo) {
+                return Err(Error::param(
+                    name,
+                    hi,
+                    format!(
+                        "min_geom < max_geom <= min_btf < max_btf (Fig. 13); the previous one is {lo}"
+                    ),
+                ));
+            }
+        }
+        check("boulanger.omega", self.omega, 0.0..=1.0)?;
+        check("boulanger.macro_factor", self.macro_factor, 0.25..=64.0)?;
+        check(
+            "boulanger.alpha_threshold",
+            self.alpha_threshold,
+            0.0..=0.99,
+        )?;
+        check_int(
+            "boulanger.slice_resolution",
+            self.slice_resolution,
+            16..=4096,
+        )?;
+        if !self.slice_resolution.is_power_of_two() {
+            return Err(Error::param(
+                "boulanger.slice_resolution",
+                self.slice_resolution,
+                "a power of two (the mip chain halves it exactly)",
+            ));
+        }
+        check("boulanger.slice_height", self.slice_height, 0.0..=1.0)?;
+        check("boulanger.max_tilt", self.max_tilt, 0.0..=1.5)?;
+        check("boulanger.gravity", self.gravity, 0.0..=1.9)?;
+        check("boulanger.wind_response", self.wind_response, 0.0..=2.0)?;
+        check("boulanger.translucency", self.translucency, 0.0..=1.0)?;
+        check("boulanger.ao_root", self.ao_root, 0.0..=1.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_bad_values_name_their_key() {
+        Params::default().validate().unwrap();
+        let bad = |f: &dyn Fn(&mut Params), key: &str| {
+            let mut p = Params::default();
+            f(&mut p);
+            let e = p.validate().unwrap_err().to_string();
+            assert!(e.contains(key), "{e}");
+        };
+        bad(&|p| p.omega = f32::NAN, "boulanger.omega");
+        bad(&|p| p.max_geom = 1.0, "boulanger.max_geom");
+        bad(&|p| p.max_btf = 5.0, "boulanger.max_btf");
+        bad(&|p| p.blades_per_m2 = 9e6, "boulanger.blades_per_m2");
+        bad(&|p| p.segments = 0, "boulanger.segments");
+        let mut t = toml::Table::new();
+        t.insert("transparency".into(), "alpha_to_coverage".into());
+        let p: Params = grassbench::params::resolve("boulanger", &t).unwrap();
+        assert_eq!(p.transparency, Transparency::AlphaToCoverage);
+        t.insert("transparency".into(), "sorted".into());
+        assert!(grassbench::params::resolve::<Params>("boulanger", &t).is_err());
+    }
+}
