@@ -85,7 +85,9 @@ pub struct RenderTarget {
     /// Single-sample resolve texture when multisampled.
     pub resolve: Option<(wgpu::Texture, wgpu::TextureView)>,
     /// View of the output in `Rgba8Unorm`: the stored sRGB bytes, undecoded, for UIs that
-    /// composite in gamma space (egui).
+    /// composite in gamma space (egui). On adapters that cannot reinterpret texture formats
+    /// (downlevel GL: no `VIEW_FORMATS`) it is the plain sRGB view, and a gamma-space UI shows
+    /// the image somewhat darker; readback and PNGs are unaffected.
     pub display_view: wgpu::TextureView,
     /// Depth texture.
     pub depth: wgpu::Texture,
@@ -105,9 +107,14 @@ impl RenderTarget {
                 format!("at most {limit} pixels a side on this adapter"),
             ));
         }
+        let reinterpret = gpu
+            .adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::VIEW_FORMATS);
         gpu.scoped("creating the render target", || {
             let texture = |label, format, samples, usage| {
-                let single = samples == 1 && format == COLOR_FORMAT;
+                let single = reinterpret && samples == 1 && format == COLOR_FORMAT;
                 gpu.device.create_texture(&wgpu::TextureDescriptor {
                     label: Some(label),
                     size: size.extent(),
@@ -146,7 +153,7 @@ impl RenderTarget {
             let output = resolve.as_ref().map_or(&color, |(t, _)| t);
             let display_view = output.create_view(&wgpu::TextureViewDescriptor {
                 label: Some("target display"),
-                format: Some(DISPLAY_FORMAT),
+                format: reinterpret.then_some(DISPLAY_FORMAT),
                 ..Default::default()
             });
             Self {

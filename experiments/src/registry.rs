@@ -9,6 +9,7 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
     grassbench_reference::ENTRY,
     grassbench_zhang::ENTRY,
     grassbench_boulanger::ENTRY,
+    grassbench_bakay::ENTRY,
 ];
 
 /// The entry with id `id`.

@@ -93,6 +93,15 @@ fn uniform_mirrors_match_wgsl_layouts() {
         wgsl_size(&boulanger, "Cell") as usize,
         std::mem::size_of::<grassbench_boulanger::CellUniform>()
     );
+    assert_eq!(
+        wgsl_size(&boulanger, "Blade") as usize,
+        std::mem::size_of::<grassbench_boulanger::patch::PatchBlade>()
+    );
+    let bakay = module_of(&root.join("techniques/bakay/shaders/bakay.wgsl"));
+    assert_eq!(
+        wgsl_size(&bakay, "Params") as usize,
+        std::mem::size_of::<grassbench_bakay::ParamsUniform>()
+    );
 }
 
 #[test]
@@ -113,5 +122,9 @@ fn shader_consts_in_crates_match_files() {
     assert_eq!(
         grassbench_zhang::SHADER,
         std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/blade.wgsl")).unwrap()
+    );
+    assert_eq!(
+        grassbench_bakay::SHADER,
+        std::fs::read_to_string(repo_root().join("techniques/bakay/shaders/bakay.wgsl")).unwrap()
     );
 }

@@ -21,14 +21,23 @@ struct Params {
 @group(1) @binding(2) var clamp_sampler: sampler;
 @group(1) @binding(3) var repeat_sampler: sampler;
 
-// One cell's patch (dynamic offset per draw).
+// One geometry cell's copy of the patch (Sec. 3.1). Instance `i` of a blade draw is blade
+// `i % blade_count` of the cell in slot `i / blade_count` of this page of cells (the page is a
+// dynamic offset), so runs of cells drawn whole merge into a single instanced draw.
 struct Cell {
     // xy: world (x, z) of the patch centre; zw: mirror signs (-1 or 1) for x and z (Sec. 3.1)
     center_signs: vec4<f32>,
     // x: 1 when baking the slice (no terrain, wind, density or LOD); yzw: unused
     mode: vec4<f32>,
 }
-@group(2) @binding(0) var<uniform> cell: Cell;
+@group(2) @binding(0) var<storage, read> cells: array<Cell>;
+
+// The patch's blades, sorted by block and, within a block, by density threshold.
+struct Blade {
+    root_azimuth_tilt: vec4<f32>,  // root (x, z) from the patch centre, azimuth, tilt
+    shape: vec4<f32>,              // height, width, colour variation, density threshold
+}
+@group(2) @binding(4) var<storage, read> patch_blades: array<Blade>;
 
 // The horizontal slice (slice pipeline only).
 @group(2) @binding(1) var slice_color: texture_2d<f32>;   // albedo x coverage, coverage
@@ -62,11 +71,6 @@ fn on_grass(xz: vec2<f32>) -> bool {
 
 // ---- Geometric blades (Sec. 3.2) ----
 
-struct Blade {
-    @location(0) root_azimuth_tilt: vec4<f32>,  // root (x, z) from the patch centre, azimuth, tilt
-    @location(1) shape: vec4<f32>,              // height, width, colour variation, density threshold
-}
-
 struct BladeOut {
     @builtin(position) position: vec4<f32>,
     @location(0) world: vec3<f32>,
@@ -78,8 +82,12 @@ struct BladeOut {
 }
 
 @vertex
-fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32, blade: Blade) -> BladeOut {
+fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> BladeOut {
     var out: BladeOut;
+    let count = arrayLength(&patch_blades);
+    let index = instance % count;
+    let cell = cells[instance / count];
+    let blade = patch_blades[index];
     let baking = cell.mode.x > 0.5;
     // The cell's mirrored version of the patch: a sign flip about the patch centre.
     let signs = cell.center_signs.zw;
@@ -111,7 +119,7 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
         // The shared wind pushes the particle sideways, with a little per-blade flutter.
         let wind = wind_at(root_xz).xz;
         let speed = length(wind);
-        let phase = hash_f32(instance) * 2.0 * PI;
+        let phase = hash_f32(index) * 2.0 * PI;
         let flutter = 1.0 + 0.2 * sin(globals.camera_pos.w * (3.0 + speed) + phase);
         push = wind * params.blade.z * flutter;
         let p = length(push);

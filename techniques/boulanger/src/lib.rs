@@ -36,9 +36,11 @@
 //!   `omega` (0.4) cross-fades each blade between its two representations.
 //! - **Quadtree** (Sec. 4.1, [`quadtree`]). Leaves are cells with bounding spheres (ground,
 //!   blade height, lean), inner nodes macro-cells; each frame `update` walks it with the view
-//!   frustum. Within `max_geom` it descends to single cells: those get geometry (one instanced
-//!   draw of the blades whose thresholds can pass there, a contiguous range since the patch is
-//!   sorted by threshold) and, where geometry's weight is under 1, a horizontal slice. Farther
+//!   frustum. Within `max_geom` it descends to single cells: those get geometry (per visible
+//!   block of the patch, the blades whose thresholds can pass there, a contiguous range since
+//!   each block is sorted by threshold; [`cells`] turns the ranges of all cells into instanced
+//!   draws, merging those that meet, so a run of cells drawn whole is one draw) and, where
+//!   geometry's weight is under 1, a horizontal slice. Farther
 //!   away a node at least `macro_factor` times its side away is drawn whole as one horizontal
 //!   slice quad, tessellated to follow the ground.
 //! - **Horizontal slice** (Sec. 3.3, [`slice`]). Baked once at start-up with wgpu: an
@@ -90,6 +92,7 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod cells;
 pub mod lod;
 pub mod params;
 pub mod patch;
@@ -168,7 +171,7 @@ pub struct ParamsUniform {
     pub sun: [f32; 4],
 }
 
-/// Mirror of the shader's `Cell` uniform (one per geometry cell, at dynamic offsets).
+/// Mirror of the shader's `Cell` (one per geometry cell in a storage buffer, [`cells`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CellUniform {
@@ -197,12 +200,6 @@ impl SliceQuad {
         attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4],
     };
 }
-
-const BLADE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: std::mem::size_of::<PatchBlade>() as u64,
-    step_mode: wgpu::VertexStepMode::Instance,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
-};
 
 /// Blocks per side of the patch: geometry is culled and cut per block (Sec. 4.1's culling at a
 /// finer grain than the cell, since a cell may hold 20 000 blades).
@@ -235,6 +232,9 @@ pub struct Boulanger {
     cell_group: wgpu::BindGroup,
     cell_buffer: wgpu::Buffer,
     cell_capacity: usize,
+    paging: cells::Paging,
+    /// This frame's blade draws, per page of cells.
+    pages: Vec<cells::Page>,
     slice_group: wgpu::BindGroup,
     blades: wgpu::Buffer,
     quad_buffer: wgpu::Buffer,
@@ -306,7 +306,7 @@ impl Boulanger {
         let blades = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("boulanger patch blades"),
             contents: bytemuck::cast_slice(&patch.blades),
-            usage: wgpu::BufferUsages::VERTEX,
+            usage: wgpu::BufferUsages::STORAGE,
         });
         let a2c = params.transparency == Transparency::AlphaToCoverage;
         let uniform = ParamsUniform {
@@ -420,21 +420,7 @@ impl Boulanger {
                 },
             ],
         });
-        let cell_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("boulanger cells (group 2)"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: true,
-                    min_binding_size: wgpu::BufferSize::new(
-                        std::mem::size_of::<CellUniform>() as u64
-                    ),
-                },
-                count: None,
-            }],
-        });
+        let cell_layout = cells::layout(device);
         let slice_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("boulanger slice (group 2)"),
             entries: &[
@@ -492,7 +478,6 @@ impl Boulanger {
             multisample,
             targets: &color_target,
         };
-        let blade_buffers = [Some(BLADE_LAYOUT)];
         let blade_pipeline = render_pipeline(
             device,
             &spec(
@@ -500,7 +485,7 @@ impl Boulanger {
                 &blade_layout,
                 "vs_blade",
                 "fs_blade",
-                &blade_buffers,
+                &[],
             ),
         );
         let quad_buffers = [Some(SliceQuad::LAYOUT)];
@@ -536,7 +521,7 @@ impl Boulanger {
                     &blade_layout,
                     "vs_blade",
                     "fs_bake",
-                    &blade_buffers,
+                    &[],
                 )
             },
         );
@@ -575,8 +560,15 @@ impl Boulanger {
             ],
         });
         let blade_bytes = std::mem::size_of_val(patch.blades.as_slice()) as u64;
-        let cell_capacity = 64;
-        let (cell_buffer, cell_group) = cell_buffer(device, &cell_layout, cell_capacity);
+        let paging = cells::Paging::new(patch.blades.len() as u32, &device.limits());
+        let cell_capacity = paging.capacity(0);
+        let (cell_buffer, cell_group) = cells::buffer(
+            device,
+            &cell_layout,
+            &blades,
+            cell_capacity,
+            paging.binding_cells(cell_capacity),
+        );
         let quad_capacity = 256;
         let quad_buffer = quad_buffer(device, quad_capacity);
         Ok(Self {
@@ -592,6 +584,8 @@ impl Boulanger {
             cell_group,
             cell_buffer,
             cell_capacity,
+            paging,
+            pages: Vec::new(),
             slice_group,
             blades,
             quad_buffer,
@@ -646,32 +640,6 @@ impl Boulanger {
     fn vertices_per_blade(&self) -> u32 {
         2 * self.params.segments + 2
     }
-}
-
-fn cell_buffer(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    capacity: usize,
-) -> (wgpu::Buffer, wgpu::BindGroup) {
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("boulanger geometry cells"),
-        size: capacity as u64 * slice::CELL_STRIDE,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("boulanger cells (group 2)"),
-        layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer: &buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(std::mem::size_of::<CellUniform>() as u64),
-            }),
-        }],
-    });
-    (buffer, group)
 }
 
 fn quad_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
@@ -735,10 +703,17 @@ impl GrassTechnique for Boulanger {
                     // The blades Eq. 5 can give visible opacity here: normalised thresholds
                     // from `geometry_min_t` of the largest weight in the block, under the
                     // density.
+                    // A cell wholly at full weight draws whole blocks (the shader still
+                    // tests each threshold), so runs of such cells merge into one draw.
                     let t_min =
                         lod::geometry_min_t(lod.w_g(near), omega, self.alpha_floor).max(0.0);
-                    let lo = (t_min * s.density_range[0] - 1e-4).max(0.0);
-                    let hi = if s.density_range[1] >= 1.0 {
+                    let whole = s.far <= lod.min_geom;
+                    let lo = if whole {
+                        0.0
+                    } else {
+                        (t_min * s.density_range[0] - 1e-4).max(0.0)
+                    };
+                    let hi = if whole || s.density_range[1] >= 1.0 {
                         f32::INFINITY
                     } else {
                         s.density_range[1] + 1e-4
@@ -778,6 +753,9 @@ impl GrassTechnique for Boulanger {
         // (18 % faster here, thanks to early depth rejection) faint near blades hid whole
         // cells drawn after them, which showed as cell-sized blotches.
         self.geometry.sort_by(|a, b| b.near.total_cmp(&a.near));
+        self.pages = self
+            .paging
+            .draws(self.geometry.iter().map(|c| c.ranges.as_slice()));
         self.quads.sort_by(|a, b| a.tess[0].total_cmp(&b.tess[0]));
         self.quad_groups.clear();
         let mut start = 0u32;
@@ -803,23 +781,33 @@ impl GrassTechnique for Boulanger {
     fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
         let device = &gpu.device;
         if self.geometry.len() > self.cell_capacity {
-            self.cell_capacity = self.geometry.len().next_power_of_two();
-            (self.cell_buffer, self.cell_group) =
-                cell_buffer(device, &self.cell_layout, self.cell_capacity);
+            let capacity = self.paging.capacity(self.geometry.len());
+            if capacity as u64 * cells::CELL_BYTES > u64::from(u32::MAX) {
+                return Err(Error::Technique {
+                    technique: INFO.id.to_owned(),
+                    message: format!(
+                        "{} geometry cells in one frame do not fit one buffer: lower max_geom or raise patch_size",
+                        self.geometry.len()
+                    ),
+                });
+            }
+            self.cell_capacity = capacity;
+            (self.cell_buffer, self.cell_group) = cells::buffer(
+                device,
+                &self.cell_layout,
+                &self.blades,
+                capacity,
+                self.paging.binding_cells(capacity),
+            );
         }
         if self.quads.len() > self.quad_capacity {
             self.quad_capacity = self.quads.len().next_power_of_two();
             self.quad_buffer = quad_buffer(device, self.quad_capacity);
         }
         if !self.geometry.is_empty() {
-            let stride = slice::CELL_STRIDE as usize;
-            let mut bytes = vec![0u8; self.geometry.len() * stride];
-            for (k, c) in self.geometry.iter().enumerate() {
-                let at = k * stride;
-                bytes[at..at + std::mem::size_of::<CellUniform>()]
-                    .copy_from_slice(bytemuck::bytes_of(&c.uniform));
-            }
-            gpu.queue.write_buffer(&self.cell_buffer, 0, &bytes);
+            let uniforms: Vec<CellUniform> = self.geometry.iter().map(|c| c.uniform).collect();
+            gpu.queue
+                .write_buffer(&self.cell_buffer, 0, bytemuck::cast_slice(&uniforms));
         }
         if !self.quads.is_empty() {
             gpu.queue
@@ -845,12 +833,12 @@ impl GrassTechnique for Boulanger {
             let mut pass = encoder.render_pass("geometry");
             pass.set_pipeline(&self.blade_pipeline);
             pass.set_bind_group(1, &self.group1, &[]);
-            pass.set_vertex_buffer(0, self.blades.slice(..));
             let vertices = self.vertices_per_blade();
-            for (k, c) in self.geometry.iter().enumerate() {
-                let offset = (k as u64 * slice::CELL_STRIDE) as u32;
+            for page in &self.pages {
+                // In range: `prepare` refuses a buffer over 4 GiB.
+                let offset = (u64::from(page.first_cell) * cells::CELL_BYTES) as u32;
                 pass.set_bind_group(2, &self.cell_group, &[offset]);
-                for r in &c.ranges {
+                for r in &page.draws {
                     pass.draw(0..vertices, r.clone());
                     draws += 1;
                 }
@@ -871,10 +859,10 @@ impl GrassTechnique for Boulanger {
                 + self.lod_blades.horizontal_slices,
             triangles: self.lod_blades.geometry * u64::from(2 * self.params.segments)
                 + quad_triangles,
-            draw_calls: (self.geometry.iter().map(|c| c.ranges.len()).sum::<usize>()
+            draw_calls: (self.pages.iter().map(|p| p.draws.len()).sum::<usize>()
                 + self.quad_groups.len()) as u64,
             gpu_bytes: self.fixed_bytes
-                + self.cell_capacity as u64 * slice::CELL_STRIDE
+                + self.cell_capacity as u64 * cells::CELL_BYTES
                 + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64,
         }
     }

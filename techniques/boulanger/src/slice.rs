@@ -41,9 +41,9 @@ pub struct BakeInputs<'a> {
     pub pipeline: &'a wgpu::RenderPipeline,
     /// Group 1 (params, blade texture, samplers).
     pub group1: &'a wgpu::BindGroup,
-    /// Layout of group 2 (one dynamic-offset cell uniform).
+    /// Layout of group 2 ([`crate::cells::layout`]).
     pub cell_layout: &'a wgpu::BindGroupLayout,
-    /// The patch's blades (instance buffer) and how many.
+    /// The patch's blades (storage buffer) and how many.
     pub blades: &'a wgpu::Buffer,
     /// Blades in the patch.
     pub blade_count: u32,
@@ -54,9 +54,6 @@ pub struct BakeInputs<'a> {
     /// Texture side, texels.
     pub resolution: u32,
 }
-
-/// Stride between cell uniforms in a dynamic-offset buffer.
-pub const CELL_STRIDE: u64 = 256;
 
 /// Renders the slice textures and their mip chains.
 pub fn bake(ctx: &InitContext<'_>, inputs: &BakeInputs<'_>) -> Result<SliceTextures> {
@@ -105,13 +102,10 @@ pub fn bake(ctx: &InitContext<'_>, inputs: &BakeInputs<'_>) -> Result<SliceTextu
         })
     };
 
-    // The patch and its eight unmirrored neighbours, one dynamic offset each.
-    let mut cells = vec![0u8; (9 * CELL_STRIDE) as usize];
-    for (k, (dx, dz)) in (-1..=1)
+    // The patch and its eight unmirrored neighbours: cells 0-8, drawn as one instanced draw.
+    let cells: Vec<CellUniform> = (-1..=1)
         .flat_map(|dz| (-1..=1).map(move |dx| (dx, dz)))
-        .enumerate()
-    {
-        let u = CellUniform {
+        .map(|(dx, dz)| CellUniform {
             center_signs: [
                 dx as f32 * inputs.patch_size,
                 dz as f32 * inputs.patch_size,
@@ -119,27 +113,20 @@ pub fn bake(ctx: &InitContext<'_>, inputs: &BakeInputs<'_>) -> Result<SliceTextu
                 1.0,
             ],
             mode: [1.0, 0.0, 0.0, 0.0],
-        };
-        let at = k * CELL_STRIDE as usize;
-        cells[at..at + std::mem::size_of::<CellUniform>()].copy_from_slice(bytemuck::bytes_of(&u));
-    }
+        })
+        .collect();
     let cell_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("boulanger bake cells"),
-        contents: &cells,
-        usage: wgpu::BufferUsages::UNIFORM,
+        contents: bytemuck::cast_slice(&cells),
+        usage: wgpu::BufferUsages::STORAGE,
     });
-    let cell_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("boulanger bake cells"),
-        layout: inputs.cell_layout,
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer: &cell_buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(std::mem::size_of::<CellUniform>() as u64),
-            }),
-        }],
-    });
+    let cell_group = crate::cells::group(
+        device,
+        inputs.cell_layout,
+        &cell_buffer,
+        cells.len() as u64,
+        inputs.blades,
+    );
 
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("boulanger slice bake"),
@@ -180,11 +167,8 @@ pub fn bake(ctx: &InitContext<'_>, inputs: &BakeInputs<'_>) -> Result<SliceTextu
         pass.set_pipeline(inputs.pipeline);
         pass.set_bind_group(0, &ctx.scene_gpu.bind_group, &[]);
         pass.set_bind_group(1, inputs.group1, &[]);
-        pass.set_vertex_buffer(0, inputs.blades.slice(..));
-        for k in 0..9u32 {
-            pass.set_bind_group(2, &cell_group, &[k * CELL_STRIDE as u32]);
-            pass.draw(0..inputs.vertices, 0..inputs.blade_count);
-        }
+        pass.set_bind_group(2, &cell_group, &[0]);
+        pass.draw(0..inputs.vertices, 0..9 * inputs.blade_count);
     }
     build_mips(ctx, &mut encoder, &color, &aux, levels);
     ctx.gpu.queue.submit([encoder.finish()]);

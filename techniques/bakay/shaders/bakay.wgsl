@@ -1,0 +1,170 @@
+// Bakay, Lalonde, Heidrich 2002: animated transparent shells (see techniques/bakay/src/lib.rs).
+// Composed after the prelude. Two entry points per frame:
+// - `cs_bend` (compute) gives every ground vertex its wind vector V_w and intensity I and keeps
+//   the running sums (n_k, w_k) of every shell k (Sec. 3, Fig. 6; mirrored on the CPU by
+//   src/wind.rs and src/bend.rs);
+// - `vs_shell` / `fs_shell` draw the ground mesh once per shell (instance k, bottom to top),
+//   displaced by N·n_k + V_w·w_k and alpha-tested against the shell's height (k/N, the paper's
+//   255/N steps).
+
+struct Params {
+    // x: shells N; y: ground vertices; z: wind mode (0 = scene, 1 = point source);
+    // w: level of detail (0 = the sampler's, 1 = the footprint's minor axis)
+    counts: vec4<u32>,
+    // x: inter-shell distance S (m); y: stiffness exponent p; z: max |I|; w: reference speed (m/s)
+    shape: vec4<f32>,
+    // xyz: point source position; w: period (s)
+    source: vec4<f32>,
+    // x: step length (m); y: step delay (s); z: bias; w: 1 / tile size (1/m)
+    steps: vec4<f32>,
+    // rgb: root albedo / tip albedo; w: translucency
+    color_ratio: vec4<f32>,
+}
+
+@group(1) @binding(0) var<uniform> params: Params;
+// Compute pass only: the shared ground mesh (GroundVertex = position xyz, normal xyz) and the
+// per-vertex results.
+@group(1) @binding(1) var<storage, read> ground: array<f32>;
+@group(1) @binding(2) var<storage, read_write> wind_out: array<vec4<f32>>;
+@group(1) @binding(3) var<storage, read_write> offsets_out: array<vec2<f32>>;
+// Render pass only.
+@group(1) @binding(4) var<storage, read> vertex_wind: array<vec4<f32>>;
+@group(1) @binding(5) var<storage, read> offsets: array<vec2<f32>>;
+@group(1) @binding(6) var color_height: texture_2d<f32>;
+@group(1) @binding(7) var blade_attrs: texture_2d<f32>;
+@group(1) @binding(8) var grass_sampler: sampler;
+
+// Tilt of segment j: θ_j = I·(π/2)·(j/N)^p (Sec. 3: a constant increment per shell for p = 1).
+fn tilt(j: u32, intensity: f32) -> f32 {
+    let x = f32(j) / f32(params.counts.x);
+    let profile = select(pow(x, params.shape.y), 0.0, x <= 0.0);
+    return intensity * 0.5 * PI * profile;
+}
+
+// V_w = W − (W·N)N, normalised; zero when W is along the normal or zero.
+fn tangent_direction(w: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let t = w - dot(w, n) * n;
+    let l = length(t);
+    return select(vec3(0.0), t / l, l > 1e-6);
+}
+
+@compute @workgroup_size(64)
+fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
+    let v = id.x;
+    if (v >= params.counts.y) {
+        return;
+    }
+    let p = vec3(ground[6u * v], ground[6u * v + 1u], ground[6u * v + 2u]);
+    let n = vec3(ground[6u * v + 3u], ground[6u * v + 4u], ground[6u * v + 5u]);
+    let max_i = params.shape.z;
+    var dir = vec3(0.0);
+    var intensity = 0.0;
+    if (params.counts.z == 1u) {
+        // The paper's point source: W towards the source, the animation step by distance, and
+        // the periodic intensity delayed by the step (waves across the field, Fig. 8).
+        let to_source = params.source.xyz - p;
+        let d = length(to_source);
+        dir = tangent_direction(select(vec3(0.0), to_source / d, d > 0.0), n);
+        let step = u32(d / params.steps.x);
+        let phase = (globals.camera_pos.w - f32(step) * params.steps.y) / params.source.w;
+        intensity = clamp(sin(2.0 * PI * phase) + params.steps.z, -max_i, max_i);
+    } else {
+        // The scene's wind field: only its tangential part bends the grass (Sec. 3).
+        let wind = wind_at(p.xz);
+        let tangential = wind - dot(wind, n) * n;
+        dir = tangent_direction(wind, n);
+        intensity = min(length(tangential) / params.shape.w, max_i);
+    }
+    wind_out[v] = vec4(dir, intensity);
+    // Running totals up the blade, one segment of length S per shell.
+    var nw = vec2(0.0);
+    for (var k = 0u; k < params.counts.x; k++) {
+        offsets_out[k * params.counts.y + v] = nw;
+        let a = tilt(k, intensity);
+        nw += params.shape.x * vec2(cos(a), sin(a));
+    }
+}
+
+struct ShellOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) tangent: vec3<f32>,
+    // x: density map; y: 1 where the covering map says grass
+    @location(3) grows: vec2<f32>,
+    @location(4) @interpolate(flat) shell: u32,
+}
+
+@vertex
+fn vs_shell(
+    @builtin(vertex_index) v: u32,
+    @builtin(instance_index) k: u32,
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+) -> ShellOut {
+    let wind = vertex_wind[v];
+    let nw = offsets[k * params.counts.y + v];
+    let world = position + normal * nw.x + wind.xyz * nw.y;
+    let a = tilt(k, wind.w);
+    var out: ShellOut;
+    out.position = globals.view_proj * vec4(world, 1.0);
+    out.world = world;
+    // The texture is attached to the ground point the blade grows from, so a blade's sections
+    // move together with their shells.
+    out.uv = position.xz * params.steps.w;
+    out.tangent = normal * cos(a) + wind.xyz * sin(a);
+    out.grows = vec2(terrain_density(position.xz), f32(terrain_covering(position.xz) == COVER_GRASS));
+    out.shell = k;
+    return out;
+}
+
+@fragment
+fn fs_shell(in: ShellOut) -> @location(0) vec4<f32> {
+    // Texture footprint, taken before any discard (derivatives need uniform control flow).
+    let size = vec2<f32>(textureDimensions(color_height));
+    let dx = dpdx(in.uv);
+    let dy = dpdy(in.uv);
+    // With `lod = "minor_axis"`: the mip level whose texels match the footprint's minor axis
+    // (the level anisotropic filtering picks), sampled once. At grazing angles the sampler's
+    // own choice, from the major axis, is many levels too coarse and blurs blades into felt
+    // (box mips) or blotches (custom mips).
+    let lod = max(log2(max(min(length(dx * size), length(dy * size)), 1e-6)), 0.0);
+    let minor = params.counts.w == 1u;
+
+    var texel: vec4<f32>;
+    if (minor) {
+        texel = textureSampleLevel(color_height, grass_sampler, in.uv, lod);
+    } else {
+        texel = textureSampleGrad(color_height, grass_sampler, in.uv, dx, dy);
+    }
+    // The alpha test: shell k keeps the texels whose blade reaches its height k/N. Shell 0 is
+    // the ground, which the core draws: here it keeps the blades' roots only (alpha > 0).
+    // Grass grows only where the covering map says so. Tested first: most fragments of a
+    // shell end here, before the second lookup and the shading.
+    let height = f32(in.shell) / f32(params.counts.x);
+    if (texel.a < max(height, 1.0 / 255.0) || in.grows.y < 0.5) {
+        discard;
+    }
+    var attrs: vec4<f32>;
+    if (minor) {
+        attrs = textureSampleLevel(blade_attrs, grass_sampler, in.uv, lod);
+    } else {
+        attrs = textureSampleGrad(blade_attrs, grass_sampler, in.uv, dx, dy);
+    }
+    // The density map thins blades as the scene's blade field does (threshold < density).
+    if (attrs.r >= in.grows.x) {
+        discard;
+    }
+    // Relative height along this texel's blade: root colour below, tip colour above.
+    let s = clamp(height / max(texel.a, 1e-3), 0.0, 1.0);
+    let albedo = texel.rgb * mix(params.color_ratio.rgb, vec3(1.0), pow(s, 0.8));
+    // A flat blade: its width runs along its facing angle, its face is normal to that and to
+    // the (bent) blade direction.
+    let t = normalize(in.tangent);
+    let facing = attrs.g * PI;
+    let side = vec3(cos(facing), 0.0, sin(facing));
+    let face = cross(side, t);
+    let normal = select(t, normalize(face), length(face) > 1e-4);
+    let lit = shade_leaf(albedo, normal, in.world, mix(0.3, 1.0, s), params.color_ratio.w);
+    return vec4(apply_fog(lit, in.world), 1.0);
+}

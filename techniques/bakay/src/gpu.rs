@@ -1,0 +1,311 @@
+//! What the shells keep on the GPU: the grass texture (two planes, full mip chain), the
+//! per-vertex wind and per-shell offsets written by the bend pass, and the two pipelines.
+
+use grassbench::terrain::GroundVertex;
+use grassbench::wgpu::util::DeviceExt as _;
+use grassbench::{Error, InitContext, Result, bytemuck, shaders, target, wgpu};
+
+use crate::params::Mipmaps;
+use crate::texture::{GrassTexture, Level};
+use crate::{INFO, SHADER};
+
+/// Mirror of the shader's `Params` uniform.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ParamsUniform {
+    /// Shells, ground vertices, wind mode (0 = scene, 1 = point source), level of detail (0 =
+    /// the sampler's, 1 = minor axis).
+    pub counts: [u32; 4],
+    /// Inter-shell distance (m), stiffness exponent, largest |I|, reference speed (m/s).
+    pub shape: [f32; 4],
+    /// Point source position; w = period (s).
+    pub source: [f32; 4],
+    /// Step length (m), step delay (s), bias, 1 / tile size (1/m).
+    pub steps: [f32; 4],
+    /// Root albedo over tip albedo; w = translucency.
+    pub color_ratio: [f32; 4],
+}
+
+/// Pipelines, bind groups and the buffers and textures they hold.
+pub struct ShellGpu {
+    bend: wgpu::ComputePipeline,
+    bend_group: wgpu::BindGroup,
+    shells: wgpu::RenderPipeline,
+    shell_group: wgpu::BindGroup,
+    /// Vertices of the ground mesh.
+    pub vertex_count: u32,
+    /// GPU memory held, bytes.
+    pub bytes: u64,
+}
+
+/// Workgroup size of `cs_bend`.
+const WORKGROUP: u32 = 64;
+
+impl ShellGpu {
+    /// Uploads the texture, allocates the per-vertex buffers and builds both pipelines.
+    pub fn new(
+        ctx: &InitContext<'_>,
+        uniform: &ParamsUniform,
+        texture: &GrassTexture,
+        mipmaps: Mipmaps,
+        anisotropy: u16,
+    ) -> Result<Self> {
+        let device = &ctx.gpu.device;
+        let terrain = &ctx.scene_gpu.terrain;
+        let (nx, nz) = terrain.ground_side;
+        let vertex_count = nx * nz;
+        let shells = uniform.counts[0];
+        let wind_bytes = u64::from(vertex_count) * 16;
+        let offset_bytes = u64::from(vertex_count) * u64::from(shells) * 8;
+        let max = device.limits().max_storage_buffer_binding_size;
+        if offset_bytes > max {
+            return Err(Error::Technique {
+                technique: INFO.id.into(),
+                message: format!(
+                    "{shells} shells over {vertex_count} ground vertices need {offset_bytes} bytes of offsets, more than this adapter's {max}-byte storage bindings; lower bakay.shells"
+                ),
+            });
+        }
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("bakay params"),
+            contents: bytemuck::bytes_of(uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let storage = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        };
+        let vertex_wind = storage("bakay vertex wind", wind_bytes);
+        let offsets = storage("bakay shell offsets", offset_bytes);
+        let color_height = upload(ctx, "bakay colour+height", &texture.levels, true);
+        let blade = upload(ctx, "bakay blade attributes", &texture.levels, false);
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("bakay grass"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            // Blending two representative levels would average two different blades: the felt
+            // custom mips avoid. Box levels are averages anyway.
+            mipmap_filter: if mipmaps == Mipmaps::Box {
+                wgpu::MipmapFilterMode::Linear
+            } else {
+                wgpu::MipmapFilterMode::Nearest
+            },
+            anisotropy_clamp: anisotropy,
+            ..Default::default()
+        });
+
+        let entry = |binding, stage, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: stage,
+            ty,
+            count: None,
+        };
+        let buffer = |ty| wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let read = wgpu::BufferBindingType::Storage { read_only: true };
+        let write = wgpu::BufferBindingType::Storage { read_only: false };
+        let uniform_ty = buffer(wgpu::BufferBindingType::Uniform);
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let both = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let texture_ty = wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        };
+        let bend_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("bakay bend (group 1)"),
+            entries: &[
+                entry(0, compute, uniform_ty),
+                entry(1, compute, buffer(read)),
+                entry(2, compute, buffer(write)),
+                entry(3, compute, buffer(write)),
+            ],
+        });
+        let shell_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("bakay shells (group 1)"),
+            entries: &[
+                entry(0, both, uniform_ty),
+                entry(4, wgpu::ShaderStages::VERTEX, buffer(read)),
+                entry(5, wgpu::ShaderStages::VERTEX, buffer(read)),
+                entry(6, wgpu::ShaderStages::FRAGMENT, texture_ty),
+                entry(7, wgpu::ShaderStages::FRAGMENT, texture_ty),
+                entry(
+                    8,
+                    wgpu::ShaderStages::FRAGMENT,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
+            ],
+        });
+        let bind = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+        let bend_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("bakay bend (group 1)"),
+            layout: &bend_layout,
+            entries: &[
+                bind(0, params.as_entire_binding()),
+                bind(1, terrain.ground_vertices.as_entire_binding()),
+                bind(2, vertex_wind.as_entire_binding()),
+                bind(3, offsets.as_entire_binding()),
+            ],
+        });
+        let shell_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("bakay shells (group 1)"),
+            layout: &shell_layout,
+            entries: &[
+                bind(0, params.as_entire_binding()),
+                bind(4, vertex_wind.as_entire_binding()),
+                bind(5, offsets.as_entire_binding()),
+                bind(6, wgpu::BindingResource::TextureView(&color_height)),
+                bind(7, wgpu::BindingResource::TextureView(&blade)),
+                bind(8, wgpu::BindingResource::Sampler(&sampler)),
+            ],
+        });
+
+        let module = shaders::module(device, "bakay", SHADER);
+        let bend = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("bakay bend"),
+            layout: Some(
+                &ctx.scene_gpu
+                    .pipeline_layout(device, "bakay bend", &[&bend_layout]),
+            ),
+            module: &module,
+            entry_point: Some("cs_bend"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let shell_pipeline_layout =
+            ctx.scene_gpu
+                .pipeline_layout(device, "bakay shells", &[&shell_layout]);
+        let shells_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("bakay shells"),
+            layout: Some(&shell_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_shell"),
+                compilation_options: Default::default(),
+                buffers: &[Some(GroundVertex::LAYOUT)],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                // A camera down in the grass sees shells from below.
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: target::DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                // Shell 0 lies exactly on the core's ground (same vertices, same transform).
+                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: ctx.sample_count,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_shell"),
+                compilation_options: Default::default(),
+                targets: &[Some(target::COLOR_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self {
+            bend,
+            bend_group,
+            shells: shells_pipeline,
+            shell_group,
+            vertex_count,
+            bytes: texture.bytes()
+                + wind_bytes
+                + offset_bytes
+                + std::mem::size_of::<ParamsUniform>() as u64,
+        })
+    }
+
+    /// Records the bend pass (per-vertex wind, running sums) and the shells, bottom to top.
+    pub fn encode(&self, encoder: &mut grassbench::FrameEncoder<'_>, shells: u32) {
+        {
+            let mut pass = encoder.compute_pass("bend");
+            pass.set_pipeline(&self.bend);
+            pass.set_bind_group(1, &self.bend_group, &[]);
+            pass.dispatch_workgroups(self.vertex_count.div_ceil(WORKGROUP), 1, 1);
+        }
+        let terrain = &encoder.scene.terrain;
+        let (vertices, indices, count) = (
+            terrain.ground_vertices.slice(..),
+            terrain.ground_indices.slice(..),
+            terrain.ground_index_count,
+        );
+        let mut pass = encoder.render_pass("shells");
+        pass.set_pipeline(&self.shells);
+        pass.set_bind_group(1, &self.shell_group, &[]);
+        pass.set_vertex_buffer(0, vertices);
+        pass.set_index_buffer(indices, wgpu::IndexFormat::Uint32);
+        // Instance k is shell k: instances are drawn in order, so shells go bottom to top.
+        pass.draw_indexed(0..count, 0, 0..shells);
+        drop(pass);
+        encoder.count_draws(1);
+    }
+}
+
+/// One plane of the texture with every level of the chain.
+fn upload(ctx: &InitContext<'_>, label: &str, levels: &[Level], color: bool) -> wgpu::TextureView {
+    let size = levels.first().map_or(1, |l| l.size);
+    let (format, texel) = if color {
+        (wgpu::TextureFormat::Rgba8UnormSrgb, 4)
+    } else {
+        (wgpu::TextureFormat::Rg8Unorm, 2)
+    };
+    let texture = ctx.gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size,
+            height: size,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels.len().max(1) as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (mip, level) in levels.iter().enumerate() {
+        let data: &[u8] = if color {
+            bytemuck::cast_slice(&level.color_height)
+        } else {
+            bytemuck::cast_slice(&level.blade)
+        };
+        ctx.gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            data,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(level.size * texel),
+                rows_per_image: Some(level.size),
+            },
+            wgpu::Extent3d {
+                width: level.size,
+                height: level.size,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    texture.create_view(&Default::default())
+}

@@ -1,0 +1,264 @@
+//! # `bakay`: animated transparent shells
+//!
+//! Bakay, Lalonde and Heidrich 2002, *Real-Time Animated Grass* (transcript:
+//! `shared/seeds/002_b07b405ffc789326.txt`). Grass is not geometry here but a volume: `N`
+//! copies of the ground mesh ("Russian-doll style transparent shells", Sec. 3, Fig. 2), each
+//! pushed out along the surface normal and textured with one grass texture whose alpha holds
+//! the height of the grass. A shell at height `k/N` keeps only the texels whose blade reaches
+//! it, so stacking the shells builds blades out of cross-sections. Wind moves the shells'
+//! vertices, not blades: every vertex slides along its wind vector by an amount that grows up
+//! the blade while keeping each segment's length.
+//!
+//! ## Algorithm, section by section
+//! - **Shells (Sec. 3, Fig. 2).** The core's ground mesh (`TerrainGpu::ground_vertices`,
+//!   position + normal, about one vertex a metre) is drawn `shells` times as instances; instance
+//!   `k` is shell `k`, so shells go bottom to top as the paper draws them. Shell 0 is the base
+//!   mesh; the inter-shell distance is `S = H / N` with `H` the **maximum** of the scene's
+//!   `grass.height` range (the tallest blades reach the top; shorter ones have lower alpha).
+//!   Shells follow the heightmap because they are the ground mesh.
+//! - **Alpha test (Sec. 3).** Shell `k` discards texels with alpha below `k/N` (the paper's
+//!   compare value rising `255/N` per shell), so opaque shells need no sorting. The paper's
+//!   shell 0 is the whole texture including bare ground (alpha ≥ 0); here the core already drew
+//!   that ground, identically for every technique, so shell 0 keeps only the blades' roots
+//!   (alpha > 0) and lets the shared ground show between them.
+//! - **Texture (Sec. 3, Fig. 3; [`texture`]).** One seeded, tileable texture: colour in RGB,
+//!   height in alpha, 0 on the ground; blades from the scene's density (times `density_scale`),
+//!   height range (skewed by `height_skew`), widths and colours. Each blade is an elliptic
+//!   section that tapers to a point with height (alpha falls from the blade's height at its
+//!   centre to 0 at its rim), so upper shells cut thinner sections. A second plane holds each
+//!   blade's density threshold and facing.
+//! - **Mipmaps (Sec. 5; [`texture`]).** `custom` (default): representative blades, each coarse
+//!   texel is one of its children, which keeps every shell's coverage at every level;
+//!   `box`: the automatic average the paper warns about; `none`: base level only.
+//! - **Wind vectors (Sec. 3; [`wind`]).** `V_w = W − (W·N)N`, normalised. With
+//!   `wind = "point_source"`, `W` points to the technique's own source, the vertex's animation
+//!   step is its distance band from the source and the intensity is the periodic function
+//!   delayed by the step, `I = sin(2π(t − step·delay)/period) + bias` (the core's
+//!   `grassbench::wind::PointSource`, mirrored), so gusts travel as waves (Fig. 8). With
+//!   `wind = "scene"` (default), `W` is the scene's wind (any `WindField`, read through the
+//!   prelude's `wind_at`), and `I = |W_t| / reference_speed` from its tangential part, so bakay
+//!   bends in the same wind as every other technique. `|I|` is clamped to `max_intensity` (Sec.
+//!   3: beyond 1 the grass "over-bends").
+//! - **Length-preserving bend (Sec. 3, Fig. 6; [`bend`]).** Segment `j` of every blade tilts by
+//!   `θ_j = I·(π/2)·(j/N)^p` (`p = stiffness`: 1 is the paper's constant increment, below 1
+//!   floppy, above 1 stiff), and shell `k` moves `n_k = Σ_{j<k} S cos θ_j` along the normal and
+//!   `w_k = Σ_{j<k} S sin θ_j` along `V_w`. The paper prints `sin(i/N …)` in `w_i`'s sum, which
+//!   stretches blades as they bend; with `j` every segment keeps the length `S` (tested).
+//!   Running totals (Sec. 3: "a running total is kept") are kept per vertex in a compute pass
+//!   (`cs_bend`), once per frame, instead of the paper's per-animation-step registers: it
+//!   serves the point source and any scene wind alike, `O(vertices · N)`.
+//! - **Density, covering (Boulanger Sec. 3.4, Zhang Sec. 5.5.2).** A texel is drawn only where
+//!   the covering map says grass and where the density map exceeds its blade's threshold, the
+//!   rule the scene's blade field (and so `reference`) uses per blade.
+//! - **Shading.** The prelude's `shade_leaf` with the normal of a flat blade (its facing from
+//!   the texture, its direction bent by the wind), colour from root to tip along the blade with
+//!   the scene's colours, ambient darkened towards the root, the shared fog: as `reference`.
+//!
+//! ## Cost model
+//! Geometry: `N` x the ground mesh (meadow: 12 800 triangles a shell), vertex work `O(V·N)`
+//! in the bend pass and the shells. Fill: every shell covers the terrain's screen area, so
+//! fragment work is `N x covered pixels` (two texture samples each), whatever the number of
+//! blades: the method is fill-rate bound (Sec. 4), and blade density is free. GPU memory: the
+//! texture (`6 bytes · size² · 4/3` with mips: 2 MiB at 512²) plus `16·V + 8·V·N` bytes of
+//! per-vertex wind and offsets.
+//!
+//! Measured (lavapipe, `results/bakay_table2/`, `results/bakay_vs_reference/`): ~17 ms of CPU
+//! rasteriser work per shell per frame at 640x480 and ~36 ms at 1024x768 (the paper: 2.2 and
+//! 4.6 ms on a GeForce3), linear in shells and close to linear in pixels, as Sec. 4 found; at
+//! 1280x720 with 16 shells about as fast as `reference` (1.12x), far from the hoped-for 10x,
+//! because a software rasteriser has no cheap fill rate. 3.0 MB of GPU memory on the meadow.
+//!
+//! ## Known artifacts
+//! - Shells seen edge-on at grazing angles (the walker's horizon) show as separate layers with
+//!   gaps between them, and blades lose their silhouette there (Sec. 5 proposes vertical
+//!   slices for such views); more shells close the gaps at proportional cost.
+//! - Blades are quantised to `S`: a blade ends at the last shell below its tip.
+//! - The texture repeats every `tile_size` metres; the wind moves whole shells, so neighbouring
+//!   blades of one vertex neighbourhood sway together.
+//! - At a distance blades alias with `mipmaps = "none"`, turn into short felt with `box`;
+//!   `custom` keeps every shell's coverage but blade shapes become single texels. The sampler's
+//!   own mip choice (`lod = "hardware"`) follows the footprint's major axis, many levels too
+//!   coarse at grazing angles, and smears custom levels into blotches; the default
+//!   `lod = "minor_axis"` picks the level anisotropic filtering would, with one tap.
+//! - The texture's blades are denser than the scene's (`density_scale`, default 9, measured to
+//!   match `reference`'s coverage on the meadow): at 6 times the scene's density a walker's
+//!   grazing view through 16 shells covers 0.344 of the frame against reference's 0.463, since
+//!   a shell shows a blade only where it cuts it.
+
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+
+pub mod bend;
+mod gpu;
+pub mod params;
+pub mod texture;
+pub mod wind;
+
+use grassbench::glam::Vec2;
+use grassbench::technique::TechniqueEntry;
+use grassbench::terrain::{Terrain, covering};
+use grassbench::{
+    FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, TechniqueInfo,
+    TechniqueStats,
+};
+
+pub use gpu::ParamsUniform;
+pub use params::{Lod, Mipmaps, Params, WindSource};
+
+/// The shader (without the prelude): the bend pass and the shells.
+pub const SHADER: &str = include_str!("../shaders/bakay.wgsl");
+
+const INFO: TechniqueInfo = TechniqueInfo {
+    id: "bakay",
+    name: "Bakay et al. 2002 (animated transparent shells)",
+    paper: "Bakay, Lalonde, Heidrich 2002, Real-Time Animated Grass",
+    gpu_state: false,
+    debug_views: &[],
+};
+
+/// The registry line for this technique.
+pub const ENTRY: TechniqueEntry = TechniqueEntry {
+    info: INFO,
+    // Shells are drawn everywhere alike; the only level of detail is the texture's mip chain
+    // (Sec. 5), so the finest representation samples the base level at every distance.
+    variants: &[grassbench::technique::Variant {
+        name: grassbench::technique::FINEST,
+        params: "mipmaps = \"none\"",
+    }],
+    default_params: || grassbench::params::to_table(&Params::default()),
+    create: |ctx, overrides| Ok(Box::new(Bakay::new(ctx, overrides)?)),
+};
+
+/// The shell technique.
+pub struct Bakay {
+    params: Params,
+    gpu: gpu::ShellGpu,
+    triangles_per_shell: u64,
+    blades: u64,
+}
+
+impl Bakay {
+    /// Generates the grass texture and builds the passes.
+    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let scene = ctx.scene;
+        let texture = texture::GrassTexture::new(&texture_spec(&params, scene), params.mipmaps);
+        let uniform = uniform(&params, scene, ctx.scene_gpu.terrain.ground_side);
+        let gpu = gpu::ShellGpu::new(ctx, &uniform, &texture, params.mipmaps, params.anisotropy)?;
+        Ok(Self {
+            blades: count_blades(&texture, params.tile_size, &scene.terrain),
+            triangles_per_shell: u64::from(ctx.scene_gpu.terrain.ground_index_count / 3),
+            params,
+            gpu,
+        })
+    }
+}
+
+/// The texture the scene's grass asks for.
+pub fn texture_spec(params: &Params, scene: &grassbench::Scene) -> texture::TextureSpec {
+    let g = &scene.config.grass;
+    texture::TextureSpec {
+        size: params.texture_size,
+        tile_size: params.tile_size,
+        density: g.density * params.density_scale,
+        height: [g.height[0] / g.height[1], 1.0],
+        height_skew: params.height_skew,
+        width: g.width,
+        aspect: params.blade_aspect,
+        color_tip: g.color_tip,
+        color_variation: g.color_variation,
+        seed: scene.config.seed ^ 0xBA4A_7000,
+    }
+}
+
+/// The shader's uniform for `params` on `scene` (`ground_side` = ground mesh vertices along x
+/// and z).
+pub fn uniform(
+    params: &Params,
+    scene: &grassbench::Scene,
+    ground_side: (u32, u32),
+) -> ParamsUniform {
+    let g = &scene.config.grass;
+    let ratio = |k: usize| g.color_root[k] / g.color_tip[k].max(1e-4);
+    ParamsUniform {
+        counts: [
+            params.shells,
+            ground_side.0 * ground_side.1,
+            u32::from(params.wind == WindSource::PointSource),
+            u32::from(params.lod == Lod::MinorAxis),
+        ],
+        shape: [
+            g.height[1] / params.shells as f32,
+            params.stiffness,
+            params.max_intensity,
+            params.reference_speed,
+        ],
+        source: [
+            params.source_position[0],
+            params.source_position[1],
+            params.source_position[2],
+            params.source_period,
+        ],
+        steps: [
+            params.source_step_length,
+            params.source_step_delay,
+            params.source_bias,
+            1.0 / params.tile_size,
+        ],
+        color_ratio: [ratio(0), ratio(1), ratio(2), params.translucency],
+    }
+}
+
+/// Blades the tiled texture puts on grass-covered terrain under the density map.
+fn count_blades(texture: &texture::GrassTexture, tile: f32, terrain: &Terrain) -> u64 {
+    let (lo, hi) = (terrain.min_corner(), terrain.min_corner() + terrain.size());
+    let (t0, t1) = ((lo / tile).floor(), (hi / tile).ceil());
+    let mut n = 0u64;
+    for tj in t0.y as i64..t1.y as i64 {
+        for ti in t0.x as i64..t1.x as i64 {
+            let origin = Vec2::new(ti as f32, tj as f32);
+            for b in &texture.blades {
+                let xz = (origin + b.uv) * tile;
+                if terrain.contains(xz)
+                    && terrain.covering_at(xz) == covering::GRASS
+                    && b.threshold < terrain.density_at(xz)
+                {
+                    n += 1;
+                }
+            }
+        }
+    }
+    n
+}
+
+impl GrassTechnique for Bakay {
+    fn info(&self) -> TechniqueInfo {
+        INFO
+    }
+
+    fn params(&self) -> toml::Table {
+        grassbench::params::to_table(&self.params)
+    }
+
+    fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
+        // Nothing on the CPU: wind vectors, intensities and offsets are computed on the GPU
+        // from the time in the frame globals.
+        Ok(())
+    }
+
+    fn prepare(&mut self, _gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
+        Ok(())
+    }
+
+    fn encode(&self, encoder: &mut FrameEncoder<'_>) {
+        self.gpu.encode(encoder, self.params.shells);
+    }
+
+    fn stats(&self) -> TechniqueStats {
+        TechniqueStats {
+            blades: self.blades,
+            triangles: self.triangles_per_shell * u64::from(self.params.shells),
+            draw_calls: 1,
+            gpu_bytes: self.gpu.bytes,
+        }
+    }
+}

@@ -1,0 +1,218 @@
+//! The technique's parameters (`[techniques.bakay]` in scene files, `--param` on the command
+//! line) and their validation.
+
+use grassbench::Result;
+use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::wind::PointSourceConfig;
+use serde::{Deserialize, Serialize};
+
+/// How the coarser levels of the grass texture are made (Bakay Sec. 5: automatic mipmaps lose
+/// the high-frequency blades).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mipmaps {
+    /// Representative blades: each coarse texel is one of its four children, chosen by a seeded
+    /// hash, so every level keeps real blades and the base level's height distribution (and so
+    /// every shell's coverage) in expectation.
+    Custom,
+    /// The automatic kind: 2x2 box averages of colour, height and blade attributes.
+    Box,
+    /// The base level only (sharp, aliases at a distance).
+    None,
+}
+
+/// How a texture lookup picks its mip level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Lod {
+    /// The sampler's isotropic choice, from the footprint's major axis: at grazing angles many
+    /// levels too coarse (box mips blur to felt, custom ones to blotches).
+    Hardware,
+    /// The level matching the footprint's minor axis (the level anisotropic filtering picks),
+    /// with a single tap: sharp at grazing angles, at the cost of aliasing along the major axis.
+    MinorAxis,
+}
+
+/// Where the wind that bends the shells comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WindSource {
+    /// The scene's `WindField`, read per vertex through the prelude's `wind_at`, so bakay runs
+    /// in the same wind as every other technique.
+    Scene,
+    /// The technique's own point source (Bakay Sec. 3), computed per vertex in the shader.
+    PointSource,
+}
+
+/// Parameters of the shell technique.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Params {
+    /// Number of shells `N`, the ground shell included (Bakay Table 2 counts it too).
+    pub shells: u32,
+    /// Texels along each side of the grass texture (a power of two).
+    pub texture_size: u32,
+    /// World size of one texture tile, m.
+    pub tile_size: f32,
+    /// Blades in the texture per m², relative to the scene's `grass.density`. Shells show a
+    /// blade only where a shell cuts it, so at a walker's grazing view the scene's own density
+    /// looks sparse (Sec. 5: "making the grass more dense on textures"); the default 9 was
+    /// measured to give `reference`'s grass coverage on the meadow (frame 3, 640x360:
+    /// coverage 0.344 at 6, 0.432 at 8, 0.458 at 9, 0.484 at 10, 0.531 at 12; reference 0.463).
+    pub density_scale: f32,
+    /// Blade heights are `min + (max − min)·u^height_skew` for uniform `u` over the scene's
+    /// height range: 1 = uniform (as the scene's blade field), > 1 = mostly short blades.
+    pub height_skew: f32,
+    /// Thickness of a blade's cross-section relative to its width (1 = round stalks).
+    pub blade_aspect: f32,
+    /// How the texture's mip levels are made: `custom`, `box` or `none`.
+    pub mipmaps: Mipmaps,
+    /// How lookups pick a mip level: `minor_axis` or `hardware`.
+    pub lod: Lod,
+    /// Anisotropic filtering clamp (1 = off; 2, 4, 8 or 16). On lavapipe 16x costs 18x the
+    /// frame (meadow 640x360: 3.8 s against 0.21 s), hence `lod = "minor_axis"`.
+    pub anisotropy: u16,
+    /// Exponent `p` of the tilt profile `θ_j = I·(π/2)·(j/N)^p`: 1 = the paper's constant
+    /// increment, < 1 = floppy (bends low), > 1 = stiff (bends near the tip).
+    pub stiffness: f32,
+    /// Largest wind intensity `|I|` (the paper's intensity lives in `[-1, 1]`; more over-bends).
+    pub max_intensity: f32,
+    /// Wind model: `scene` or `point_source`.
+    pub wind: WindSource,
+    /// `scene` wind: speed (m/s) at which the intensity reaches 1.
+    pub reference_speed: f32,
+    /// `point_source` wind: world position of the source.
+    pub source_position: [f32; 3],
+    /// `point_source` wind: period of the intensity function, s.
+    pub source_period: f32,
+    /// `point_source` wind: width of one animation step (distance band), m.
+    pub source_step_length: f32,
+    /// `point_source` wind: delay between neighbouring animation steps, s.
+    pub source_step_delay: f32,
+    /// `point_source` wind: constant added to the intensity (0 = swings both ways).
+    pub source_bias: f32,
+    /// Fraction of back-side sunlight passing through a blade (as `reference`).
+    pub translucency: f32,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        let source = PointSourceConfig::default();
+        Self {
+            shells: 16,
+            texture_size: 512,
+            tile_size: 2.0,
+            density_scale: 9.0,
+            height_skew: 1.0,
+            blade_aspect: 0.5,
+            mipmaps: Mipmaps::Custom,
+            lod: Lod::MinorAxis,
+            anisotropy: 1,
+            stiffness: 1.0,
+            max_intensity: 1.0,
+            wind: WindSource::Scene,
+            reference_speed: 12.0,
+            source_position: source.position,
+            source_period: source.period,
+            source_step_length: source.step_length,
+            source_step_delay: source.step_delay,
+            source_bias: source.bias,
+            translucency: 0.35,
+        }
+    }
+}
+
+impl Params {
+    /// The point source these parameters describe, as the core's wind model would take it
+    /// (`speed` is unused by the shells: the intensity bends them directly).
+    pub fn point_source(&self) -> PointSourceConfig {
+        PointSourceConfig {
+            position: self.source_position,
+            period: self.source_period,
+            step_length: self.source_step_length,
+            step_delay: self.source_step_delay,
+            bias: self.source_bias,
+            ..PointSourceConfig::default()
+        }
+    }
+}
+
+impl TechniqueParams for Params {
+    fn validate(&self) -> Result<()> {
+        check_int("bakay.shells", self.shells, 1..=128)?;
+        check_int("bakay.texture_size", self.texture_size, 16..=4096)?;
+        if !self.texture_size.is_power_of_two() {
+            return Err(grassbench::Error::param(
+                "bakay.texture_size",
+                self.texture_size,
+                "a power of two in [16, 4096]",
+            ));
+        }
+        if ![1, 2, 4, 8, 16].contains(&self.anisotropy) {
+            return Err(grassbench::Error::param(
+                "bakay.anisotropy",
+                self.anisotropy,
+                "1, 2, 4, 8 or 16",
+            ));
+        }
+        check("bakay.tile_size", self.tile_size, 0.1..=64.0)?;
+        check("bakay.density_scale", self.density_scale, 0.01..=16.0)?;
+        check("bakay.height_skew", self.height_skew, 0.1..=10.0)?;
+        check("bakay.blade_aspect", self.blade_aspect, 0.05..=1.0)?;
+        check("bakay.stiffness", self.stiffness, 0.1..=8.0)?;
+        check("bakay.max_intensity", self.max_intensity, 0.0..=4.0)?;
+        check("bakay.reference_speed", self.reference_speed, 0.01..=100.0)?;
+        for (k, v) in self.source_position.iter().enumerate() {
+            check(&format!("bakay.source_position[{k}]"), *v, -1e6..=1e6)?;
+        }
+        check("bakay.source_period", self.source_period, 0.01..=10_000.0)?;
+        check(
+            "bakay.source_step_length",
+            self.source_step_length,
+            0.01..=10_000.0,
+        )?;
+        check(
+            "bakay.source_step_delay",
+            self.source_step_delay,
+            0.0..=10_000.0,
+        )?;
+        check("bakay.source_bias", self.source_bias, -2.0..=2.0)?;
+        check("bakay.translucency", self.translucency, 0.0..=1.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use grassbench::params::resolve;
+
+    fn with(key: &str, value: toml::Value) -> Result<Params> {
+        let mut t = toml::Table::new();
+        t.insert(key.into(), value);
+        resolve::<Params>("bakay", &t)
+    }
+
+    #[test]
+    fn defaults_are_valid_and_bad_values_name_the_key() {
+        Params::default().validate().unwrap();
+        for (key, value) in [
+            ("shells", toml::Value::from(0)),
+            ("shells", toml::Value::from(129)),
+            ("texture_size", toml::Value::from(300)),
+            ("anisotropy", toml::Value::from(3)),
+            ("tile_size", toml::Value::from(f64::NAN)),
+            ("stiffness", toml::Value::from(-1.0)),
+            ("reference_speed", toml::Value::from(0.0)),
+        ] {
+            let e = with(key, value).unwrap_err().to_string();
+            assert!(e.contains(&format!("bakay.{key}")), "{e}");
+        }
+        assert_eq!(with("mipmaps", "box".into()).unwrap().mipmaps, Mipmaps::Box);
+        assert_eq!(
+            with("wind", "point_source".into()).unwrap().wind,
+            WindSource::PointSource
+        );
+        assert!(with("mipmaps", "auto".into()).is_err());
+        assert!(with("shellz", 3.into()).is_err());
+    }
+}

@@ -1,0 +1,415 @@
+//! The one grass texture every shell samples (Bakay Sec. 3, Fig. 3) and its mip levels
+//! (Sec. 5), generated on the CPU from a seed.
+//!
+//! Two planes of the same size and mip chain:
+//! - `color_height` (`Rgba8UnormSrgb`): the blade's colour in RGB, its *height* in alpha; the
+//!   ground between blades has alpha 0. A texel's alpha is the height up to which that texel
+//!   lies inside its blade: a blade of relative height `h` whose cross-section (an ellipse of the
+//!   blade's width and `aspect` times that across) tapers as `(1 − s)^0.7` with relative height
+//!   `s` (the `reference` blade's taper) gives the texel at elliptic radius `r` the alpha
+//!   `h·(1 − r^(1/0.7))`, so shells higher up cut smaller sections and blades end in points.
+//! - `blade` (`Rg8Unorm`): the blade's density threshold (drawn where the density map exceeds
+//!   it, as the scene's blade field) and its facing angle over π (for the leaf normal).
+//!
+//! Blades are placed by stratified jittered sampling, one per cell, as the scene's blade field
+//! (`grassbench::grass`), on a torus so the texture tiles. Ground texels take the attributes of
+//! their nearest blade (a Voronoi dilation), so bilinear filtering at a blade's rim never mixes
+//! in another blade's threshold or colour.
+//!
+//! Mip levels (Sec. 5: "lower level MIPmaps cannot be generated from the textures
+//! automatically, as the high frequency details of the grass will become lost. Custom MIPmaps,
+//! likely retaining representative blades from level to level"):
+//! - [`Mipmaps::Box`]: the automatic 2x2 average. Heights are averaged with the ground, so a
+//!   far level holds one uniform, low alpha: the upper shells pass nowhere and the lower ones
+//!   everywhere, i.e. distant grass becomes a short felt;
+//! - [`Mipmaps::Custom`]: representative blades. Each coarse texel copies one of its four
+//!   children (both planes), chosen by a seeded hash. Every coarse texel is then a texel of a
+//!   real blade or of real ground, and the fraction of texels at or above any height (each
+//!   shell's coverage) equals the base level's in expectation, at every level.
+
+use glam::Vec2;
+use grassbench::rng::hash;
+
+use crate::params::Mipmaps;
+
+/// What to generate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureSpec {
+    /// Texels along a side (power of two).
+    pub size: u32,
+    /// World size of one tile, m.
+    pub tile_size: f32,
+    /// Blades per m².
+    pub density: f32,
+    /// Blade height range relative to the tallest (`[min/max, 1]`).
+    pub height: [f32; 2],
+    /// Skew of the height distribution: `min + (max − min)·u^skew`.
+    pub height_skew: f32,
+    /// Blade width range, m.
+    pub width: [f32; 2],
+    /// Cross-section thickness over width.
+    pub aspect: f32,
+    /// Linear albedo at the tip.
+    pub color_tip: [f32; 3],
+    /// Per-blade brightness and hue variation, 0..1.
+    pub color_variation: f32,
+    /// Seed.
+    pub seed: u64,
+}
+
+/// One mip level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    /// Texels along a side.
+    pub size: u32,
+    /// sRGB colour and linear height per texel, row-major.
+    pub color_height: Vec<[u8; 4]>,
+    /// Density threshold and facing / π per texel.
+    pub blade: Vec<[u8; 2]>,
+}
+
+impl Level {
+    /// Fraction of texels whose height is at least `threshold` (in `[0, 1]`): what a shell
+    /// with that alpha test keeps of this level.
+    pub fn coverage(&self, threshold: f32) -> f64 {
+        let t = (threshold * 255.0).round() as u8;
+        let n = self
+            .color_height
+            .iter()
+            .filter(|c| c[3] >= t.max(1))
+            .count();
+        n as f64 / self.color_height.len().max(1) as f64
+    }
+
+    /// Bytes on the GPU (both planes).
+    pub fn bytes(&self) -> u64 {
+        (self.color_height.len() * 4 + self.blade.len() * 2) as u64
+    }
+}
+
+/// A blade of the texture, for counting blades over the terrain.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureBlade {
+    /// Centre in tile coordinates `[0, 1)²`.
+    pub uv: Vec2,
+    /// Density threshold in `[0, 1)`.
+    pub threshold: f32,
+}
+
+/// The texture: its mip chain (level 0 first) and its blades.
+#[derive(Clone, Debug)]
+pub struct GrassTexture {
+    /// Levels, finest first.
+    pub levels: Vec<Level>,
+    /// The blades of one tile.
+    pub blades: Vec<TextureBlade>,
+}
+
+impl GrassTexture {
+    /// Generates the base level and the mip chain `mipmaps` asks for.
+    pub fn new(spec: &TextureSpec, mipmaps: Mipmaps) -> Self {
+        let (base, blades) = base_level(spec);
+        let mut levels = vec![base];
+        if mipmaps != Mipmaps::None {
+            while let Some(last) = levels.last().filter(|l| l.size > 1) {
+                let next = downsample(last, mipmaps, spec.seed, levels.len() as i64);
+                levels.push(next);
+            }
+        }
+        Self { levels, blades }
+    }
+
+    /// Bytes on the GPU, all levels.
+    pub fn bytes(&self) -> u64 {
+        self.levels.iter().map(Level::bytes).sum()
+    }
+}
+
+/// Taper exponent of a blade's width with height (as `reference`'s `pow(1 − s, 0.7)`).
+const TAPER: f32 = 0.7;
+
+#[derive(Clone, Copy)]
+struct Blade {
+    centre: Vec2,
+    axis: Vec2,
+    half_width: f32,
+    half_thickness: f32,
+    height: f32,
+    color: [u8; 3],
+    threshold: u8,
+    facing: u8,
+    threshold_f: f32,
+}
+
+fn base_level(spec: &TextureSpec) -> (Level, Vec<TextureBlade>) {
+    let size = spec.size.max(1);
+    let px = size as f32 / spec.tile_size;
+    let cells = ((spec.tile_size * spec.density.max(0.0).sqrt()).round() as i64).max(1);
+    let cell = size as f32 / cells as f32;
+    let lerp = |r: [f32; 2], t: f32| r[0] + (r[1] - r[0]) * t;
+    let make = |i: i64, j: i64| -> Blade {
+        let h = |k: i64| (hash(spec.seed, &[i, j, k]) >> 40) as f32 / (1u64 << 24) as f32;
+        let facing = h(2) * std::f32::consts::PI;
+        let size_draw = h(3);
+        let half_width = 0.5 * lerp(spec.width, 0.5 * size_draw + 0.5 * h(4)) * px;
+        let v = (h(5) * 2.0 - 1.0) * spec.color_variation;
+        let c = spec.color_tip;
+        let tip = [
+            c[0] * (1.0 + v) * (1.0 + 0.6 * v.max(0.0)),
+            c[1] * (1.0 + v),
+            c[2] * (1.0 + v),
+        ];
+        let threshold = h(6);
+        Blade {
+            centre: Vec2::new((i as f32 + h(0)) * cell, (j as f32 + h(1)) * cell),
+            axis: Vec2::from_angle(facing),
+            // Thinner than a texel would vanish from the base level altogether.
+            half_width: half_width.max(0.75),
+            half_thickness: (half_width * spec.aspect).max(0.75),
+            height: lerp(spec.height, size_draw.powf(spec.height_skew)).clamp(0.0, 1.0),
+            color: tip.map(|x| srgb_encode(x.clamp(0.0, 1.0))),
+            threshold: (threshold * 255.0).round() as u8,
+            facing: (facing / std::f32::consts::PI * 255.0).round() as u8,
+            threshold_f: threshold,
+        }
+    };
+    let all: Vec<Blade> = (0..cells)
+        .flat_map(|j| (0..cells).map(move |i| (i, j)))
+        .map(|(i, j)| make(i, j))
+        .collect();
+    let blade_of =
+        |i: i64, j: i64| all[(j.rem_euclid(cells) * cells + i.rem_euclid(cells)) as usize];
+    let reach = ((spec.width[1] * 0.5 * px).max(0.75) / cell).ceil() as i64 + 1;
+    let reach = reach.max(2);
+    let n = (size * size) as usize;
+    let mut color_height = Vec::with_capacity(n);
+    let mut blade = Vec::with_capacity(n);
+    let half = size as f32 * 0.5;
+    let wrap = |d: f32| (d + half).rem_euclid(size as f32) - half;
+    for y in 0..size {
+        for x in 0..size {
+            let p = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            let (ci, cj) = ((p.x / cell) as i64, (p.y / cell) as i64);
+            // Tallest blade covering the texel; else the nearest blade (dilation).
+            let mut best: Option<(f32, Blade)> = None;
+            let own = blade_of(ci, cj);
+            let mut nearest = (f32::INFINITY, own);
+            for dj in -reach..=reach {
+                for di in -reach..=reach {
+                    let b = blade_of(ci + di, cj + dj);
+                    let d = Vec2::new(wrap(p.x - b.centre.x), wrap(p.y - b.centre.y));
+                    let across = d.dot(b.axis) / b.half_width;
+                    let through = d.perp_dot(b.axis) / b.half_thickness;
+                    let r = across.hypot(through);
+                    let alpha = if r < 1.0 {
+                        b.height * (1.0 - r.powf(1.0 / TAPER))
+                    } else {
+                        0.0
+                    };
+                    let dist = d.length();
+                    if alpha > 0.0 && best.is_none_or(|(a, _)| alpha > a) {
+                        best = Some((alpha, b));
+                    }
+                    if dist < nearest.0 {
+                        nearest = (dist, b);
+                    }
+                }
+            }
+            let (alpha, owner) = best.unwrap_or((0.0, nearest.1));
+            let [r, g, b] = owner.color;
+            color_height.push([r, g, b, (alpha * 255.0).round() as u8]);
+            blade.push([owner.threshold, owner.facing]);
+        }
+    }
+    let blades = all
+        .iter()
+        .map(|b| TextureBlade {
+            uv: b.centre / size as f32,
+            threshold: b.threshold_f,
+        })
+        .collect();
+    (
+        Level {
+            size,
+            color_height,
+            blade,
+        },
+        blades,
+    )
+}
+
+fn downsample(fine: &Level, mode: Mipmaps, seed: u64, level: i64) -> Level {
+    let size = (fine.size / 2).max(1);
+    let at = |x: u32, y: u32| (y.min(fine.size - 1) * fine.size + x.min(fine.size - 1)) as usize;
+    let mut color_height = Vec::with_capacity((size * size) as usize);
+    let mut blade = Vec::with_capacity((size * size) as usize);
+    for y in 0..size {
+        for x in 0..size {
+            let children = [
+                at(2 * x, 2 * y),
+                at(2 * x + 1, 2 * y),
+                at(2 * x, 2 * y + 1),
+                at(2 * x + 1, 2 * y + 1),
+            ];
+            match mode {
+                Mipmaps::Box => {
+                    // Colour averaged in linear light; height and attributes as stored.
+                    let mean = |f: &dyn Fn(usize) -> f32| -> f32 {
+                        children.iter().map(|&c| f(c)).sum::<f32>() * 0.25
+                    };
+                    let rgb =
+                        |k: usize| srgb_encode(mean(&|c| srgb_decode(fine.color_height[c][k])));
+                    let raw =
+                        |k: usize| mean(&|c| f32::from(fine.color_height[c][k])).round() as u8;
+                    let attr = |k: usize| mean(&|c| f32::from(fine.blade[c][k])).round() as u8;
+                    color_height.push([rgb(0), rgb(1), rgb(2), raw(3)]);
+                    blade.push([attr(0), attr(1)]);
+                }
+                Mipmaps::Custom | Mipmaps::None => {
+                    let pick = hash(seed ^ 0x4D49_5053, &[level, i64::from(x), i64::from(y)]) % 4;
+                    let c = children[pick as usize];
+                    color_height.push(fine.color_height[c]);
+                    blade.push(fine.blade[c]);
+                }
+            }
+        }
+    }
+    Level {
+        size,
+        color_height,
+        blade,
+    }
+}
+
+/// Linear `[0, 1]` to an 8-bit sRGB value.
+pub fn srgb_encode(linear: f32) -> u8 {
+    let l = linear.clamp(0.0, 1.0);
+    let s = if l <= 0.003_130_8 {
+        12.92 * l
+    } else {
+        1.055 * l.powf(1.0 / 2.4) - 0.055
+    };
+    (s * 255.0).round() as u8
+}
+
+/// An 8-bit sRGB value to linear `[0, 1]`.
+pub fn srgb_decode(value: u8) -> f32 {
+    let s = f32::from(value) / 255.0;
+    if s <= 0.040_45 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec() -> TextureSpec {
+        TextureSpec {
+            size: 256,
+            tile_size: 2.0,
+            density: 60.0,
+            height: [0.46, 1.0],
+            height_skew: 1.0,
+            width: [0.025, 0.045],
+            aspect: 0.5,
+            color_tip: [0.30, 0.45, 0.10],
+            color_variation: 0.25,
+            seed: 7,
+        }
+    }
+
+    #[test]
+    fn texture_is_seeded_and_holds_blades_on_bare_ground() {
+        let a = GrassTexture::new(&spec(), Mipmaps::Custom);
+        let b = GrassTexture::new(&spec(), Mipmaps::Custom);
+        assert_eq!(a.levels, b.levels);
+        let c = GrassTexture::new(&TextureSpec { seed: 8, ..spec() }, Mipmaps::Custom);
+        assert_ne!(a.levels[0], c.levels[0]);
+        assert_eq!(a.levels.len(), 9);
+        assert_eq!(GrassTexture::new(&spec(), Mipmaps::None).levels.len(), 1);
+        // 2 m tile at 60 blades/m²: 15x15 cells.
+        assert_eq!(a.blades.len(), 225);
+        let base = &a.levels[0];
+        // Some ground, some blades, and the tallest blades reach near the top.
+        let ground = 1.0 - base.coverage(1.0 / 255.0);
+        assert!((0.5..0.99).contains(&ground), "ground {ground}");
+        assert!(base.coverage(0.9) > 0.0);
+        assert_eq!(base.coverage(1.01), 0.0);
+    }
+
+    #[test]
+    fn density_and_height_skew_are_honoured() {
+        let dense = GrassTexture::new(
+            &TextureSpec {
+                density: 240.0,
+                ..spec()
+            },
+            Mipmaps::None,
+        );
+        assert_eq!(dense.blades.len(), 31 * 31);
+        let sparse = GrassTexture::new(&spec(), Mipmaps::None);
+        assert!(dense.levels[0].coverage(0.1) > 2.5 * sparse.levels[0].coverage(0.1));
+        let short = GrassTexture::new(
+            &TextureSpec {
+                height_skew: 4.0,
+                ..spec()
+            },
+            Mipmaps::None,
+        );
+        assert!(short.levels[0].coverage(0.7) < 0.6 * sparse.levels[0].coverage(0.7));
+    }
+
+    #[test]
+    fn custom_mips_keep_more_alpha_coverage_far_away_than_box_mips() {
+        // 512 texels over 2 m at 200 blades/m²; level 4 has 32x32 texels of 6.25 cm, wider
+        // than any blade. Measured coverage at shells 4 and 8 of 16 (base / custom / box):
+        // 0.054 / 0.061 / 0.000 and 0.021 / 0.017 / 0.000.
+        let spec = TextureSpec {
+            size: 512,
+            density: 200.0,
+            ..spec()
+        };
+        let custom = GrassTexture::new(&spec, Mipmaps::Custom);
+        let boxed = GrassTexture::new(&spec, Mipmaps::Box);
+        let far = 4;
+        for shell in [4u32, 8] {
+            let t = shell as f32 / 16.0;
+            let base = custom.levels[0].coverage(t);
+            let c = custom.levels[far].coverage(t);
+            let b = boxed.levels[far].coverage(t);
+            assert!(c > b, "shell {shell}: custom {c} <= box {b}");
+            assert!(
+                (c - base).abs() < 0.4 * base,
+                "shell {shell}: custom {c} vs base {base}"
+            );
+        }
+        // Box averaging turns blades into felt: the upper shells lose every blade.
+        assert_eq!(boxed.levels[far].coverage(0.5), 0.0);
+        // Over all shells of a 16-shell stack, custom stays closer to the base level.
+        let error = |t: &GrassTexture| -> f64 {
+            (1..16)
+                .map(|k| {
+                    (t.levels[far].coverage(k as f32 / 16.0)
+                        - t.levels[0].coverage(k as f32 / 16.0))
+                    .abs()
+                })
+                .sum()
+        };
+        assert!(
+            error(&custom) < 0.5 * error(&boxed),
+            "{} vs {}",
+            error(&custom),
+            error(&boxed)
+        );
+    }
+
+    #[test]
+    fn srgb_round_trips() {
+        for v in 0..=255u8 {
+            assert_eq!(srgb_encode(srgb_decode(v)), v);
+        }
+    }
+}
