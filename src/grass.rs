@@ -199,6 +199,14 @@ impl BladeField {
         out
     }
 
+    /// Candidates over the whole terrain: an upper bound of [`Self::all_blades`]'s length,
+    /// without generating them (for memory estimates).
+    pub fn candidate_count(&self, terrain: &Terrain) -> u64 {
+        let (is, js) = self.cells_in(terrain.min_corner(), terrain.min_corner() + terrain.size());
+        let len = |r: std::ops::Range<i64>| u64::try_from(r.end - r.start).unwrap_or(0);
+        len(is) * len(js)
+    }
+
     /// Every blade on the terrain.
     pub fn all_blades(&self, terrain: &Terrain) -> Vec<Blade> {
         self.blades_in(

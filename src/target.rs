@@ -169,6 +169,14 @@ impl RenderTarget {
         })
     }
 
+    /// GPU memory of the colour, resolve and depth textures.
+    pub fn estimate(&self) -> crate::gpu::GpuEstimate {
+        let pixels = u64::from(self.size.width) * u64::from(self.size.height);
+        let samples = u64::from(self.sample_count);
+        let resolve = if self.resolve.is_some() { 4 } else { 0 };
+        crate::gpu::GpuEstimate::textures(pixels * (samples * (4 + 4) + resolve))
+    }
+
     /// The single-sample texture holding the final image.
     pub fn output(&self) -> &wgpu::Texture {
         self.resolve.as_ref().map_or(&self.color, |(t, _)| t)

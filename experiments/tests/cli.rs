@@ -299,3 +299,48 @@ fn missing_backend_names_the_fix() {
         &["no GPU adapter", "mesa-vulkan-drivers"],
     );
 }
+
+#[test]
+fn gpu_memory_budget_refuses_with_the_numbers_before_creating_anything() {
+    let out = temp("budget");
+    let png = out.join("x.png");
+    let result = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .args([
+            "render",
+            "-t",
+            "reference",
+            "-s",
+            "meadow",
+            "--size",
+            "64x36",
+            "-o",
+        ])
+        .arg(&png)
+        .env("GRASSBENCH_GPU_MEMORY_MB", "1")
+        .output()
+        .expect("binary runs");
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success(), "a 1 MiB budget was accepted");
+    assert!(!err.contains("panicked"), "{err}");
+    for needle in [
+        "MiB of GPU memory",
+        "budget is 1.0 MiB",
+        "GRASSBENCH_GPU_MEMORY_MB",
+        "grass.density",
+    ] {
+        assert!(err.contains(needle), "message lacks `{needle}`: {err}");
+    }
+    assert!(!png.exists(), "an image was written anyway");
+    // A budget that is not a number is named as such.
+    let result = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .args(["render", "-t", "reference", "--size", "32x32", "-o"])
+        .arg(&png)
+        .env("GRASSBENCH_GPU_MEMORY_MB", "lots")
+        .output()
+        .expect("binary runs");
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        !result.status.success() && err.contains("GRASSBENCH_GPU_MEMORY_MB"),
+        "{err}"
+    );
+}

@@ -3,8 +3,10 @@
 
 mod backend;
 mod context;
+pub mod memory;
 mod scope;
 
 pub use backend::BackendChoice;
 pub use context::{AdapterSummary, GpuContext};
+pub use memory::GpuEstimate;
 pub use scope::ErrorSink;

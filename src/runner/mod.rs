@@ -115,6 +115,8 @@ impl<'g> Harness<'g> {
             size: self.target.size,
             sample_count: self.target.sample_count,
         };
+        let estimate = (entry.estimate)(&self.scene, &params)?.plus(self.target.estimate());
+        crate::gpu::memory::check(self.gpu, entry.info.id, estimate)?;
         let during = format!("creating technique `{}`", entry.info.id);
         self.gpu.scoped(&during, || (entry.create)(&ctx, &params))?
     }

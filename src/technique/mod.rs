@@ -135,6 +135,10 @@ pub struct TechniqueEntry {
     pub default_params: fn() -> toml::Table,
     /// Creates it with parameter overrides (unknown keys and bad values are errors).
     pub create: fn(&InitContext<'_>, &toml::Table) -> Result<Box<dyn GrassTechnique>>,
+    /// What `create` with these overrides will allocate on the GPU, computed without any GPU
+    /// work from the same numbers `create` uses; the harness checks it against the adapter
+    /// ([`crate::gpu::memory`]) before creating anything.
+    pub estimate: fn(&crate::Scene, &toml::Table) -> Result<crate::gpu::GpuEstimate>,
 }
 
 impl TechniqueEntry {

@@ -48,6 +48,13 @@ pub struct TerrainGpu {
 }
 
 impl TerrainGpu {
+    /// Vertices per side of the ground mesh over `terrain`: about one a metre (computed
+    /// without a GPU, for memory estimates).
+    pub fn ground_side_for(terrain: &Terrain) -> (u32, u32) {
+        let side = |s: f32| (s.ceil() as u32 + 1).clamp(2, MAX_GROUND_SIDE);
+        (side(terrain.size().x), side(terrain.size().y))
+    }
+
     /// Uploads `terrain`. The ground mesh has about one vertex per metre (at most
     /// [`MAX_GROUND_SIDE`] a side) so per-vertex effects (Bakay's wind vectors) have detail
     /// even on a flat terrain whose heightmap has 2x2 samples.
@@ -76,8 +83,7 @@ impl TerrainGpu {
             terrain.covering(),
             1,
         );
-        let side = |s: f32| (s.ceil() as u32 + 1).clamp(2, MAX_GROUND_SIDE);
-        let (nx, nz) = (side(terrain.size().x), side(terrain.size().y));
+        let (nx, nz) = Self::ground_side_for(terrain);
         let vertices: Vec<GroundVertex> = (0..nz)
             .flat_map(|j| (0..nx).map(move |i| (i, j)))
             .map(|(i, j)| {

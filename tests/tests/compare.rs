@@ -64,8 +64,8 @@ fn thresholds(id: &str) -> Thresholds {
         // lavapipe at 320x180 and a quarter of the blades (`cargo test --release --test compare
         // -- --nocapture` prints every "measured:" line); the margin is for other rasterisers.
         //
-        // zhang: its finest variant switches billboards off, and at this size none are drawn
-        // (LOD FLIP 0.0 everywhere). Against the reference FLIP 1/16 0.053 / 0.011 / 0.015 and
+        // zhang: part 1 draws every grid as blades, so its finest variant is its default
+        // (LOD FLIP 0.0 everywhere) until part 2's billboards (issue 6). Against the reference FLIP 1/16 0.053 / 0.011 / 0.015 and
         // coverage per tile 0.088 / 0.024 / 0.019 (meadow / football field / prairie); popping
         // 1.64 (dolly) and 1.65 (pan): its blades sway differently from the reference's.
         "zhang" => Thresholds {

@@ -22,6 +22,7 @@ const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
     info: INFO,
     variants: &[],
     default_params: toml::Table::new,
+    estimate: |_, _| Ok(grassbench::gpu::GpuEstimate::default()),
     create: |ctx, _| {
         let device = &ctx.gpu.device;
         let module = grassbench::shaders::module(

@@ -126,6 +126,24 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
     }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Bakay::new(ctx, overrides)?)),
+    estimate: |scene, overrides| {
+        use grassbench::gpu::GpuEstimate;
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        // The ground mesh's vertices, each with a wind vector and one offset per shell.
+        let (nx, nz) = grassbench::terrain::TerrainGpu::ground_side_for(&scene.terrain);
+        let vertices = u64::from(nx) * u64::from(nz);
+        Ok(GpuEstimate::buffer(vertices * 16)
+            .plus(GpuEstimate::buffer(
+                vertices.saturating_mul(u64::from(params.shells) * 8),
+            ))
+            .plus(GpuEstimate::textures(texture::bytes_bound(
+                params.texture_size,
+                params.mipmaps != params::Mipmaps::None,
+            )))
+            .plus(GpuEstimate::buffer(
+                std::mem::size_of::<ParamsUniform>() as u64
+            )))
+    },
 };
 
 /// The shell technique.

@@ -87,6 +87,13 @@ impl Level {
     }
 }
 
+/// GPU memory of a texture of side `size` with or without its mip chain: 6 bytes a texel
+/// (colour + height, threshold + facing), a chain at most 4/3 of its base.
+pub fn bytes_bound(size: u32, mipmaps: bool) -> u64 {
+    let base = u64::from(size).pow(2) * 6;
+    if mipmaps { base * 4 / 3 + 64 } else { base }
+}
+
 /// A blade of the texture, for counting blades over the terrain.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TextureBlade {

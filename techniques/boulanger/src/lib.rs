@@ -148,6 +148,7 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
     ],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Boulanger::new(ctx, overrides)?)),
+    estimate: Boulanger::estimate,
 };
 
 /// Most cells (patches) on one terrain: the quadtree and orientation map are per cell.
@@ -205,6 +206,9 @@ impl SliceQuad {
 /// finer grain than the cell, since a cell may hold 20 000 blades).
 pub const BLOCKS: u32 = 4;
 
+/// Slice quads the buffer holds at first (it grows by powers of two).
+const INITIAL_QUADS: usize = 256;
+
 /// Tessellations of slice quads (quads per side), one draw each.
 const TESS_LEVELS: [u32; 4] = [1, 2, 4, 8];
 
@@ -255,6 +259,31 @@ pub struct Boulanger {
 }
 
 impl Boulanger {
+    /// GPU memory `new` will allocate: the patch, the slice textures, the orientation map
+    /// (one byte per cell), the blade texture and the per-frame buffers at their first size.
+    pub fn estimate(
+        scene: &grassbench::Scene,
+        overrides: &toml::Table,
+    ) -> Result<grassbench::gpu::GpuEstimate> {
+        use grassbench::gpu::GpuEstimate;
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let grid = CellGrid::new(&scene.terrain, params.patch_size);
+        let density = params.effective_blades_per_m2(scene.config.grass.density);
+        let strata = u64::from(Patch::strata_for(params.patch_size, density));
+        let blade = std::mem::size_of::<patch::PatchBlade>() as u64;
+        Ok([
+            GpuEstimate::buffer((strata * strata).saturating_mul(blade)),
+            GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
+            GpuEstimate::textures(u64::from(grid.nx) * u64::from(grid.nz)),
+            GpuEstimate::textures(texture::BYTES_BOUND),
+            GpuEstimate::buffer(std::mem::size_of::<ParamsUniform>() as u64),
+            GpuEstimate::buffer(64 * cells::CELL_BYTES),
+            GpuEstimate::buffer((INITIAL_QUADS * std::mem::size_of::<SliceQuad>()) as u64),
+        ]
+        .into_iter()
+        .sum())
+    }
+
     /// Builds the patch, the quadtree and the pipelines, and bakes the horizontal slice.
     pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
         let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
@@ -569,7 +598,7 @@ impl Boulanger {
             cell_capacity,
             paging.binding_cells(cell_capacity),
         );
-        let quad_capacity = 256;
+        let quad_capacity = INITIAL_QUADS;
         let quad_buffer = quad_buffer(device, quad_capacity);
         Ok(Self {
             lod,

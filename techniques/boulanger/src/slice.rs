@@ -55,6 +55,14 @@ pub struct BakeInputs<'a> {
     pub resolution: u32,
 }
 
+/// GPU memory of the two slice textures of side `resolution` with their mip chains.
+pub fn texture_bytes(resolution: u32) -> u64 {
+    let levels = 32 - resolution.leading_zeros();
+    (0..levels)
+        .map(|l| 2 * 8 * u64::from((resolution >> l).max(1)).pow(2))
+        .sum()
+}
+
 /// Renders the slice textures and their mip chains.
 pub fn bake(ctx: &InitContext<'_>, inputs: &BakeInputs<'_>) -> Result<SliceTextures> {
     let device = &ctx.gpu.device;
@@ -173,10 +181,7 @@ pub fn bake(ctx: &InitContext<'_>, inputs: &BakeInputs<'_>) -> Result<SliceTextu
     build_mips(ctx, &mut encoder, &color, &aux, levels);
     ctx.gpu.queue.submit([encoder.finish()]);
 
-    let mut bytes = 0u64;
-    for l in 0..levels {
-        bytes += 2 * 8 * u64::from((r >> l).max(1)).pow(2);
-    }
+    let bytes = texture_bytes(r);
     Ok(SliceTextures {
         color: color.create_view(&Default::default()),
         aux: aux.create_view(&Default::default()),

@@ -73,6 +73,9 @@ pub fn mip_chain(level0: Vec<[u8; 4]>) -> Vec<Vec<[u8; 4]>> {
     levels
 }
 
+/// GPU memory of the texture, an upper bound: a mip chain holds at most 4/3 of its base.
+pub const BYTES_BOUND: u64 = (WIDTH * HEIGHT * 4) as u64 * 4 / 3 + 64;
+
 /// Uploads the texture with its mip chain; returns the view and the bytes held.
 pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue) -> (wgpu::TextureView, u64) {
     let levels = mip_chain(texels());

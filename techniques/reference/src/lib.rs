@@ -71,6 +71,17 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
     }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Reference::new(ctx, overrides)?)),
+    estimate: |scene, overrides| {
+        let _: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        // At most one instance per candidate (fewer where the density map thins them).
+        let candidates = scene.blades.candidate_count(&scene.terrain);
+        Ok(grassbench::gpu::GpuEstimate::buffer(
+            candidates.saturating_mul(std::mem::size_of::<BladeInstance>() as u64),
+        )
+        .plus(grassbench::gpu::GpuEstimate::buffer(
+            std::mem::size_of::<ParamsUniform>() as u64,
+        )))
+    },
 };
 
 /// Parameters (`[techniques.reference]` in scene files, `--param` on the command line).

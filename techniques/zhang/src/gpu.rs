@@ -111,6 +111,11 @@ fn texture(
 }
 
 impl Pipelines {
+    /// GPU memory of the textures and the uniform.
+    pub const BYTES: u64 = (BLADE_SIZE.0 * BLADE_SIZE.1 * 4) as u64
+        + (PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES) as u64
+        + std::mem::size_of::<ParamsUniform>() as u64;
+
     /// Creates textures, uniform, bind group and both pipelines.
     pub fn new(ctx: &InitContext<'_>, uniform: &ParamsUniform, seed: u64) -> Self {
         let device = &ctx.gpu.device;
@@ -256,14 +261,11 @@ impl Pipelines {
             "fs_flower",
             &[Some(FLOWER_LAYOUT.clone())],
         );
-        let bytes = u64::from(BLADE_SIZE.0 * BLADE_SIZE.1 * 4)
-            + u64::from(PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES)
-            + std::mem::size_of::<ParamsUniform>() as u64;
         Self {
             blades,
             flowers,
             bind_group,
-            bytes,
+            bytes: Self::BYTES,
         }
     }
 }

@@ -122,6 +122,22 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
     }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Zhang::new(ctx, overrides)?)),
+    estimate: |_, overrides| {
+        use grassbench::gpu::GpuEstimate;
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        // At most one blade per lattice point; each carries a flower with probability
+        // `flower_fraction`: the expected count plus four standard deviations (and the 64 bytes
+        // an empty buffer keeps).
+        let side = u64::from(params.grids) * u64::from(params.blades_per_side);
+        let blades = side * side;
+        let (n, f) = (blades as f64, f64::from(params.flower_fraction));
+        let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
+        let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
+        Ok(size(blades, std::mem::size_of::<BladeStatic>())
+            .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
+            .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
+            .plus(GpuEstimate::textures(gpu::Pipelines::BYTES)))
+    },
 };
 
 /// The technique.
