@@ -1,8 +1,13 @@
 //! WGSL shared by every shader: the prelude (bind group 0, terrain and wind lookups, lighting,
-//! fog) and the background (sky and ground).
+//! fog) and the background (sky and ground); and [`pipeline`], the one description of a
+//! render pipeline every technique builds on.
 //!
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
+
+pub mod pipeline;
+
+pub use pipeline::{PipelineSpec, depth_less, depth_test, render_pipeline};
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,
 /// `terrain_covering`, `wind_at`, `shade`, `shade_leaf`, `sky_color`, `apply_fog`, hashes.

@@ -184,42 +184,32 @@ impl ShellGpu {
         let shell_pipeline_layout =
             ctx.scene_gpu
                 .pipeline_layout(device, "bakay shells", &[&shell_layout]);
-        let shells_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("bakay shells"),
-            layout: Some(&shell_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_shell"),
-                compilation_options: Default::default(),
-                buffers: &[Some(GroundVertex::LAYOUT)],
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
-                // A camera down in the grass sees shells from below.
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: target::DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
+        let buffers = [Some(GroundVertex::LAYOUT)];
+        let shells_pipeline = shaders::render_pipeline(
+            device,
+            &shaders::PipelineSpec {
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleList,
+                    // A camera down in the grass sees shells from below.
+                    cull_mode: None,
+                    ..Default::default()
+                },
                 // Shell 0 lies exactly on the core's ground (same vertices, same transform).
-                depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: ctx.sample_count,
-                ..Default::default()
+                depth: shaders::depth_test(
+                    target::DEPTH_FORMAT,
+                    wgpu::CompareFunction::LessEqual,
+                    true,
+                ),
+                ..shaders::PipelineSpec::new(
+                    "bakay shells",
+                    &shell_pipeline_layout,
+                    &module,
+                    ("vs_shell", "fs_shell"),
+                    &buffers,
+                    ctx.sample_count,
+                )
             },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_shell"),
-                compilation_options: Default::default(),
-                targets: &[Some(target::COLOR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         Ok(Self {
             bend,
             bend_group,

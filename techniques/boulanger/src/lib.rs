@@ -96,7 +96,6 @@ pub mod cells;
 pub mod lod;
 pub mod params;
 pub mod patch;
-pub mod pipeline;
 pub mod quadtree;
 pub mod slice;
 pub mod texture;
@@ -115,7 +114,7 @@ pub use params::{Params, Transparency};
 pub use patch::{Orientation, Patch, PatchBlade};
 pub use quadtree::{CellGrid, Quadtree, Selection, Walk};
 
-use pipeline::{PipelineSpec, depth_less, render_pipeline};
+use grassbench::shaders::{PipelineSpec, depth_less, render_pipeline};
 
 /// The blade, bake and slice shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/grass.wgsl");

@@ -16,8 +16,8 @@ use grassbench::{InitContext, Result, bytemuck, shaders, wgpu};
 
 use crate::CellUniform;
 use crate::patch::Orientation;
-use crate::pipeline::{PipelineSpec, render_pipeline};
 use crate::quadtree::CellGrid;
+use grassbench::shaders::{PipelineSpec, render_pipeline};
 
 /// The mip chain shader (without the prelude).
 pub const MIP_SHADER: &str = include_str!("../shaders/mip.wgsl");

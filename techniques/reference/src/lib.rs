@@ -46,7 +46,7 @@ use grassbench::technique::{TechniqueEntry, Variant};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
-    TechniqueInfo, TechniqueStats, bytemuck, shaders, target, wgpu,
+    TechniqueInfo, TechniqueStats, bytemuck, shaders, wgpu,
 };
 use serde::{Deserialize, Serialize};
 
@@ -257,40 +257,18 @@ impl Reference {
         let pipeline_layout = ctx
             .scene_gpu
             .pipeline_layout(device, "reference", &[&layout]);
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("reference blades"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(BladeInstance::LAYOUT)],
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleStrip,
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: target::DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: ctx.sample_count,
-                ..Default::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(target::COLOR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let buffers = [Some(BladeInstance::LAYOUT)];
+        let pipeline = shaders::render_pipeline(
+            device,
+            &shaders::PipelineSpec::new(
+                "reference blades",
+                &pipeline_layout,
+                &module,
+                ("vs_main", "fs_main"),
+                &buffers,
+                ctx.sample_count,
+            ),
+        );
         Ok(Self {
             blade_count: instances.len() as u32,
             gpu_bytes: bytes + std::mem::size_of::<ParamsUniform>() as u64,

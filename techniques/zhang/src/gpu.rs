@@ -2,7 +2,7 @@
 //! flower pipelines (group 1 = uniform + blade texture + petal texture array + sampler).
 
 use grassbench::wgpu::util::DeviceExt as _;
-use grassbench::{InitContext, bytemuck, shaders, target, wgpu};
+use grassbench::{InitContext, bytemuck, shaders, wgpu};
 
 use crate::prairie::PETAL_TEXTURES;
 use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
@@ -208,43 +208,26 @@ impl Pipelines {
         let module = shaders::module(device, "zhang", crate::SHADER);
         let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
         let pipeline = |label, vs, fs, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(vs),
-                    compilation_options: Default::default(),
-                    buffers,
+            let spec = shaders::PipelineSpec::new(
+                label,
+                &pipeline_layout,
+                &module,
+                (vs, fs),
+                buffers,
+                ctx.sample_count,
+            );
+            shaders::render_pipeline(
+                device,
+                &shaders::PipelineSpec {
+                    multisample: wgpu::MultisampleState {
+                        // With MSAA the texture's alpha also drives coverage (smoother
+                        // cut-outs); the alpha test still discards the clear part.
+                        alpha_to_coverage_enabled: ctx.sample_count > 1,
+                        ..spec.multisample
+                    },
+                    ..spec
                 },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleStrip,
-                    cull_mode: None,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: target::DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: ctx.sample_count,
-                    // With MSAA the texture's alpha also drives coverage (smoother cut-outs);
-                    // the alpha test still discards the clear part.
-                    alpha_to_coverage_enabled: ctx.sample_count > 1,
-                    ..Default::default()
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(fs),
-                    compilation_options: Default::default(),
-                    targets: &[Some(target::COLOR_FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            )
         };
         let blades = pipeline(
             "zhang blades",
