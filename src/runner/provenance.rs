@@ -10,7 +10,8 @@ pub const WGPU_VERSION: &str = "30.0.1";
 pub struct Provenance {
     /// The command line that produced the results.
     pub command: String,
-    /// `git describe`-like revision of the working tree (`+dirty` when modified), or `unknown`.
+    /// `git describe`-like revision of the working tree (`+dirty` when sources outside `results/`
+    /// are modified), or `unknown`.
     pub revision: String,
     /// `release` or `debug`.
     pub build_profile: String,
@@ -69,8 +70,16 @@ fn git_revision() -> String {
     };
     match run(&["rev-parse", "--short=12", "HEAD"]) {
         Some(rev) => {
-            let dirty = run(&["status", "--porcelain", "--untracked-files=no"])
-                .is_some_and(|s| !s.is_empty());
+            // Outputs under results/ are not sources: rewriting them does not make a build dirty.
+            let dirty = run(&[
+                "status",
+                "--porcelain",
+                "--untracked-files=no",
+                "--",
+                ".",
+                ":(exclude)results",
+            ])
+            .is_some_and(|s| !s.is_empty());
             if dirty { format!("{rev}+dirty") } else { rev }
         }
         None => "unknown".to_owned(),
