@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 cargo build --release -p grassbench-cli
 uptime > "results/bakay_table2/load_before.txt"
-bin=target/release/grassbench
+bin="${CARGO_TARGET_DIR:-target}/release/grassbench"
 out=results/bakay_table2
 mkdir -p -m 700 "${XDG_RUNTIME_DIR:=/tmp/grassbench-runtime-$(id -u)}"
 export XDG_RUNTIME_DIR
@@ -34,6 +34,10 @@ for size in 640x480 1024x768; do
     done
     run "reference_${size}" "$size" -t reference
 done
+
+# Issue 3's target: 16 shells against the reference on the meadow at 1280x720.
+run "target_shells16_1280x720" 1280x720 -t bakay -p shells=16
+run "target_reference_1280x720" 1280x720 -t reference
 
 # The table beside the paper's (README.md quotes it).
 uptime > "$out/load_after.txt"
