@@ -52,8 +52,25 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
         bottom[1] > bottom[0] && bottom[1] > bottom[2],
         "foreground is not green: {bottom:?}"
     );
-    let stats = zhang.stats();
-    assert!(stats.blades > 100_000 && stats.draw_calls == 2, "{stats:?}");
+    // Grid culling (Sec. 5.3) draws part of the prairie; without it every blade, in one draw
+    // for blades and one for flowers, and the same pixels where the culled grids were unseen.
+    let culled = zhang.stats();
+    let mut off = toml::Table::new();
+    off.insert("culling".into(), false.into());
+    let mut all = harness.create(entry, &off)?;
+    let unculled = render_with(&mut harness, all.as_mut(), 30)?;
+    let every = all.stats();
+    eprintln!("measured: culling {culled:?}, without {every:?}");
+    assert!(every.blades > 100_000 && every.draw_calls == 2, "{every:?}");
+    assert!(
+        culled.blades > 0 && culled.blades < every.blades && culled.draw_calls >= 2,
+        "{culled:?} against {every:?}"
+    );
+    assert_eq!(
+        flip(&unculled, &image)?.mean,
+        0.0,
+        "culling changed the picture"
+    );
     Ok(())
 }
 

@@ -118,11 +118,12 @@ const INFO: TechniqueInfo = TechniqueInfo {
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = TechniqueEntry {
     info: INFO,
-    // Shells are drawn everywhere alike; the only level of detail is the texture's mip chain
-    // (Sec. 5), so the finest representation samples the base level at every distance.
+    // Shells are drawn everywhere alike; the approximations are the number of shells (the
+    // volume's vertical sampling, Sec. 3) and the texture's mip chain (Sec. 5), so the finest
+    // representation is many shells sampling the base level at every distance.
     variants: &[grassbench::technique::Variant {
         name: grassbench::technique::FINEST,
-        params: "mipmaps = \"none\"",
+        params: "shells = 64\nmipmaps = \"none\"",
     }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Bakay::new(ctx, overrides)?)),

@@ -35,6 +35,8 @@ pub struct Params {
     pub translucency: f32,
     /// Alpha below which texels are discarded (alpha test).
     pub alpha_cutoff: f32,
+    /// View-frustum culling of grass grids (Sec. 5.3); off draws every grid every frame.
+    pub culling: bool,
 }
 
 impl Default for Params {
@@ -52,6 +54,7 @@ impl Default for Params {
             petal_size: 0.07,
             translucency: 0.35,
             alpha_cutoff: 0.5,
+            culling: true,
         }
     }
 }

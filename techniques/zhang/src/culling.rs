@@ -1,0 +1,203 @@
+//! View-frustum culling of grass grids (Sec. 5.3): "only render the visible grass grids".
+//!
+//! [`prairie::plant`](crate::prairie::plant) lays the blades out grid by grid, so each grass
+//! grid owns a contiguous range of blades (and of flowers, which follow their blades' order).
+//! Each grid gets a conservative box: its roots' extent widened by the tallest blade (a blade
+//! bent flat by the wind reaches at most its height sideways) and raised by it. Every frame the
+//! grids whose box meets the view frustum are kept and their ranges merged where they touch,
+//! so a row of visible grids is one draw. The thesis then culls single plants inside the near
+//! grids as well; here the near grids are drawn whole (their blades are instanced, so a
+//! per-blade test would cost more CPU than the GPU time it saves).
+
+use std::ops::Range;
+
+use grassbench::camera::{Aabb, Frustum};
+use grassbench::glam::Vec3;
+
+use crate::prairie::Planted;
+
+/// The grids' ranges and bounds.
+#[derive(Clone, Debug, Default)]
+pub struct GridIndex {
+    /// Blade range of each non-empty grid.
+    blades: Vec<Range<u32>>,
+    /// Flower range of each non-empty grid (same order).
+    flowers: Vec<Range<u32>>,
+    /// Conservative box of each non-empty grid (same order).
+    bounds: Vec<Aabb>,
+}
+
+/// What a frame draws.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Visible {
+    /// Blade instance ranges, merged.
+    pub blades: Vec<Range<u32>>,
+    /// Flower instance ranges, merged.
+    pub flowers: Vec<Range<u32>>,
+    /// Grids kept.
+    pub grids: usize,
+    /// Grids culled.
+    pub culled: usize,
+}
+
+impl Visible {
+    /// Blades drawn.
+    pub fn blade_count(&self) -> u64 {
+        self.blades.iter().map(|r| u64::from(r.end - r.start)).sum()
+    }
+
+    /// Flowers drawn.
+    pub fn flower_count(&self) -> u64 {
+        self.flowers
+            .iter()
+            .map(|r| u64::from(r.end - r.start))
+            .sum()
+    }
+}
+
+impl GridIndex {
+    /// Index of `planted`, which must be grid by grid (as `plant` returns it).
+    pub fn new(planted: &[Planted]) -> Self {
+        let mut index = Self::default();
+        let mut flower = 0u32;
+        let mut start = 0usize;
+        while start < planted.len() {
+            let grid = planted[start].grid;
+            let len = planted[start..]
+                .iter()
+                .take_while(|p| p.grid == grid)
+                .count();
+            let blades = &planted[start..start + len];
+            let flowers = blades.iter().filter(|p| p.flower.is_some()).count() as u32;
+            let tallest = blades.iter().map(|p| p.height).fold(0.0f32, f32::max);
+            let (lo, hi) = blades.iter().fold(
+                (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+                |(lo, hi), p| (lo.min(p.root), hi.max(p.root)),
+            );
+            let reach = Vec3::new(tallest, 0.0, tallest);
+            index.bounds.push(Aabb {
+                min: lo - reach,
+                max: hi + reach + Vec3::Y * tallest,
+            });
+            index.blades.push(start as u32..(start + len) as u32);
+            index.flowers.push(flower..flower + flowers);
+            flower += flowers;
+            start += len;
+        }
+        index
+    }
+
+    /// Non-empty grids.
+    pub fn len(&self) -> usize {
+        self.bounds.len()
+    }
+
+    /// Whether no grid holds a blade.
+    pub fn is_empty(&self) -> bool {
+        self.bounds.is_empty()
+    }
+
+    /// Every grid, culled or not (culling off).
+    pub fn all(&self) -> Visible {
+        self.select(|_| true)
+    }
+
+    /// The grids whose box meets `frustum`.
+    pub fn visible(&self, frustum: &Frustum) -> Visible {
+        self.select(|b| frustum.intersects_aabb(b))
+    }
+
+    fn select(&self, keep: impl Fn(&Aabb) -> bool) -> Visible {
+        let mut v = Visible::default();
+        let push = |ranges: &mut Vec<Range<u32>>, r: &Range<u32>| {
+            if r.is_empty() {
+                return;
+            }
+            match ranges.last_mut() {
+                Some(last) if last.end == r.start => last.end = r.end,
+                _ => ranges.push(r.clone()),
+            }
+        };
+        for (k, b) in self.bounds.iter().enumerate() {
+            if keep(b) {
+                push(&mut v.blades, &self.blades[k]);
+                push(&mut v.flowers, &self.flowers[k]);
+                v.grids += 1;
+            } else {
+                v.culled += 1;
+            }
+        }
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Params;
+    use crate::prairie::plant;
+    use grassbench::camera::Camera;
+    use grassbench::glam::Vec2;
+    use grassbench::grass::GrassConfig;
+    use grassbench::terrain::Terrain;
+    use proptest::prelude::*;
+
+    fn field() -> Vec<Planted> {
+        let terrain = Terrain::flat(Vec2::new(64.0, 64.0));
+        let params = Params {
+            grids: 8,
+            blades_per_side: 6,
+            flower_fraction: 0.2,
+            ..Params::default()
+        };
+        plant(&params, &GrassConfig::default(), &terrain, 3).1
+    }
+
+    #[test]
+    fn grids_are_contiguous_and_cover_every_blade_once() {
+        let planted = field();
+        let index = GridIndex::new(&planted);
+        assert_eq!(index.len(), 64);
+        let all = index.all();
+        assert_eq!(all.blades, vec![0..planted.len() as u32]);
+        let flowers = planted.iter().filter(|p| p.flower.is_some()).count() as u32;
+        assert_eq!(all.flowers, vec![0..flowers]);
+        for (k, r) in index.blades.iter().enumerate() {
+            let grid = planted[r.start as usize].grid;
+            assert!(
+                planted[r.start as usize..r.end as usize]
+                    .iter()
+                    .all(|p| p.grid == grid)
+            );
+            assert!(k == 0 || index.blades[k - 1].end == r.start);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Culling never drops a grid with a blade in view: every blade whose root or standing
+        /// tip is inside the frustum lies in a kept range.
+        #[test]
+        fn culling_never_drops_a_visible_blade(
+            x in -10.0f32..74.0, z in -10.0f32..74.0, y in 0.5f32..30.0,
+            yaw in 0.0f32..std::f32::consts::TAU, pitch in -1.2f32..0.3,
+        ) {
+            let planted = field();
+            let index = GridIndex::new(&planted);
+            let eye = Vec3::new(x, y, z);
+            let forward = Vec3::new(yaw.cos() * pitch.cos(), pitch.sin(), yaw.sin() * pitch.cos());
+            let camera = Camera::look_at(eye, eye + forward, 1.0, 0.1, 500.0, 16.0 / 9.0);
+            let frustum = camera.frustum();
+            let visible = index.visible(&frustum);
+            prop_assert_eq!(visible.grids + visible.culled, index.len());
+            for (k, p) in planted.iter().enumerate() {
+                let tip = p.root + Vec3::Y * p.height;
+                if frustum.contains_point(p.root) || frustum.contains_point(tip) {
+                    let k = k as u32;
+                    prop_assert!(visible.blades.iter().any(|r| r.contains(&k)),
+                        "blade {} of grid {} is in view but culled", k, p.grid);
+                }
+            }
+        }
+    }
+}
