@@ -29,10 +29,12 @@ use crate::terrain::Terrain;
 
 /// A wind model: velocity in m/s at a position and time.
 ///
+/// Fields are `Sync`, so techniques may sample one from several threads at once.
+///
 /// Fields with state (fluid solvers) advance in [`WindField::advance`]; procedural fields are
 /// pure functions of `(position, time)` and leave `advance` empty. Either way, stepping a
 /// fresh field through frames `0..=n` gives the same field at frame `n`: wind is reproducible.
-pub trait WindField: Send {
+pub trait WindField: Send + Sync {
     /// Short name for result files and the UI.
     fn name(&self) -> &'static str;
 

@@ -71,7 +71,7 @@
 //!
 //! ## Cost model
 //! CPU per frame: `B` blades x 3 moving control points (wind sample + Verlet + constraint)
-//! plus one `atan2` for θ, and `F` flowers x 1 point; linear in `B`, no allocation. Upload
+//! plus one `atan2` for θ, and `F` flowers x 1 point; linear in `B`, spread over the cores. Upload
 //! `48·B + 32·F` bytes. GPU: `B x 2(n−1)` triangles (8 at the default
 //! `n = 5`) + `2F` for the visible grids' `B` and `F`, one draw per run of visible grids.
 //! Memory: `80·B + 32·F` bytes of instances, 91 KB of
