@@ -261,7 +261,11 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     let frames = std::fs::read_to_string(out.join("football_field/frames.csv")).unwrap();
     // A header, then the 2 measured frames of the one technique run.
     assert_eq!(frames.lines().count(), 1 + 2, "{frames}");
-    assert!(frames.lines().next().unwrap().contains("gpu_wall_ms"));
+    let header = frames.lines().next().unwrap();
+    assert!(
+        header.contains("gpu_wall_ms") && header.ends_with(",counters"),
+        "{header}"
+    );
     let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
     assert!(
         meta.contains("revision") && meta.contains("[adapter]"),

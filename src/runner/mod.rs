@@ -305,6 +305,7 @@ impl<'g> Harness<'g> {
             triangles: stats.triangles,
             draw_calls: stats.draw_calls.max(draw_calls),
             gpu_bytes: stats.gpu_bytes,
+            counters: record::format_counters(&technique.counters()),
         };
         Ok(FrameOutput { record, image })
     }

@@ -52,6 +52,19 @@ pub struct FrameRecord {
     pub draw_calls: u64,
     /// GPU memory held by the technique, bytes.
     pub gpu_bytes: u64,
+    /// The technique's own counts ([`GrassTechnique::counters`]), `name=value;...`.
+    ///
+    /// [`GrassTechnique::counters`]: crate::GrassTechnique::counters
+    pub counters: String,
+}
+
+/// `name=value;...` of a technique's counters.
+pub fn format_counters(counters: &[(&'static str, f64)]) -> String {
+    counters
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect::<Vec<_>>()
+        .join(";")
 }
 
 /// A run summarised (a row of `runs.csv`).

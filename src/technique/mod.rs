@@ -107,6 +107,12 @@ pub trait GrassTechnique {
     fn lod_blades(&self) -> Option<LodBlades> {
         None
     }
+
+    /// Technique-specific counts of the last frame (grids culled, impostors by size, sort
+    /// time, ...), written to `frames.csv`'s `counters` column as `name=value;...`.
+    fn counters(&self) -> Vec<(&'static str, f64)> {
+        Vec::new()
+    }
 }
 
 /// A named set of parameter overrides a technique offers to the comparison suite.

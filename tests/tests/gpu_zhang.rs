@@ -55,11 +55,27 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
     // Grid culling (Sec. 5.3) draws part of the prairie; without it every blade, in one draw
     // for blades and one for flowers, and the same pixels where the culled grids were unseen.
     let culled = zhang.stats();
+    let grids = |t: &dyn grassbench::GrassTechnique| {
+        let c = t.counters();
+        let count = |name: &str| c.iter().find(|(k, _)| *k == name).map_or(-1.0, |(_, v)| *v);
+        (count("grids_drawn"), count("grids_culled"))
+    };
+    let (drawn, culled_grids) = grids(zhang.as_ref());
     let mut off = toml::Table::new();
     off.insert("culling".into(), false.into());
     let mut all = harness.create(entry, &off)?;
     let unculled = render_with(&mut harness, all.as_mut(), 30)?;
     let every = all.stats();
+    // 256 grids, less those the covering map leaves without a blade.
+    let (all_drawn, none_culled) = grids(all.as_ref());
+    assert!(
+        drawn > 0.0
+            && culled_grids > 0.0
+            && none_culled == 0.0
+            && drawn + culled_grids == all_drawn
+            && all_drawn <= 256.0,
+        "with culling {drawn} drawn, {culled_grids} culled; without, {all_drawn} and {none_culled}"
+    );
     eprintln!("measured: culling {culled:?}, without {every:?}");
     assert!(every.blades > 100_000 && every.draw_calls == 2, "{every:?}");
     assert!(

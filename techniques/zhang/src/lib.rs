@@ -332,6 +332,14 @@ impl GrassTechnique for Zhang {
         encoder.count_draws((v.blades.len() + v.flowers.len()) as u64);
     }
 
+    /// Grass grids drawn and culled this frame (Sec. 5.3).
+    fn counters(&self) -> Vec<(&'static str, f64)> {
+        vec![
+            ("grids_drawn", self.visible.grids as f64),
+            ("grids_culled", self.visible.culled as f64),
+        ]
+    }
+
     /// Blades and flowers of the grids drawn this frame (all of them with `culling = false`).
     fn stats(&self) -> TechniqueStats {
         let blades = self.visible.blade_count();
