@@ -3,7 +3,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use grassbench::glam::{Vec2, Vec3};
-use grassbench::wind::WindField;
 use grassbench_tests::repo_root;
 
 #[test]
