@@ -3,11 +3,12 @@
 use serde::{Deserialize, Serialize};
 
 use super::fluid::FluidConfig;
+use super::primitives::PrimitivesConfig;
 use crate::params::check;
 use crate::{Error, Result};
 
-/// `[wind]` in a scene file: `model = "breeze" | "point_source" | "fluid" | "calm"` plus the
-/// model's keys.
+/// `[wind]` in a scene file: `model = "breeze" | "point_source" | "fluid" | "primitives" |
+/// "calm"` plus the model's keys.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum WindConfig {
@@ -19,6 +20,8 @@ pub enum WindConfig {
     PointSource(PointSourceConfig),
     /// Stam's stable fluids (Zhang Ch. 2), tiled or stretched over the terrain.
     Fluid(FluidConfig),
+    /// Perbet & Cani's wind primitives (Sec. 3.3), with `[[wind.primitives]]`.
+    Primitives(PrimitivesConfig),
 }
 
 impl Default for WindConfig {
@@ -93,7 +96,8 @@ impl Default for PointSourceConfig {
 
 impl WindConfig {
     /// The `model` names, in the order the UI lists them.
-    pub const MODELS: &'static [&'static str] = &["calm", "breeze", "point_source", "fluid"];
+    pub const MODELS: &'static [&'static str] =
+        &["calm", "breeze", "point_source", "fluid", "primitives"];
 
     /// The `model` name of this configuration.
     pub fn model(&self) -> &'static str {
@@ -102,6 +106,7 @@ impl WindConfig {
             Self::Breeze(_) => "breeze",
             Self::PointSource(_) => "point_source",
             Self::Fluid(_) => "fluid",
+            Self::Primitives(_) => "primitives",
         }
     }
 
@@ -112,6 +117,7 @@ impl WindConfig {
             "breeze" => Some(Self::Breeze(BreezeConfig::default())),
             "point_source" => Some(Self::PointSource(PointSourceConfig::default())),
             "fluid" => Some(Self::Fluid(FluidConfig::default())),
+            "primitives" => Some(Self::Primitives(PrimitivesConfig::default())),
             _ => None,
         }
     }
@@ -148,6 +154,7 @@ impl WindConfig {
                 check("wind.bias", c.bias, -2.0..=2.0)
             }
             Self::Fluid(c) => c.validate(),
+            Self::Primitives(c) => c.validate(),
         }
     }
 }

@@ -8,12 +8,21 @@
 //! Models here: [`Breeze`] (a steady wind with travelling gusts), [`PointSource`] (Bakay et al.
 //! Sec. 3: wind vectors towards a source, intensity waves travelling outwards in animation
 //! steps), [`FluidWind`] (Stam's stable fluids, Zhang Ch. 2 and Sec. 5.1; stateful, stepped by
-//! [`WindField::advance`]) and calm air. Perbet's primitives join the same trait.
+//! [`WindField::advance`]), [`PrimitiveSet`] (Perbet & Cani Sec. 3: wind primitives — breeze,
+//! gust, whirlwind, blast — given as bending directions and posture indices, mixed by priority
+//! or summed, and read as a velocity `direction × index × wind_speed`) and calm air.
+//!
+//! [`posture`] pre-computes, per kind of blade, Perbet's postures and the posture-index
+//! response to a wind that starts and stops (their Fig. 6 and 8) with a small simulation of one
+//! blade; the gust primitive plays that response, and a Perbet receiver turns indices into
+//! blade shapes with it.
 
 mod breeze;
 mod config;
 pub mod fluid;
 mod point_source;
+pub mod posture;
+pub mod primitives;
 mod texture;
 
 use glam::Vec3;
@@ -22,6 +31,8 @@ pub use breeze::Breeze;
 pub use config::{BreezeConfig, PointSourceConfig, WindConfig};
 pub use fluid::{FluidConfig, FluidMapping, FluidWind};
 pub use point_source::PointSource;
+pub use posture::{BladeConfig, Postures, ResponseCurve};
+pub use primitives::{Mixing, PrimitiveConfig, PrimitiveSet, PrimitivesConfig, WindSample};
 pub use texture::WindTexture;
 
 use crate::Result;
@@ -84,5 +95,6 @@ pub fn build(config: &WindConfig, seed: u64, terrain: &Terrain) -> Result<Box<dy
         WindConfig::Breeze(c) => Box::new(Breeze::new(c.clone(), seed)),
         WindConfig::PointSource(c) => Box::new(PointSource::new(c.clone())),
         WindConfig::Fluid(c) => Box::new(FluidWind::new(c.clone(), seed, terrain)?),
+        WindConfig::Primitives(c) => Box::new(PrimitiveSet::new(c, seed)?),
     })
 }

@@ -2,7 +2,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use grassbench::glam::Vec2;
+use grassbench::glam::{Vec2, Vec3};
 use grassbench_tests::repo_root;
 
 #[test]
@@ -23,6 +23,30 @@ fn built_in_scenes_load_and_cameras_stay_above_ground() {
         let blades = scene.blades.all_blades(&scene.terrain).len();
         assert!(blades > 10_000, "{name}: only {blades} blades");
     }
+}
+
+#[test]
+fn primitives_scene_loads_and_drives_a_finite_wind() {
+    let scene =
+        grassbench::Scene::load(&repo_root().join("tests/scenes/meadow_primitives.toml")).unwrap();
+    let wind = scene.wind().unwrap();
+    assert_eq!(wind.name(), "primitives");
+    assert!(wind.is_stateless());
+    let mut moving = 0;
+    for k in 0..400 {
+        let p = Vec3::new(
+            (k % 20) as f32 * 4.0 - 40.0,
+            1.0,
+            (k / 20) as f32 * 4.0 - 40.0,
+        );
+        let v = wind.velocity(p, k as f32 * 0.1);
+        assert!(
+            v.is_finite() && v.y == 0.0 && v.length() <= 5.0 + 1e-3,
+            "{v}"
+        );
+        moving += usize::from(v.length() > 0.1);
+    }
+    assert!(moving > 100, "{moving} of 400 points in the wind");
 }
 
 #[test]

@@ -1,0 +1,113 @@
+//! The blast of air primitive (Perbet & Cani 2001, Sec. 3.3, Fig. 12): "a repelling blow
+//! around a flying object ... It translates and rotates onto the prairie according to the
+//! motion of an object under the user's control. Here, the main bending directions are radial
+//! to the mask contour."
+//!
+//! The mask here is a disc (rotation changes nothing), and as the shared scenes have no flying
+//! object yet, its path comes from the configuration.
+
+use glam::Vec2;
+
+use super::gust::smoothstep;
+use super::jitter::Jitter;
+use super::{BlastParams, WindSample};
+
+/// A blast: at distance `r` from the object's ground position, bending away from it with index
+/// `strength · (1 − r / radius)`.
+#[derive(Clone, Debug)]
+pub(super) struct Blast {
+    params: BlastParams,
+    jitter: Jitter,
+}
+
+impl Blast {
+    pub(super) fn new(params: BlastParams, seed: u64) -> Self {
+        Self {
+            jitter: Jitter::new(params.jitter, seed ^ 0x4A49),
+            params,
+        }
+    }
+
+    /// The object's ground position at `time`: piecewise linear through the keyframes (held
+    /// before the first and after the last), or `start + velocity · time` without any.
+    pub(super) fn centre(&self, time: f32) -> Vec2 {
+        let p = &self.params;
+        let key = |k: &[f32; 3]| Vec2::new(k[1], k[2]);
+        let (Some(first), Some(last)) = (p.keyframes.first(), p.keyframes.last()) else {
+            return Vec2::from(p.start) + Vec2::from(p.velocity) * time;
+        };
+        if time <= first[0] {
+            return key(first);
+        }
+        p.keyframes
+            .windows(2)
+            .find(|w| time <= w[1][0])
+            .map_or(key(last), |w| {
+                let f = (time - w[0][0]) / (w[1][0] - w[0][0]);
+                key(&w[0]).lerp(key(&w[1]), f)
+            })
+    }
+
+    pub(super) fn mask(&self, xz: Vec2, time: f32) -> f32 {
+        let p = &self.params;
+        let r = xz.distance(self.centre(time));
+        if r > p.radius {
+            0.0
+        } else if p.feather <= 0.0 {
+            1.0
+        } else {
+            1.0 - smoothstep(p.radius - p.feather, p.radius, r)
+        }
+    }
+
+    pub(super) fn action(&self, xz: Vec2, time: f32) -> WindSample {
+        let p = &self.params;
+        let offset = xz - self.centre(time);
+        let prescribed = WindSample {
+            direction: offset.try_normalize().unwrap_or(Vec2::X),
+            posture: p.strength * (1.0 - offset.length() / p.radius).max(0.0),
+        };
+        self.jitter.apply(prescribed, xz, time)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::JitterParams;
+    use super::*;
+
+    #[test]
+    fn radial_from_a_moving_centre() {
+        let b = Blast::new(
+            BlastParams {
+                start: [1.0, 2.0],
+                velocity: [3.0, 0.0],
+                jitter: JitterParams::NONE,
+                ..Default::default()
+            },
+            1,
+        );
+        let c = b.centre(2.0);
+        assert_eq!(c, Vec2::new(7.0, 2.0));
+        let s = b.action(c + Vec2::new(0.0, -2.0), 2.0);
+        assert!(s.direction.dot(-Vec2::Y) > 0.9999);
+        assert!(s.posture > b.action(c + Vec2::new(0.0, -4.0), 2.0).posture);
+        assert_eq!(b.mask(c + Vec2::new(5.5, 0.0), 2.0), 0.0);
+        assert_eq!(b.mask(c + Vec2::new(1.0, 0.0), 2.0), 1.0);
+    }
+
+    #[test]
+    fn keyframes_are_followed_and_held() {
+        let b = Blast::new(
+            BlastParams {
+                keyframes: vec![[1.0, 0.0, 0.0], [3.0, 10.0, 0.0], [4.0, 10.0, 5.0]],
+                ..Default::default()
+            },
+            1,
+        );
+        assert_eq!(b.centre(0.0), Vec2::ZERO);
+        assert_eq!(b.centre(2.0), Vec2::new(5.0, 0.0));
+        assert_eq!(b.centre(3.5), Vec2::new(10.0, 2.5));
+        assert_eq!(b.centre(9.0), Vec2::new(10.0, 5.0));
+    }
+}
