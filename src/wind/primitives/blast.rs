@@ -8,7 +8,6 @@
 
 use glam::Vec2;
 
-use super::gust::smoothstep;
 use super::jitter::Jitter;
 use super::{BlastParams, WindSample};
 
@@ -50,14 +49,7 @@ impl Blast {
 
     pub(super) fn mask(&self, xz: Vec2, time: f32) -> f32 {
         let p = &self.params;
-        let r = xz.distance(self.centre(time));
-        if r > p.radius {
-            0.0
-        } else if p.feather <= 0.0 {
-            1.0
-        } else {
-            1.0 - smoothstep(p.radius - p.feather, p.radius, r)
-        }
+        super::disc_mask(self.centre(time), p.radius, p.feather, xz)
     }
 
     pub(super) fn action(&self, xz: Vec2, time: f32) -> WindSample {

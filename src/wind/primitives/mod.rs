@@ -84,3 +84,16 @@ impl WindSample {
         self.direction * self.posture
     }
 }
+
+/// The mask of a disc of `radius` around `centre` (whirlwinds, blasts): 1 inside, fading to 0
+/// over the outer `feather` metres (a hard edge when `feather` is 0).
+fn disc_mask(centre: Vec2, radius: f32, feather: f32, xz: Vec2) -> f32 {
+    let r = xz.distance(centre);
+    if r > radius {
+        0.0
+    } else if feather <= 0.0 {
+        1.0
+    } else {
+        1.0 - gust::smoothstep(radius - feather, radius, r)
+    }
+}
