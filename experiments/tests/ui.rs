@@ -60,6 +60,8 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
             "320x180",
         ])
         .args(["--frames", "2", "--screenshot", shot.to_str().unwrap()])
+        // As a click with the spawn tool on the middle of pane 1 would (Perbet Sec. 3.3).
+        .args(["--spawn", "whirlwind"])
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -71,6 +73,19 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
         toml::from_str(&std::fs::read_to_string(Layout::path_for(&shot)).unwrap()).unwrap();
     assert_eq!(layout.rects.len(), 4);
     assert_eq!(layout.frame, 2);
+    // The spawned whirlwind joined the wind, which switched to Perbet's primitives.
+    let wind = &layout.wind;
+    assert_eq!(
+        wind.get("model").and_then(|v| v.as_str()),
+        Some("primitives"),
+        "{wind:?}"
+    );
+    let kinds: Vec<&str> = wind
+        .get("primitives")
+        .and_then(|v| v.as_array())
+        .map(|a| a.iter().filter_map(|p| p.get("kind")?.as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(kinds.last(), Some(&"whirlwind"), "{wind:?}");
     // The pane images the UI displayed, as rendered (the window shows them rescaled).
     let panes: Vec<image::RgbaImage> = (1..=4)
         .map(|k| {

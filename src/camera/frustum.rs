@@ -57,6 +57,29 @@ impl Frustum {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn click_rays_go_through_the_picture() {
+        let cam = Camera::look_at(
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::new(4.0, 1.0, -5.0),
+            1.0,
+            0.1,
+            100.0,
+            1.5,
+        );
+        assert!((cam.ray(glam::Vec2::ZERO) - cam.forward).length() < 1e-4);
+        // A ray through a corner of the picture projects back onto that corner.
+        for ndc in [
+            glam::Vec2::new(1.0, 1.0),
+            glam::Vec2::new(-1.0, -0.5),
+            glam::Vec2::new(0.3, -1.0),
+        ] {
+            let p = cam.eye + cam.ray(ndc) * 10.0;
+            let clip = cam.view_projection().project_point3(p);
+            assert!((clip.truncate() - ndc).length() < 1e-3, "{ndc} -> {clip}");
+        }
+    }
     use crate::camera::Camera;
 
     fn camera() -> Camera {

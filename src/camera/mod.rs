@@ -59,6 +59,14 @@ impl Camera {
         self.projection() * self.view()
     }
 
+    /// Unit direction of the ray from the eye through normalised device coordinates `ndc`
+    /// (x right, y up, both in `[-1, 1]`): what a click on the picture points at.
+    pub fn ray(&self, ndc: glam::Vec2) -> Vec3 {
+        let inverse = self.view_projection().inverse();
+        let far = inverse.project_point3(Vec3::new(ndc.x, ndc.y, 1.0));
+        (far - self.eye).normalize_or(self.forward)
+    }
+
     /// The six planes of the view volume.
     pub fn frustum(&self) -> Frustum {
         Frustum::from_matrix(self.view_projection())

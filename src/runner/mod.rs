@@ -139,6 +139,11 @@ impl<'g> Harness<'g> {
         Ok(())
     }
 
+    /// The camera of `frame` (the scene's path, or [`Self::camera_override`]).
+    pub fn camera(&self, frame: u64) -> crate::camera::Camera {
+        self.inputs(frame).camera
+    }
+
     fn inputs(&self, frame: u64) -> FrameInputs<'_> {
         let mut camera = self.scene.camera_at(frame, self.target.size);
         if let Some((eye, forward)) = self.camera_override {

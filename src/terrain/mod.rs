@@ -161,6 +161,36 @@ impl Terrain {
         Vec3::new(xz.x, self.height_at(xz), xz.y)
     }
 
+    /// Where the ray from `origin` along `direction` first meets the ground on the terrain,
+    /// within `max_distance` metres: marched at a quarter of the heightmap's sample spacing,
+    /// then refined by bisection. `None` when it misses (or starts under the ground).
+    pub fn raycast(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<Vec3> {
+        let dir = direction.try_normalize()?;
+        let above = |t: f32| {
+            let p = origin + dir * t;
+            p.y - self.height_at(Vec2::new(p.x, p.z))
+        };
+        let step = (self.sample_spacing().min_element() * 0.25).max(1e-3);
+        if !(max_distance.is_finite() && above(0.0) > 0.0) {
+            return None;
+        }
+        let mut t0 = 0.0;
+        while t0 < max_distance {
+            let t1 = (t0 + step).min(max_distance);
+            if above(t1) <= 0.0 {
+                let (mut lo, mut hi) = (t0, t1);
+                for _ in 0..24 {
+                    let mid = 0.5 * (lo + hi);
+                    if above(mid) > 0.0 { lo = mid } else { hi = mid }
+                }
+                let p = origin + dir * hi;
+                return self.contains(Vec2::new(p.x, p.z)).then_some(p);
+            }
+            t0 = t1;
+        }
+        None
+    }
+
     /// Grass density in `[0, 1]` at (x, z), bilinear.
     pub fn density_at(&self, xz: Vec2) -> f32 {
         let uv = self.uv(xz);
@@ -414,6 +444,53 @@ fn gap_threshold(fraction: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rays_hit_the_ground_where_it_is() {
+        let terrain = hills();
+        // Straight down onto every kind of slope: the hit is the ground under the origin.
+        // The terrain is centred on the origin: 60 x 40 m spans x in [-30, 30], z in [-20, 20].
+        for xz in [
+            Vec2::new(-25.0, -13.0),
+            Vec2::new(1.5, 2.25),
+            Vec2::new(25.0, 18.0),
+        ] {
+            let origin = Vec3::new(xz.x, 50.0, xz.y);
+            let hit = terrain.raycast(origin, Vec3::NEG_Y, 100.0).unwrap();
+            assert!(
+                (hit - terrain.point_at(xz)).length() < 1e-3,
+                "{hit} vs {xz}"
+            );
+        }
+        // A slanted ray ends on the ground, and nothing above the ground lies before it.
+        let origin = Vec3::new(-20.0, 8.0, -10.0);
+        let dir = Vec3::new(1.0, -0.2, 0.6).normalize();
+        let hit = terrain.raycast(origin, dir, 200.0).unwrap();
+        assert!((hit.y - terrain.height_at(Vec2::new(hit.x, hit.z))).abs() < 1e-3);
+        let d = (hit - origin).length();
+        for k in 0..100 {
+            let p = origin + dir * (d * k as f32 / 100.0);
+            assert!(
+                p.y >= terrain.height_at(Vec2::new(p.x, p.z)) - 1e-3,
+                "under ground at {p}"
+            );
+        }
+        // Misses: looking up, too short, starting underground, leaving the terrain.
+        assert_eq!(terrain.raycast(origin, Vec3::Y, 100.0), None);
+        assert_eq!(terrain.raycast(origin, dir, 0.5), None);
+        assert_eq!(
+            terrain.raycast(Vec3::new(5.0, -10.0, 5.0), Vec3::NEG_Y, 100.0),
+            None
+        );
+        assert_eq!(
+            terrain.raycast(origin, Vec3::new(-1.0, -0.01, 0.0), 100.0),
+            None
+        );
+        assert_eq!(
+            terrain.raycast(Vec3::new(40.0, 10.0, 0.0), Vec3::NEG_Y, 100.0),
+            None
+        );
+    }
 
     fn hills() -> Terrain {
         let config = TerrainConfig {

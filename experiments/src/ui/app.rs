@@ -4,6 +4,7 @@ use std::sync::{Arc, Mutex};
 
 use anyhow::Context as _;
 use eframe::egui;
+use grassbench::glam::Vec2;
 use grassbench::target::{Size, save_png};
 use grassbench::wind::WindConfig;
 use grassbench::{GpuContext, Scene};
@@ -14,6 +15,7 @@ use super::diff::{DiffMode, DiffView};
 use super::editor::edit_table;
 use super::pane::Pane;
 use super::script::{Layout, Script};
+use super::spawn::{self, SpawnKind};
 use crate::{registry, scenes};
 
 /// Pane sizes offered (16:9).
@@ -36,6 +38,10 @@ pub struct App {
     camera: CameraMode,
     wind: toml::Table,
     wind_error: Option<String>,
+    /// What a click on a pane adds to the wind.
+    spawn: SpawnKind,
+    /// The scripted `--spawn` is still to be placed.
+    spawn_pending: bool,
     diff: DiffView,
     auto_preview: bool,
     script: Option<Script>,
@@ -80,6 +86,8 @@ impl App {
             camera: CameraMode::Path,
             wind,
             wind_error: None,
+            spawn: SpawnKind::Off,
+            spawn_pending: args.spawn.is_some(),
             diff: DiffView::default(),
             auto_preview: script.is_none(),
             script,
@@ -304,6 +312,12 @@ impl App {
             if let Some(e) = &self.wind_error {
                 ui.colored_label(egui::Color32::LIGHT_RED, e);
             }
+            ui.label("click a pane to add (Perbet's primitives):");
+            ui.horizontal(|ui| {
+                for kind in SpawnKind::ALL {
+                    ui.radio_value(&mut self.spawn, kind, kind.label());
+                }
+            });
         });
 
         // Difference view.
@@ -392,6 +406,39 @@ impl App {
         }
     }
 
+    /// Adds a `kind` primitive at the ground under `ndc` of pane `k`'s picture.
+    fn spawn_at(&mut self, k: usize, ndc: Vec2, kind: SpawnKind) {
+        let Some(pane) = self.panes.get(k) else {
+            return;
+        };
+        let f = self.frame_index();
+        let camera = pane.harness.camera(f);
+        let time = self.scene.time_of(f);
+        let hit = self
+            .scene
+            .terrain
+            .raycast(camera.eye, camera.ray(ndc), camera.far);
+        let Some(hit) = hit else {
+            self.status = "no ground under the pointer".into();
+            return;
+        };
+        let Some(primitive) = kind.primitive(Vec2::new(hit.x, hit.z), time, camera.forward) else {
+            return;
+        };
+        match spawn::add(&mut self.wind, &primitive) {
+            Ok(n) => {
+                self.status = format!(
+                    "{} at ({:.1}, {:.1}): {n} wind primitives",
+                    kind.label(),
+                    hit.x,
+                    hit.z
+                );
+                self.apply_wind();
+            }
+            Err(e) => self.wind_error = Some(format!("{e:#}")),
+        }
+    }
+
     fn apply_wind(&mut self) {
         match wind_from_table(&self.wind) {
             Ok(config) => {
@@ -457,6 +504,7 @@ impl App {
                 .is_some_and(|s| self.frame >= s.frames as f64);
         let dt = ui.input(|i| i.stable_dt).min(0.1);
         let mut moved = false;
+        let mut spawns = Vec::new();
         self.pane_rects.clear();
         for k in 0..n {
             let (col, row) = (k % cols, k / cols);
@@ -482,7 +530,17 @@ impl App {
             };
             let pic = egui::Rect::from_center_size(rect.center(), fit);
             self.pane_rects.push(pic);
-            let response = ui.interact(pic, ui.scope_id().with(("pane", k)), egui::Sense::drag());
+            let response = ui.interact(
+                pic,
+                ui.scope_id().with(("pane", k)),
+                egui::Sense::click_and_drag(),
+            );
+            if self.spawn != SpawnKind::Off
+                && response.clicked()
+                && let Some(pos) = response.interact_pointer_pos()
+            {
+                spawns.push((k, spawn::ndc(pic, pos), self.spawn));
+            }
             if pane.error.is_none() || pane.technique.is_some() {
                 let id = pane.texture(render_state);
                 ui.painter().image(
@@ -497,6 +555,15 @@ impl App {
                 moved |= ui.input(|i| self.camera.control(i, response.drag_delta(), scroll, dt));
             }
             overlay(ui, pane, pic, k);
+        }
+        if self.spawn_pending && self.frame_index() > 0 && !self.panes.is_empty() {
+            self.spawn_pending = false;
+            if let Some(kind) = self.args.spawn {
+                spawns.push((0, Vec2::ZERO, kind));
+            }
+        }
+        for (k, at, kind) in spawns {
+            self.spawn_at(k, at, kind);
         }
         // Keys move the walker even when the pointer is elsewhere.
         if !moved && matches!(self.camera, CameraMode::Walker { .. }) {
@@ -735,6 +802,7 @@ impl App {
                     })
                     .collect(),
                 frame: self.frame_index(),
+                wind: self.wind.clone(),
             };
             std::fs::write(Layout::path_for(&path), toml::to_string(&layout)?)?;
             for (k, pane) in self.panes.iter().enumerate() {

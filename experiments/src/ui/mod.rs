@@ -19,6 +19,7 @@ mod diff;
 mod editor;
 mod pane;
 mod script;
+mod spawn;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -26,6 +27,7 @@ use std::sync::Arc;
 use anyhow::Context as _;
 use grassbench::GpuContext;
 use grassbench::gpu::BackendChoice;
+pub use spawn::SpawnKind;
 
 pub use script::Layout;
 
@@ -60,6 +62,10 @@ pub struct UiArgs {
     /// Folder the screenshot button saves into.
     #[arg(long, default_value = "screenshots")]
     pub screenshot_dir: PathBuf,
+    /// Scripted mode: after the first frame, add this wind primitive (Perbet Sec. 3.3) at the
+    /// ground under the centre of pane 1, as a click with the panel's spawn tool would.
+    #[arg(long, value_enum)]
+    pub spawn: Option<SpawnKind>,
 }
 
 /// Opens the window and runs until it is closed (or the script ends).

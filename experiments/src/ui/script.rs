@@ -14,6 +14,9 @@ pub struct Layout {
     pub rects: Vec<[u32; 4]>,
     /// Frame shown.
     pub frame: u64,
+    /// The wind settings in use (with any primitives placed by clicks or `--spawn`).
+    #[serde(default)]
+    pub wind: toml::Table,
 }
 
 impl Layout {
