@@ -20,6 +20,10 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "football_field_human",
         include_str!("../scenes/football_field_human.toml"),
     ),
+    (
+        "meadow_primitives",
+        include_str!("../scenes/meadow_primitives.toml"),
+    ),
 ];
 
 /// The scenes the default comparison runs.

@@ -27,8 +27,7 @@ fn built_in_scenes_load_and_cameras_stay_above_ground() {
 
 #[test]
 fn primitives_scene_loads_and_drives_a_finite_wind() {
-    let scene =
-        grassbench::Scene::load(&repo_root().join("tests/scenes/meadow_primitives.toml")).unwrap();
+    let scene = grassbench_cli::scenes::load("meadow_primitives").unwrap();
     let wind = scene.wind().unwrap();
     assert_eq!(wind.name(), "primitives");
     assert!(wind.is_stateless());
