@@ -12,6 +12,7 @@
 
 mod encoder;
 mod no_grass;
+pub mod ranges;
 
 pub use encoder::{FrameEncoder, PassKind, PassTime, PassTimer};
 pub use no_grass::NoGrass;

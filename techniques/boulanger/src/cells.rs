@@ -12,6 +12,7 @@
 
 use std::ops::Range;
 
+use grassbench::technique::ranges::push_merged;
 use grassbench::wgpu;
 
 use crate::CellUniform;
@@ -85,12 +86,8 @@ impl Paging {
                 continue;
             };
             let base = (k - first_cell) * self.blades;
-            for r in cell.iter().filter(|r| !r.is_empty()) {
-                let (a, b) = (base + r.start, base + r.end);
-                match page.draws.last_mut() {
-                    Some(last) if last.end == a => last.end = b,
-                    _ => page.draws.push(a..b),
-                }
+            for r in cell {
+                push_merged(&mut page.draws, base + r.start..base + r.end);
             }
         }
         pages

@@ -13,6 +13,7 @@ use std::ops::Range;
 
 use grassbench::camera::{Aabb, Frustum};
 use grassbench::glam::Vec3;
+use grassbench::technique::ranges::push_merged;
 
 use crate::prairie::Planted;
 
@@ -109,19 +110,10 @@ impl GridIndex {
 
     fn select(&self, keep: impl Fn(&Aabb) -> bool) -> Visible {
         let mut v = Visible::default();
-        let push = |ranges: &mut Vec<Range<u32>>, r: &Range<u32>| {
-            if r.is_empty() {
-                return;
-            }
-            match ranges.last_mut() {
-                Some(last) if last.end == r.start => last.end = r.end,
-                _ => ranges.push(r.clone()),
-            }
-        };
         for (k, b) in self.bounds.iter().enumerate() {
             if keep(b) {
-                push(&mut v.blades, &self.blades[k]);
-                push(&mut v.flowers, &self.flowers[k]);
+                push_merged(&mut v.blades, self.blades[k].clone());
+                push_merged(&mut v.flowers, self.flowers[k].clone());
                 v.grids += 1;
             } else {
                 v.culled += 1;
