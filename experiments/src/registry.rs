@@ -10,6 +10,7 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
     grassbench_zhang::ENTRY,
     grassbench_boulanger::ENTRY,
     grassbench_bakay::ENTRY,
+    grassbench_perbet::ENTRY,
 ];
 
 /// The entry with id `id`.

@@ -55,6 +55,13 @@ pub trait WindField: Send + Sync {
     /// Wind velocity (m/s) at world position `p` at `time`.
     fn velocity(&self, p: Vec3, time: f32) -> Vec3;
 
+    /// The wind primitives behind this field, for techniques whose receivers read bending
+    /// directions and posture indices directly (Perbet & Cani Sec. 3.2); `None` for fields that
+    /// only give velocities.
+    fn primitives(&self) -> Option<&PrimitiveSet> {
+        None
+    }
+
     /// Whether the field depends only on `(position, time)` (no state to step).
     fn is_stateless(&self) -> bool {
         true

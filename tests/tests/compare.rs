@@ -97,6 +97,17 @@ fn thresholds(id: &str) -> Thresholds {
             popping_p95: 1.6,
             ..Default::default()
         },
+        // perbet (scene density, medium preset's levels): LOD FLIP 0.039 / 0.007 / 0.028
+        // (strips and 2D textures against 3D blades everywhere); FLIP 1/16 0.046 / 0.007 /
+        // 0.019, coverage per tile 0.045 / 0.008 / 0.051; popping 0.54 (dolly; 0.60 without
+        // transitions), 0.56 (pan; the same without transitions: levels follow position).
+        "perbet" => Thresholds {
+            lod_flip: 0.05,
+            cross_flip_sixteenth: 0.06,
+            cross_coverage: 0.065,
+            popping_p95: 0.7,
+            ..Default::default()
+        },
         _ => Thresholds::default(),
     }
 }
@@ -222,6 +233,9 @@ fn popping_is_bounded_and_the_metric_catches_it() -> anyhow::Result<()> {
     let reference = grassbench_cli::registry::find("reference")?;
     let scene = scene("meadow", DENSITY)?;
     let mut failures = Vec::new();
+    // Per technique with a `no_transitions` variant: whether some motion showed more popping
+    // without transitions.
+    let mut caught = std::collections::BTreeMap::new();
     for motion in [CameraMotion::Dolly(0.25), CameraMotion::Pan(0.6)] {
         let base = compare::frame_differences(
             &gpu,
@@ -262,18 +276,32 @@ fn popping_is_bounded_and_the_metric_catches_it() -> anyhow::Result<()> {
                 ));
             }
             // Where a technique can switch levels of detail without transitions, that must
-            // score worse: otherwise the metric would not see popping.
+            // never score better, and must score worse on some motion: otherwise the metric
+            // would not see popping. (Levels that follow the camera's position, like perbet's
+            // patch distances, do not change on a pan: equal there.)
             if let Some(off) = entry.variant(NO_TRANSITIONS) {
                 let popping =
                     compare::frame_differences(&gpu, &scene, entry, &off?, motion, 6, TEST_SIZE)?;
                 let p = compare::temporal_stability(motion, &popping, &base);
-                if p.peak <= s.peak {
+                eprintln!(
+                    "measured: {id} without transitions: {} popping peak {:.2} p95 {:.2}",
+                    p.motion, p.peak, p.p95
+                );
+                if p.peak < s.peak {
                     failures.push(format!(
-                        "{id}: without transitions the {} peak is {:.2}, not above {:.2} with them",
+                        "{id}: without transitions the {} peak is {:.2}, below {:.2} with them",
                         s.motion, p.peak, s.peak
                     ));
                 }
+                *caught.entry(id).or_insert(false) |= p.peak > s.peak;
             }
+        }
+    }
+    for (id, seen) in caught {
+        if !seen {
+            failures.push(format!(
+                "{id}: no motion pops more without transitions than with them"
+            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

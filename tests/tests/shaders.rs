@@ -102,6 +102,23 @@ fn uniform_mirrors_match_wgsl_layouts() {
         wgsl_size(&bakay, "Params") as usize,
         std::mem::size_of::<grassbench_bakay::ParamsUniform>()
     );
+    let perbet = module_of(&root.join("techniques/perbet/shaders/perbet.wgsl"));
+    for (name, size) in [
+        (
+            "Params",
+            std::mem::size_of::<grassbench_perbet::gpu::ParamsUniform>(),
+        ),
+        (
+            "Entry",
+            std::mem::size_of::<grassbench_perbet::frame::Entry>(),
+        ),
+        (
+            "Blade",
+            std::mem::size_of::<grassbench_perbet::gpu::BladeGpu>(),
+        ),
+    ] {
+        assert_eq!(wgsl_size(&perbet, name) as usize, size, "perbet {name}");
+    }
 }
 
 #[test]
@@ -126,5 +143,9 @@ fn shader_consts_in_crates_match_files() {
     assert_eq!(
         grassbench_bakay::SHADER,
         std::fs::read_to_string(repo_root().join("techniques/bakay/shaders/bakay.wgsl")).unwrap()
+    );
+    assert_eq!(
+        grassbench_perbet::SHADER,
+        file("techniques/perbet/shaders/perbet.wgsl")
     );
 }

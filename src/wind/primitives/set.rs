@@ -166,6 +166,10 @@ impl WindField for PrimitiveSet {
 
     fn advance(&mut self, _time: f32, _dt: f32) {}
 
+    fn primitives(&self) -> Option<&PrimitiveSet> {
+        Some(self)
+    }
+
     /// Horizontal velocity `direction × index × reference_speed` at `p`'s ground point: the
     /// steady wind that would hold a blade near that posture (negative indices, a blade
     /// swinging back, point against the direction). Zero where no mask covers.

@@ -1,0 +1,644 @@
+//! # `perbet`: animated prairies with three levels of detail
+//!
+//! Perbet and Cani, *Animating Prairies in Real-Time* (I3D 2001; the transcript is
+//! `shared/seeds/004_605c516a3655ba8a.txt`). The terrain is tiled into patches of grass; each
+//! patch is drawn, by its discrete distance to the camera, as 3D blades, as 2.5D animated
+//! texture strips or as a 2D texture; wind primitives act on every level through receivers
+//! that carry a bending direction and a posture index; patches change level on the fly with
+//! morphing transitions while everything keeps moving.
+//!
+//! ## Algorithm
+//! - **Patches, finest to coarsest** (Sec. 2.2, [`patch`], [`paint`]). `variants` patches of
+//!   `patch_size` (2.5 m) are built at start-up. First the 3D blades: chains of `segments`
+//!   line segments (Fig. 2) with seeded segment orientations (a curved rest lean plus a random
+//!   turn of each segment), heights, widths and colours from the scene's `[grass]`. Then, for
+//!   both strip orientations (planes of constant z, planes of constant x), each of the `strips`
+//!   strip textures is rendered orthographically from the blades whose roots lie between its
+//!   two planes (Sec. 4.2, Fig. 13), and each blade's points are stored in that texture's
+//!   coordinates (Fig. 14): the morph targets. Last the 2D textures ("coarse images of the 3D
+//!   patch taken from different viewing angles"): for 10°, 30° and 60° above the horizon, the
+//!   average of four views of the patch, projected on the surface it is drawn on, mipmapped;
+//!   a pixel blends the two nearest to the angle it is seen at. The
+//!   textures are rasterised on the CPU (supersampled), so they are the same on any adapter.
+//!   Every texel keeps the density threshold of its blade, so the scene's density map thins
+//!   strips and 2D texture like the 3D blades.
+//! - **Tiling and culling** ([`tiling`]). Patches tile the terrain row by row, each showing a
+//!   hashed variant; each frame the patches whose box (ground, blade height, lean) meets the
+//!   view frustum are kept — the paper's 2D view-cone test generalised to any camera pitch.
+//! - **Levels** (Sec. 2.2, 4.1, [`lod`]). The discrete distance of a patch is the Chebyshev
+//!   distance, in patches, to the camera's patch. Distances below `strip_range[0]` are 3D, up
+//!   to `strip_range[1]` 2.5D, beyond 2D. A patch moving away keeps its level `hysteresis`
+//!   patches past the limit (going back uses the nominal limit), so a walker standing at a
+//!   limit starts at most one transition. A patch entering the view takes its level at once.
+//! - **Receivers** (Sec. 3.2, [`receiver`]). Each frame every 3D blade (at its root) and both
+//!   vertical edges of every strip polygon (Fig. 3) ask the wind for a direction and a posture
+//!   index in `[−1, 1]`. Under `[wind] model = "primitives"` that is
+//!   [`PrimitiveSet::sample`](grassbench::wind::PrimitiveSet::sample) (breeze, gust,
+//!   whirlwind, blast, mixed by priority, Sec. 3.3); any other wind model drives the receivers
+//!   through its velocity (index = speed / `wind_speed`). The index selects a shape among the
+//!   pre-computed postures of `grassbench::wind::posture` (a simulated chain, Fig. 6),
+//!   interpolated between the two nearest and resampled to the blade's segment count; the
+//!   vertex shader adds each segment's posture angle towards the direction to its rest tilt.
+//!   Strip edges bend the same way, carrying the texture with them.
+//! - **Drawing** (Sec. 2.2, `shaders/perbet.wgsl`). One render pass, three instanced draws:
+//!   2D patches (a terrain-following grid at half the strip height above the ground, Sec.
+//!   4.3), then strips (each patch's strips in the orientation the view is least parallel to,
+//!   chosen per patch with a little hysteresis), then 3D blades. Patches are listed far to
+//!   near and each patch's strips are drawn far to near, so alpha blending needs no polygon
+//!   sorting ("we just need to process the prairie in the right order").
+//! - **Transitions** (Sec. 4, [`frame`]). A transition lasts `transition_steps` frames (the
+//!   paper's twenty). 3D ↔ 2.5D: both levels animate; each 3D blade is drawn at a linear blend
+//!   between its own animated shape and the point its painted copy has on the animated strip,
+//!   then the last `fade` of the way cross-fades blades and strips ("an additional fade in -
+//!   fade out", Sec. 4.2). 2.5D ↔ 2D: strips sink into (grow out of) the ground while the 2D
+//!   texture fades in (out) on its offset surface (Sec. 4.3). A transition the camera turns back
+//!   on runs backwards from where it is.
+//!
+//! ## Quality presets (Sec. 5.1)
+//! `quality = "low" | "medium" | "high"`: 160 / 320 / 500 blades a patch, 3 / 4 / 8 segments,
+//! strips from distance 3-8 / 2-12 / 3-20. By default (`density = "scene"`) a patch holds the
+//! scene's `[grass] density` instead of the preset's blade count, so perbet is compared with the
+//! other techniques on the same population; `density = "preset"` takes the table's.
+//! `blades_per_patch`, `segments` and `strip_range` override both (0 keeps them).
+//! `experiments/perbet_quality.toml` reproduces the table.
+//!
+//! ## Cost model
+//! CPU per frame: the level update of every patch (`O(patches)`), a sort of the visible ones,
+//! and one wind sample per receiver: `B` per 3D patch and `strips · (columns + 1)` per 2.5D
+//! patch. GPU: 3D patches `B · (2n − 1)` triangles each (at most `(2·(from + hysteresis) +
+//! 1)²` such patches whatever the view, as the paper bounds it); strips `2 · S · C · n`
+//! triangles a patch but much fill (semi-transparent, overlapping); 2D `2 · 4²` triangles a
+//! patch. Memory: blades and textures of the variants (about 4 MB at medium), plus per-frame
+//! receivers.
+//!
+//! ## Deviations and known artifacts
+//! - Blades are drawn as tapering quads of their width along the chain, not as GL lines (wgpu
+//!   lines are one pixel wide on every backend); the strip textures paint the same quads.
+//! - The density map is tested per blade (3D) and per texel (strips, 2D: the threshold of the
+//!   painted blade; the 2D texel's is an average, so thinning there is approximate).
+//! - A patch's strip orientation flips when the view direction to it crosses a diagonal: a
+//!   small pop (not in the paper either). Strips reach `strip_margin` past their patch so leaning
+//!   blades are painted whole; neighbouring patches' strips overlap there.
+//! - Morphing moves blade roots (the paper notes it too); blades keep their width axis while
+//!   morphing, so a blade seen edge-on narrows only when the fade replaces it.
+//! - The 2D level is not animated (as in the paper) and its texture tiles per variant, which
+//!   shows as a faint pattern in far fields seen from above.
+
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+
+pub mod frame;
+pub mod gpu;
+pub mod lod;
+pub mod paint;
+pub mod params;
+pub mod patch;
+pub mod receiver;
+pub mod tiling;
+
+use glam::{Vec2, Vec3};
+use grassbench::gpu::GpuEstimate;
+use grassbench::technique::{LodBlades, TechniqueEntry, Variant};
+use grassbench::wind::{BladeConfig, Postures, WindConfig};
+use grassbench::{
+    FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
+    TechniqueInfo, TechniqueStats,
+};
+
+pub use gpu::SHADER;
+pub use params::{Density, Params, Quality};
+
+use frame::{Entry, FLAG_ORIENTATION, FLAG_REVERSED, Lists};
+use gpu::{BladeGpu, Draws, Gpu, ParamsUniform, Statics};
+use lod::{LodGrid, Ranges};
+use patch::{Layout, Patch};
+use receiver::Receivers;
+use tiling::Tiling;
+
+const INFO: TechniqueInfo = TechniqueInfo {
+    id: "perbet",
+    name: "Perbet & Cani (3D / 2.5D / 2D patches, wind primitives)",
+    paper: "Perbet & Cani 2001, Animating Prairies in Real-Time (I3D)",
+    gpu_state: false,
+    debug_views: &["level of detail (red 3D, green 2.5D strips, blue 2D)"],
+};
+
+/// The registry line for this technique.
+pub const ENTRY: TechniqueEntry = TechniqueEntry {
+    info: INFO,
+    variants: &[
+        Variant {
+            name: grassbench::technique::FINEST,
+            params: "strip_range = [100000, 100000]",
+        },
+        Variant {
+            name: grassbench::technique::NO_TRANSITIONS,
+            params: "transition_steps = 0",
+        },
+    ],
+    default_params: || grassbench::params::to_table(&Params::default()),
+    create: |ctx, overrides| Ok(Box::new(Perbet::new(ctx, overrides)?)),
+    estimate: |scene, overrides| {
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        Ok(Sizes::new(scene, &params, scene.config.grass.height[1]).estimate())
+    },
+};
+
+/// Counts that fix the technique's allocations (shared by [`ENTRY`]'s estimate and
+/// [`Perbet::new`]).
+struct Sizes {
+    blades: u64,
+    segments: u64,
+    strip_layers: u64,
+    strip_texels: (u32, u32),
+    flat_texels: u32,
+    variants: u64,
+    /// Entries, blade receivers and edge receivers of the busiest frame.
+    capacity: [u64; 3],
+}
+
+impl Sizes {
+    fn new(scene: &Scene, params: &Params, strip_height: f32) -> Self {
+        let (cols, rows) = Tiling::counts(scene.terrain.size(), params.patch_size);
+        let patches = u64::from(cols) * u64::from(rows);
+        let [from, to] = params.strips_from_to();
+        let h = params.hysteresis;
+        // Chebyshev discs around the camera's patch bound each level whatever the view.
+        let disc = |r: u32| {
+            let side = 2 * u64::from(r) + 1;
+            side.saturating_mul(side).min(patches)
+        };
+        let geometry = disc(from.saturating_add(h));
+        let strips = disc(to.saturating_add(h).saturating_add(1)).min(patches);
+        let blades = u64::from(params.blades(scene.config.grass.density));
+        let layout = layout(params, strip_height);
+        Self {
+            blades,
+            segments: u64::from(params.blade_segments()),
+            strip_layers: u64::from(params.variants) * 2 * u64::from(params.strips),
+            strip_texels: paint::strip_size(&layout, params.strip_texels),
+            flat_texels: params.flat_texels,
+            variants: u64::from(params.variants),
+            capacity: [
+                2 * patches,
+                geometry * blades,
+                strips * u64::from(params.strips) * u64::from(params.strip_edges()),
+            ],
+        }
+    }
+
+    fn estimate(&self) -> GpuEstimate {
+        let per_blade = std::mem::size_of::<BladeGpu>() as u64
+            + self.segments * 8
+            + 2 * (self.segments + 1) * 8;
+        let chain = |w: u32, h: u32| {
+            let (mut w, mut h, mut texels) = (u64::from(w), u64::from(h), 0);
+            loop {
+                texels += w * h;
+                if w == 1 && h == 1 {
+                    break texels;
+                }
+                w = (w / 2).max(1);
+                h = (h / 2).max(1);
+            }
+        };
+        let texel = gpu::texel_bytes(true) + gpu::texel_bytes(false);
+        let (sw, sh) = self.strip_texels;
+        let textures = self.strip_layers * chain(sw, sh) * texel
+            + self.variants
+                * paint::FLAT_ELEVATIONS.len() as u64
+                * chain(self.flat_texels, self.flat_texels)
+                * texel;
+        let [entries, blade_receivers, edge_receivers] = self.capacity;
+        GpuEstimate::buffer(self.variants * self.blades * per_blade)
+            .plus(GpuEstimate::buffer(
+                entries * std::mem::size_of::<Entry>() as u64,
+            ))
+            .plus(GpuEstimate::buffer((blade_receivers + edge_receivers) * 16))
+            .plus(GpuEstimate::buffer(
+                std::mem::size_of::<ParamsUniform>() as u64 + 64 * 64,
+            ))
+            .plus(GpuEstimate::textures(textures))
+    }
+}
+
+fn layout(params: &Params, strip_height: f32) -> Layout {
+    Layout {
+        size: params.patch_size,
+        segments: params.blade_segments(),
+        strips: params.strips,
+        columns: params.strip_columns,
+        margin: params.strip_margin,
+        strip_height,
+    }
+}
+
+/// The postures the receivers use: the scene's grass kind under a primitives wind, else a
+/// blade of the scene's mean grass height simulated under `wind_speed`.
+fn postures(scene: &Scene, params: &Params) -> Result<Postures> {
+    match &scene.config.wind {
+        WindConfig::Primitives(c) => Postures::new(&c.blade),
+        _ => {
+            let g = &scene.config.grass;
+            Postures::new(&BladeConfig {
+                height: 0.5 * (g.height[0] + g.height[1]),
+                wind_speed: params.wind_speed,
+                ..BladeConfig::default()
+            })
+        }
+    }
+}
+
+/// The technique.
+pub struct Perbet {
+    params: Params,
+    layout: Layout,
+    patches: Vec<Patch>,
+    tiling: Tiling,
+    lod: LodGrid,
+    /// Strip orientation per patch (0: planes of constant z), kept while it is good enough.
+    orientation: Vec<u8>,
+    visible: Vec<bool>,
+    lists: Lists,
+    entries: Vec<Entry>,
+    blade_receivers: Vec<[f32; 4]>,
+    edge_receivers: Vec<[f32; 4]>,
+    uniform: ParamsUniform,
+    draws: Draws,
+    gpu: Gpu,
+    culled: u64,
+    transitions: u64,
+    frozen: Option<lod::PatchLod>,
+    blades_per_patch: u32,
+}
+
+impl Perbet {
+    /// Builds the patches, paints their strip and 2D textures, simulates the postures and
+    /// creates the pipelines.
+    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let scene = ctx.scene;
+        let grass = &scene.config.grass;
+        let precompute = Precomputed::new(scene, &params)?;
+        let Precomputed {
+            layout,
+            patches,
+            postures,
+            strip_layers,
+            flat_layers,
+        } = precompute;
+        let n = layout.segments as usize;
+        let blades_per_patch = params.blades(grass.density);
+        let mut blades = Vec::new();
+        let mut tilts = Vec::new();
+        let mut painted = Vec::new();
+        for b in patches.iter().flat_map(|p| &p.blades) {
+            blades.push(BladeGpu {
+                root_facing: [b.root.x, b.root.y, b.facing, b.height],
+                shape: [b.width, b.variation, b.threshold, 0.0],
+                strips: [b.strips[0], b.strips[1], 0, 0],
+            });
+            tilts.extend(b.tilts.iter().map(|t| t.to_array()));
+            let points = b.rest_points(layout.segments);
+            for o in 0..2 {
+                painted.extend(points.iter().map(|p| layout.painted_uv(o, *p).to_array()));
+            }
+        }
+        debug_assert_eq!(tilts.len(), blades.len() * n);
+        let table = receiver::posture_table(&postures, layout.segments);
+        let sizes = Sizes::new(scene, &params, layout.strip_height);
+        let gpu = Gpu::new(
+            ctx,
+            &Statics {
+                blades: &blades,
+                tilts: &tilts,
+                painted: &painted,
+                postures: &table,
+                strip_layers: &strip_layers,
+                flat_layers: &flat_layers,
+            },
+            sizes.capacity,
+        );
+        let reach =
+            params.strip_margin * params.patch_size + grass.height[1] * grass.lean.sin().abs();
+        let tiling = Tiling::new(
+            &scene.terrain,
+            params.patch_size,
+            params.variants,
+            scene.config.seed,
+            reach,
+            layout.strip_height,
+        );
+        let [from, to] = params.strips_from_to();
+        let lod = LodGrid::new(
+            tiling.cols,
+            tiling.rows,
+            Ranges {
+                strips_from: from,
+                strips_to: to,
+                hysteresis: params.hysteresis,
+            },
+            params.transition_steps,
+        );
+        let uniform = ParamsUniform {
+            sizes: [
+                params.patch_size,
+                layout.strip_height,
+                params.strip_margin,
+                0.5 * layout.strip_height,
+            ],
+            counts: [
+                blades_per_patch,
+                layout.segments,
+                params.strips,
+                params.strip_columns,
+            ],
+            more: [postures.count() as u32, params.variants, gpu::FLAT_CELLS, 0],
+            color_root: Vec3::from(grass.color_root)
+                .extend(grass.color_variation)
+                .to_array(),
+            color_tip: Vec3::from(grass.color_tip)
+                .extend(params.translucency)
+                .to_array(),
+            bases: [0; 4],
+            flat_elevations: [
+                paint::FLAT_ELEVATIONS[0],
+                paint::FLAT_ELEVATIONS[1],
+                paint::FLAT_ELEVATIONS[2],
+                0.0,
+            ],
+        };
+        let n_patches = tiling.len();
+        Ok(Self {
+            draws: Draws {
+                vertices: [
+                    2 * layout.segments + 1,
+                    6 * params.strip_columns * layout.segments,
+                    6 * gpu::FLAT_CELLS * gpu::FLAT_CELLS,
+                ],
+                per_entry: [blades_per_patch, params.strips],
+                ..Default::default()
+            },
+            params,
+            layout,
+            patches,
+            tiling,
+            lod,
+            orientation: vec![0; n_patches],
+            visible: vec![false; n_patches],
+            lists: Lists::default(),
+            entries: Vec::new(),
+            blade_receivers: Vec::new(),
+            edge_receivers: Vec::new(),
+            uniform,
+            gpu,
+            culled: 0,
+            transitions: 0,
+            frozen: None,
+            blades_per_patch,
+        })
+    }
+
+    /// The level state of patch `i` (for tests and tools).
+    pub fn patch_state(&self, i: usize) -> lod::PatchLod {
+        self.lod.state(i)
+    }
+
+    /// Draws every visible patch in `state` instead of its own level from the next `update` on
+    /// (`None` goes back to the levels): a tool to inspect one level, or the whole view frozen
+    /// at one step of a transition. The patches' own levels keep being updated underneath.
+    pub fn freeze(&mut self, state: Option<lod::PatchLod>) {
+        self.frozen = state;
+    }
+
+    /// The tiling of the terrain.
+    pub fn tiling(&self) -> &Tiling {
+        &self.tiling
+    }
+
+    /// This frame's entries per representation, far to near.
+    pub fn frame_lists(&self) -> &Lists {
+        &self.lists
+    }
+
+    /// Keeps or flips patch `i`'s strip orientation for a view from `eye` (xz): strips of
+    /// constant z face a view along z; the other orientation is taken only when the view is
+    /// clearly (20 %) closer to x, and never during a transition (its morph targets).
+    fn orient(&mut self, i: usize, eye: Vec2) -> u32 {
+        let d = (self.tiling.centre(i) - eye).abs();
+        let o = &mut self.orientation[i];
+        if self.lod.state(i).transition.is_none() {
+            if *o == 0 && d.x > 1.2 * d.y {
+                *o = 1;
+            } else if *o == 1 && d.y > 1.2 * d.x {
+                *o = 0;
+            }
+        }
+        u32::from(*o)
+    }
+}
+
+/// What [`Perbet::new`] computes on the CPU before touching the GPU (the paper's
+/// pre-computation: patches, strip and 2D textures, postures).
+pub struct Precomputed {
+    /// The shape of patches and strips.
+    pub layout: Layout,
+    /// The pre-computed patches.
+    pub patches: Vec<Patch>,
+    /// The postures of the grass kind.
+    pub postures: Postures,
+    /// Strip textures: for variant `v`, orientation `o`, strip `k`, layer
+    /// `(v · 2 + o) · strips + k`, each a mip chain.
+    pub strip_layers: Vec<Vec<paint::Image>>,
+    /// 2D textures: for variant `v` and elevation `e` of [`paint::FLAT_ELEVATIONS`], layer
+    /// `v · 3 + e`, each a mip chain.
+    pub flat_layers: Vec<Vec<paint::Image>>,
+}
+
+impl Precomputed {
+    /// Everything the technique pre-computes for `scene` with `params`.
+    pub fn new(scene: &Scene, params: &Params) -> Result<Self> {
+        let grass = &scene.config.grass;
+        let mut layout = layout(params, grass.height[1]);
+        let patches = patch::build(
+            grass,
+            &layout,
+            params.variants,
+            params.blades(grass.density),
+            params.segment_jitter,
+            scene.config.seed,
+        );
+        layout.strip_height = patch::tallest(&patches, layout.segments, grass.height[1]);
+        let postures = postures(scene, params)?;
+        let strip_layers = patches
+            .iter()
+            .flat_map(|p| paint::strips(p, &layout, grass, params.strip_texels))
+            .map(paint::Image::mip_chain)
+            .collect();
+        let flat_layers = patches
+            .iter()
+            .flat_map(|p| {
+                paint::FLAT_ELEVATIONS
+                    .map(|e| paint::flat(p, &layout, grass, params.flat_texels, e).mip_chain())
+            })
+            .collect();
+        Ok(Self {
+            layout,
+            patches,
+            postures,
+            strip_layers,
+            flat_layers,
+        })
+    }
+}
+
+impl GrassTechnique for Perbet {
+    fn info(&self) -> TechniqueInfo {
+        INFO
+    }
+
+    fn params(&self) -> toml::Table {
+        grassbench::params::to_table(&self.params)
+    }
+
+    /// Levels, culling, far-to-near lists and the receivers' wind samples.
+    fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
+        let camera = &inputs.camera;
+        let frustum = camera.frustum();
+        let eye = Vec2::new(camera.eye.x, camera.eye.z);
+        for (v, b) in self.visible.iter_mut().zip(&self.tiling.bounds) {
+            *v = frustum.intersects_aabb(b);
+        }
+        let visible = &self.visible;
+        self.lod.update(self.tiling.patch_of(eye), |i| {
+            visible.get(i).copied().unwrap_or(false)
+        });
+
+        // Far to near (Sec. 2.2).
+        let mut order: Vec<(f32, usize)> = (0..self.tiling.len())
+            .filter(|i| self.visible[*i])
+            .map(|i| (self.tiling.centre(i).distance_squared(eye), i))
+            .collect();
+        order.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        self.culled = (self.tiling.len() - order.len()) as u64;
+        self.transitions = 0;
+        self.lists.clear();
+        for &(_, i) in &order {
+            let state = self.frozen.unwrap_or_else(|| self.lod.state(i));
+            self.transitions += u64::from(state.transition.is_some());
+            let o = self.orient(i, eye);
+            let centre = self.tiling.centre(i);
+            // Strips are numbered along their normal; far to near is descending when the eye
+            // is on the low side.
+            let (eye_across, centre_across) = if o == 0 {
+                (eye.y, centre.y)
+            } else {
+                (eye.x, centre.x)
+            };
+            let mut flags = o * FLAG_ORIENTATION;
+            if eye_across < centre_across {
+                flags |= FLAG_REVERSED;
+            }
+            let base = Entry {
+                origin: self.tiling.corner(i).to_array(),
+                variant: self.tiling.variants[i],
+                flags,
+                ..Default::default()
+            };
+            self.lists.push(
+                base,
+                frame::representation(state, self.params.transition_steps, self.params.fade),
+            );
+        }
+        let [strips_base, flat_base] = self.lists.concatenate(&mut self.entries);
+        self.uniform.bases = [strips_base, flat_base, 0, 0];
+        self.draws.geometry = self.lists.geometry.len() as u32;
+        self.draws.strips = self.lists.strips.len() as u32;
+        self.draws.flat = self.lists.flat.len() as u32;
+
+        // Receivers (Sec. 3.2): every 3D blade, every strip edge.
+        let receivers = Receivers::new(inputs.wind, self.params.wind_speed, inputs.time);
+        let terrain = &inputs.scene.terrain;
+        let ground = |xz: Vec2| Vec3::new(xz.x, terrain.height_at(xz), xz.y);
+        self.blade_receivers.clear();
+        for e in &self.lists.geometry {
+            let origin = Vec2::from(e.origin);
+            if let Some(patch) = self.patches.get(e.variant as usize) {
+                self.blade_receivers.extend(
+                    patch
+                        .blades
+                        .iter()
+                        .map(|b| receivers.receive(ground(origin + b.root), b.height)),
+                );
+            }
+        }
+        self.edge_receivers.clear();
+        let columns = self.layout.columns;
+        for e in &self.lists.strips {
+            let origin = Vec2::from(e.origin);
+            let o = e.flags & FLAG_ORIENTATION;
+            for k in 0..self.layout.strips {
+                for j in 0..=columns {
+                    let xz = origin + self.layout.strip_xz(o, k, j as f32 / columns as f32);
+                    self.edge_receivers
+                        .push(receivers.receive(ground(xz), self.layout.strip_height));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
+        self.gpu.upload(
+            gpu,
+            &self.uniform,
+            &self.entries,
+            &self.blade_receivers,
+            &self.edge_receivers,
+        );
+        Ok(())
+    }
+
+    fn encode(&self, encoder: &mut FrameEncoder<'_>) {
+        self.gpu.encode(encoder, &self.draws);
+    }
+
+    fn stats(&self) -> TechniqueStats {
+        let d = &self.draws;
+        let blades = u64::from(self.blades_per_patch);
+        let n = u64::from(self.layout.segments);
+        let patches = self.tiling.len() as u64 - self.culled;
+        let strip_triangles =
+            2 * u64::from(self.layout.strips) * u64::from(self.layout.columns) * n;
+        TechniqueStats {
+            blades: patches * blades,
+            triangles: u64::from(d.geometry) * blades * (2 * n - 1)
+                + u64::from(d.strips) * strip_triangles
+                + u64::from(d.flat) * 2 * u64::from(gpu::FLAT_CELLS * gpu::FLAT_CELLS),
+            draw_calls: u64::from(d.geometry > 0) + u64::from(d.strips > 0) + u64::from(d.flat > 0),
+            gpu_bytes: self.gpu.bytes(),
+        }
+    }
+
+    fn lod_blades(&self) -> Option<LodBlades> {
+        let blades = u64::from(self.blades_per_patch);
+        Some(LodBlades {
+            geometry: u64::from(self.draws.geometry) * blades,
+            vertical_slices: u64::from(self.draws.strips) * blades,
+            horizontal_slices: u64::from(self.draws.flat) * blades,
+        })
+    }
+
+    fn counters(&self) -> Vec<(&'static str, f64)> {
+        vec![
+            ("patches_3d", f64::from(self.draws.geometry)),
+            ("patches_2_5d", f64::from(self.draws.strips)),
+            ("patches_2d", f64::from(self.draws.flat)),
+            ("patches_in_transition", self.transitions as f64),
+            ("patches_culled", self.culled as f64),
+            (
+                "receivers",
+                (self.blade_receivers.len() + self.edge_receivers.len()) as f64,
+            ),
+        ]
+    }
+}
