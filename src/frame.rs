@@ -39,6 +39,12 @@ impl FrameInputs<'_> {
         &self.scene.config.sky
     }
 
+    /// Centre and radius of the scene's moving object at this frame's time, if it has one.
+    pub fn object(&self) -> Option<(glam::Vec3, f32)> {
+        let o = self.scene.config.object.as_ref()?;
+        Some((o.centre(&self.scene.terrain, self.time), o.radius))
+    }
+
     /// The GPU copy of the frame constants.
     pub fn globals(&self, max_wind_speed: f32) -> FrameGlobals {
         let view_proj = self.camera.view_projection();
@@ -74,6 +80,9 @@ impl FrameInputs<'_> {
             ],
             wind_info: [max_wind_speed, 0.0, 0.0, 0.0],
             terrain_range: [lo, hi, self.camera.far, 0.0],
+            object: self
+                .object()
+                .map_or([0.0; 4], |(c, r)| c.extend(r).to_array()),
         }
     }
 }
@@ -114,4 +123,6 @@ pub struct FrameGlobals {
     pub wind_info: [f32; 4],
     /// Lowest and highest ground height, camera far plane.
     pub terrain_range: [f32; 4],
+    /// The scene's moving object: centre and radius (radius 0: none).
+    pub object: [f32; 4],
 }

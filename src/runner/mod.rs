@@ -87,7 +87,12 @@ impl<'g> Harness<'g> {
 
     /// Replaces the scene's wind (validated) and restarts it from time 0.
     pub fn set_wind(&mut self, config: crate::wind::WindConfig) -> Result<()> {
-        let wind = crate::wind::build(&config, self.scene.config.seed, &self.scene.terrain)?;
+        let wind = crate::wind::build(
+            &config,
+            self.scene.config.seed,
+            &self.scene.terrain,
+            self.scene.config.object.as_ref(),
+        )?;
         self.scene.config.wind = config;
         self.wind = wind;
         self.wind_frame = None;

@@ -10,6 +10,7 @@ pub struct Background {
     sky: wgpu::RenderPipeline,
     apron: wgpu::RenderPipeline,
     ground: wgpu::RenderPipeline,
+    object: wgpu::RenderPipeline,
 }
 
 impl Background {
@@ -99,10 +100,21 @@ impl Background {
                 wgpu::CompareFunction::Less,
                 list,
             ),
+            object: pipeline(
+                "object",
+                "vs_object",
+                "fs_object",
+                &[],
+                true,
+                wgpu::CompareFunction::Less,
+                list,
+            ),
         }
     }
 
-    /// Draws the sky, the apron beyond the terrain, then the ground. Bind group 0 must be set.
+    /// Draws the sky, the apron beyond the terrain, the ground, then the scene's moving object
+    /// (a sphere ray-cast on a camera-facing quad; nothing when it has none). Bind group 0 must
+    /// be set.
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, terrain: &TerrainGpu) {
         pass.set_pipeline(&self.sky);
         pass.draw(0..3, 0..1);
@@ -112,5 +124,7 @@ impl Background {
         pass.set_vertex_buffer(0, terrain.ground_vertices.slice(..));
         pass.set_index_buffer(terrain.ground_indices.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..terrain.ground_index_count, 0, 0..1);
+        pass.set_pipeline(&self.object);
+        pass.draw(0..6, 0..1);
     }
 }

@@ -5,6 +5,7 @@
 mod background;
 mod gpu;
 mod lighting;
+mod object;
 
 use std::path::{Path, PathBuf};
 
@@ -13,6 +14,7 @@ use serde::{Deserialize, Serialize};
 pub use background::Background;
 pub use gpu::SceneGpu;
 pub use lighting::{LightsConfig, SkyConfig};
+pub use object::{ObjectConfig, track, validate_track};
 
 use crate::camera::{Camera, CameraConfig};
 use crate::grass::{BladeField, GrassConfig};
@@ -56,6 +58,10 @@ pub struct SceneConfig {
     /// Sky, ground colour and fog.
     #[serde(default)]
     pub sky: SkyConfig,
+    /// A moving object over the grass, if any: blasts of wind follow it, techniques may react
+    /// to it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub object: Option<ObjectConfig>,
     /// Per-technique parameter overrides: `[techniques.<id>]`.
     #[serde(default)]
     pub techniques: toml::Table,
@@ -115,6 +121,9 @@ impl Scene {
         config.wind.validate()?;
         config.lights.validate()?;
         config.sky.validate()?;
+        if let Some(o) = &config.object {
+            o.validate()?;
+        }
         let terrain = Terrain::build(&config.terrain, config.seed, &base_dir)?;
         config.grass.validate(terrain.size().x * terrain.size().y)?;
         for (id, value) in &config.techniques {
@@ -167,7 +176,12 @@ impl Scene {
 
     /// A fresh wind field at time 0.
     pub fn wind(&self) -> Result<Box<dyn WindField>> {
-        wind::build(&self.config.wind, self.config.seed, &self.terrain)
+        wind::build(
+            &self.config.wind,
+            self.config.seed,
+            &self.terrain,
+            self.config.object.as_ref(),
+        )
     }
 
     /// The scene file's overrides for technique `id` (empty when none).

@@ -73,3 +73,68 @@ fn fs_apron(in: GroundOut) -> @location(0) vec4<f32> {
     let lit = shade(mix(globals.ground_color.rgb, UNDER_GRASS, 0.6), in.normal, 1.0);
     return vec4(apply_fog(lit, in.world), 1.0);
 }
+
+// The scene's moving object (`scene::ObjectConfig`): a sphere, ray-cast on a quad that faces
+// the eye and holds its silhouette, writing its true depth so grass hides it and it hides grass.
+const OBJECT_ALBEDO: vec3<f32> = vec3(0.55, 0.12, 0.08);
+
+struct ObjectOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+}
+
+@vertex
+fn vs_object(@builtin(vertex_index) index: u32) -> ObjectOut {
+    var out: ObjectOut;
+    let centre = globals.object.xyz;
+    let r = globals.object.w;
+    let to_centre = centre - globals.camera_pos.xyz;
+    let d = length(to_centre);
+    if (r <= 0.0 || d <= r * 1.01) {
+        out.position = vec4(0.0, 0.0, 2.0, 1.0);
+        return out;
+    }
+    let forward = to_centre / d;
+    var right = cross(forward, vec3(0.0, 1.0, 0.0));
+    if (length(right) < 1e-4) {
+        right = vec3(1.0, 0.0, 0.0);
+    }
+    right = normalize(right);
+    let up = cross(right, forward);
+    // Seen from the eye, the sphere's silhouette fits in a square of half side r·d/√(d²−r²) in
+    // the plane through its centre.
+    let half = 1.05 * r * d / sqrt(d * d - r * r);
+    var corners = array(
+        vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0),
+        vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0),
+    );
+    let k = corners[index % 6u];
+    let world = centre + (right * k.x + up * k.y) * half;
+    out.position = globals.view_proj * vec4(world, 1.0);
+    out.world = world;
+    return out;
+}
+
+struct ObjectFragment {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+@fragment
+fn fs_object(in: ObjectOut) -> ObjectFragment {
+    let eye = globals.camera_pos.xyz;
+    let dir = normalize(in.world - eye);
+    let oc = eye - globals.object.xyz;
+    let b = dot(oc, dir);
+    let h = b * b - (dot(oc, oc) - globals.object.w * globals.object.w);
+    if (h < 0.0) {
+        discard;
+    }
+    let p = eye + dir * (-b - sqrt(h));
+    let n = normalize(p - globals.object.xyz);
+    let clip = globals.view_proj * vec4(p, 1.0);
+    var out: ObjectFragment;
+    out.color = vec4(apply_fog(shade(OBJECT_ALBEDO, n, 1.0), p), 1.0);
+    out.depth = clip.z / clip.w;
+    return out;
+}

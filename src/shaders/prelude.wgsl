@@ -29,6 +29,8 @@ struct Globals {
     wind_info: vec4<f32>,
     // x: lowest ground height (m); y: highest; z: camera far plane (m); w: unused
     terrain_range: vec4<f32>,
+    // The scene's moving object: xyz centre, w radius (0: none)
+    object: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;

@@ -36,6 +36,7 @@ pub use primitives::{Mixing, PrimitiveConfig, PrimitiveSet, PrimitivesConfig, Wi
 pub use texture::WindTexture;
 
 use crate::Result;
+use crate::scene::ObjectConfig;
 use crate::terrain::Terrain;
 
 /// A wind model: velocity in m/s at a position and time.
@@ -94,14 +95,19 @@ impl WindField for Calm {
 }
 
 /// Builds the field a scene's `[wind]` section describes over `terrain` (the fluid model maps
-/// its grid onto the terrain and follows the ground).
-pub fn build(config: &WindConfig, seed: u64, terrain: &Terrain) -> Result<Box<dyn WindField>> {
+/// its grid onto the terrain and follows the ground); blasts may follow the scene's `object`.
+pub fn build(
+    config: &WindConfig,
+    seed: u64,
+    terrain: &Terrain,
+    object: Option<&ObjectConfig>,
+) -> Result<Box<dyn WindField>> {
     config.validate()?;
     Ok(match config {
         WindConfig::Calm => Box::new(Calm),
         WindConfig::Breeze(c) => Box::new(Breeze::new(c.clone(), seed)),
         WindConfig::PointSource(c) => Box::new(PointSource::new(c.clone())),
         WindConfig::Fluid(c) => Box::new(FluidWind::new(c.clone(), seed, terrain)?),
-        WindConfig::Primitives(c) => Box::new(PrimitiveSet::new(c, seed)?),
+        WindConfig::Primitives(c) => Box::new(PrimitiveSet::new(c, seed, object)?),
     })
 }

@@ -49,6 +49,41 @@ fn primitives_scene_loads_and_drives_a_finite_wind() {
 }
 
 #[test]
+fn the_blast_follows_the_scenes_flying_object() {
+    let scene = grassbench_cli::scenes::load("meadow_primitives").unwrap();
+    let object = scene
+        .config
+        .object
+        .clone()
+        .expect("meadow_primitives has an object");
+    let wind = scene.wind().unwrap();
+    let set = wind.primitives().expect("a primitives wind");
+    for time in [0.0, 7.5, 20.0, 31.0] {
+        // Next to the object the blast (highest priority) bends grass radially away from it.
+        let under = object.ground_position(time);
+        for offset in [
+            Vec2::new(1.5, 0.0),
+            Vec2::new(0.0, -2.0),
+            Vec2::new(-1.0, 1.0),
+        ] {
+            let s = set.sample(under + offset, time);
+            assert!(
+                s.direction.dot(offset.normalize()) > 0.8 && s.posture > 0.3,
+                "t {time}, offset {offset}: {s:?}"
+            );
+        }
+    }
+    // Without an object to follow, the scene is refused with the key named.
+    let mut config = scene.config.clone();
+    config.object = None;
+    let e = grassbench::Scene::from_config(config, scene.base_dir.clone())
+        .and_then(|s| s.wind().map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("follow_object"), "{e}");
+}
+
+#[test]
 fn unknown_scene_lists_the_valid_ones() {
     let e = grassbench_cli::scenes::load("medow")
         .unwrap_err()

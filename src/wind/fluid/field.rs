@@ -262,7 +262,7 @@ mod tests {
         let ok: crate::wind::WindConfig =
             toml::from_str("model = \"fluid\"\nn = 16\nmapping = \"stretched\"").unwrap();
         ok.validate().unwrap();
-        let built = crate::wind::build(&ok, 1, &terrain()).unwrap();
+        let built = crate::wind::build(&ok, 1, &terrain(), None).unwrap();
         assert_eq!(built.name(), "fluid");
         assert!(!built.is_stateless());
         for (text, key) in [

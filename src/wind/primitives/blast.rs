@@ -3,8 +3,9 @@
 //! motion of an object under the user's control. Here, the main bending directions are radial
 //! to the mask contour."
 //!
-//! The mask here is a disc (rotation changes nothing), and as the shared scenes have no flying
-//! object yet, its path comes from the configuration.
+//! The mask here is a disc (rotation changes nothing). With `follow_object = true` its centre
+//! is the scene's moving object ([`crate::scene::ObjectConfig`]); otherwise its path comes from
+//! the configuration.
 
 use glam::Vec2;
 
@@ -31,20 +32,7 @@ impl Blast {
     /// before the first and after the last), or `start + velocity · time` without any.
     pub(super) fn centre(&self, time: f32) -> Vec2 {
         let p = &self.params;
-        let key = |k: &[f32; 3]| Vec2::new(k[1], k[2]);
-        let (Some(first), Some(last)) = (p.keyframes.first(), p.keyframes.last()) else {
-            return Vec2::from(p.start) + Vec2::from(p.velocity) * time;
-        };
-        if time <= first[0] {
-            return key(first);
-        }
-        p.keyframes
-            .windows(2)
-            .find(|w| time <= w[1][0])
-            .map_or(key(last), |w| {
-                let f = (time - w[0][0]) / (w[1][0] - w[0][0]);
-                key(&w[0]).lerp(key(&w[1]), f)
-            })
+        crate::scene::track(p.start, p.velocity, &p.keyframes, time)
     }
 
     pub(super) fn mask(&self, xz: Vec2, time: f32) -> f32 {

@@ -252,6 +252,9 @@ pub struct BlastParams {
     /// `[time, x, z]` points of the centre's path, times increasing; held before the first
     /// and after the last. Empty: `start` and `velocity` are used.
     pub keyframes: Vec<[f32; 3]>,
+    /// Follow the scene's moving object (`[object]`) instead of `start`, `velocity` and
+    /// `keyframes`: the paper's blast around a flying object.
+    pub follow_object: bool,
     /// Radius of the mask, m.
     pub radius: f32,
     /// Posture index next to the object; falls linearly to 0 at the rim.
@@ -269,6 +272,7 @@ impl Default for BlastParams {
             start: [-20.0, 0.0],
             velocity: [2.0, 0.0],
             keyframes: Vec::new(),
+            follow_object: false,
             radius: 5.0,
             strength: 1.0,
             feather: 1.0,
@@ -356,22 +360,7 @@ impl PrimitiveConfig {
                 jitter(&key("jitter"), &p.jitter)
             }
             Self::Blast(p) => {
-                point(&key("start"), p.start)?;
-                velocity(&key("velocity"), p.velocity)?;
-                let mut last = f32::NEG_INFINITY;
-                for (k, f) in p.keyframes.iter().enumerate() {
-                    for (c, v) in f.iter().enumerate() {
-                        check(&key(&format!("keyframes[{k}][{c}]")), *v, -1e6..=1e6)?;
-                    }
-                    if f[0] <= last {
-                        return Err(Error::param(
-                            key(&format!("keyframes[{k}][0]")),
-                            f[0],
-                            format!("a time after the previous keyframe's ({last})"),
-                        ));
-                    }
-                    last = f[0];
-                }
+                crate::scene::validate_track(prefix, p.start, p.velocity, &p.keyframes)?;
                 check(&key("radius"), p.radius, 0.01..=100_000.0)?;
                 check(&key("strength"), p.strength, 0.0..=1.0)?;
                 check(&key("feather"), p.feather, 0.0..=100_000.0)?;

@@ -9,11 +9,12 @@ use super::blast::Blast;
 use super::breeze::Breeze;
 use super::gust::Gust;
 use super::whirlwind::Whirlwind;
-use super::{Mixing, PrimitiveConfig, PrimitivesConfig, WindSample};
-use crate::Result;
+use super::{BlastParams, Mixing, PrimitiveConfig, PrimitivesConfig, WindSample};
 use crate::rng::hash;
+use crate::scene::ObjectConfig;
 use crate::wind::WindField;
 use crate::wind::posture::Postures;
+use crate::{Error, Result};
 
 /// One built primitive.
 #[derive(Clone, Debug)]
@@ -57,8 +58,13 @@ pub struct PrimitiveSet {
 
 impl PrimitiveSet {
     /// Validates `config`, simulates its blade kind (a few milliseconds, plus one short run
-    /// per gust) and builds every primitive; `seed` drives all their oscillations.
-    pub fn new(config: &PrimitivesConfig, seed: u64) -> Result<Self> {
+    /// per gust) and builds every primitive; `seed` drives all their oscillations; blasts with
+    /// `follow_object` take `object`'s path (an error without one).
+    pub fn new(
+        config: &PrimitivesConfig,
+        seed: u64,
+        object: Option<&ObjectConfig>,
+    ) -> Result<Self> {
         config.validate()?;
         let postures = Postures::new(&config.blade)?;
         let mut primitives: Vec<(i32, Primitive)> = config
@@ -75,11 +81,29 @@ impl PrimitiveSet {
                     PrimitiveConfig::Whirlwind(p) => {
                         Primitive::Whirlwind(Whirlwind::new(p.clone(), seed))
                     }
+                    PrimitiveConfig::Blast(p) if p.follow_object => {
+                        let o = object.ok_or_else(|| {
+                            Error::param(
+                                format!("wind.primitives[{i}].follow_object"),
+                                true,
+                                "an [object] in the scene for the blast to follow, or follow_object = false",
+                            )
+                        })?;
+                        Primitive::Blast(Blast::new(
+                            BlastParams {
+                                start: o.start,
+                                velocity: o.velocity,
+                                keyframes: o.keyframes.clone(),
+                                ..p.clone()
+                            },
+                            seed,
+                        ))
+                    }
                     PrimitiveConfig::Blast(p) => Primitive::Blast(Blast::new(p.clone(), seed)),
                 };
-                (c.priority(), built)
+                Ok((c.priority(), built))
             })
-            .collect();
+            .collect::<Result<_>>()?;
         primitives.reverse();
         primitives.sort_by_key(|(priority, _)| Reverse(*priority));
         Ok(Self {
@@ -216,7 +240,7 @@ mod tests {
             primitives,
             ..Default::default()
         };
-        PrimitiveSet::new(&config, 11).unwrap()
+        PrimitiveSet::new(&config, 11, None).unwrap()
     }
 
     fn close(a: WindSample, b: WindSample) -> bool {
@@ -319,9 +343,9 @@ mod tests {
                 mixing,
                 ..everything()
             };
-            let a = PrimitiveSet::new(&config, 5).unwrap();
-            let b = PrimitiveSet::new(&config, 5).unwrap();
-            let c = PrimitiveSet::new(&config, 6).unwrap();
+            let a = PrimitiveSet::new(&config, 5, None).unwrap();
+            let b = PrimitiveSet::new(&config, 5, None).unwrap();
+            let c = PrimitiveSet::new(&config, 6, None).unwrap();
             let mut differs = false;
             for k in 0..2000 {
                 let p = Vec3::new(
