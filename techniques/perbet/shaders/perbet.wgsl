@@ -68,6 +68,9 @@ struct VsOut {
     @location(4) opacity: f32,
     @location(5) ao: f32,
     @location(6) @interpolate(flat) layer: u32,
+    // Impostors: the density the grass grows at under the vertex (0 where none grows), so the
+    // fragments test their texels' thresholds without reading the maps themselves.
+    @location(7) density: f32,
 }
 
 // --- Receivers and postures (Sec. 3.2) ------------------------------------------------------
@@ -98,9 +101,13 @@ fn in_terrain(xz: vec2<f32>) -> bool {
     return all(uv >= vec2(0.0)) && all(uv <= vec2(1.0));
 }
 
-// Whether grass grows at `xz` for a blade (or texel) of density threshold `threshold`.
-fn grows(xz: vec2<f32>, threshold: f32) -> bool {
-    return in_terrain(xz) && terrain_covering(xz) == COVER_GRASS && threshold < terrain_density(xz);
+// The density map at `xz` where the covering map says grass, 0 elsewhere and off the terrain: a
+// blade (or texel) of density threshold t grows where t < grass_density.
+fn grass_density(xz: vec2<f32>) -> f32 {
+    if (!in_terrain(xz) || terrain_covering(xz) != COVER_GRASS) {
+        return 0.0;
+    }
+    return terrain_density(xz);
 }
 
 // --- Strips (Sec. 2.1, Fig. 3) ---------------------------------------------------------------
@@ -173,6 +180,7 @@ fn vs_strip(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     let row = q / c + corner.y;
     let world = edge_point(e, slot, k, j, f32(row));
     let o = e.flags & 1u;
+    out.density = grass_density(strip_xz(e, k, f32(j) / f32(c)));
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;
     out.uv = vec2(f32(j) / f32(c), 1.0 - f32(row) / f32(params.counts.y));
@@ -188,7 +196,7 @@ fn fs_strip(in: VsOut) -> @location(0) vec4<f32> {
     let aux = textureSample(strip_aux, clamp_sampler, in.uv, in.layer);
     let alpha = c.a * in.opacity;
     // Patches are drawn far to near, so even faint texels may write depth: keep them all.
-    if (alpha < 0.004 || !grows(in.world.xz, aux.x)) {
+    if (alpha < 0.004 || aux.x >= in.density) {
         discard;
     }
     let albedo = select(c.rgb, in.albedo, globals.frame.z == 1u);
@@ -219,6 +227,7 @@ fn vs_flat(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     out.uv = uv;
     out.opacity = e.opacity;
     out.layer = e.variant;
+    out.density = grass_density(xz);
     out.albedo = lod_tint(vec3(1.0), vec3(0.0, 0.0, 1.0));
     return out;
 }
@@ -247,7 +256,7 @@ fn fs_flat(in: VsOut) -> @location(0) vec4<f32> {
     let c = mix(textureSample(flat_color, repeat_sampler, in.uv, a), textureSample(flat_color, repeat_sampler, in.uv, b), layers.z);
     let aux = mix(textureSample(flat_aux, repeat_sampler, in.uv, a), textureSample(flat_aux, repeat_sampler, in.uv, b), layers.z);
     let alpha = c.a * in.opacity;
-    if (alpha < 0.004 || !grows(in.world.xz, aux.x)) {
+    if (alpha < 0.004 || aux.x >= in.density) {
         discard;
     }
     let albedo = select(c.rgb, in.albedo, globals.frame.z == 1u);
@@ -269,7 +278,7 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     let b = e.variant * count + instance % count;
     let blade = blades[b];
     let root_xz = e.origin + blade.root_facing.xy;
-    if (e.opacity <= 0.0 || !grows(root_xz, blade.shape.z)) {
+    if (e.opacity <= 0.0 || blade.shape.z >= grass_density(root_xz)) {
         out.position = HIDDEN;
         return out;
     }

@@ -92,7 +92,10 @@ pub struct Params {
     /// Different pre-computed patches tiled over the terrain (chosen per patch by a hash).
     pub variants: u32,
     /// Parallel strips per orientation in a patch (the number of polygons of the 2.5D
-    /// representation, Sec. 2.1).
+    /// representation, Sec. 2.1). Strips are what costs: a view across the 2.5D band crosses
+    /// `strips / patch_size` semi-transparent layers per metre. On the meadow (medium preset,
+    /// lavapipe, 640x360) 8 strips took 244 ms a frame and 4 took 139 ms for a picture hard to
+    /// tell apart (each strip paints every blade of its slab, so coverage is the same).
     pub strips: u32,
     /// Polygons along one strip; their vertical edges carry the receivers (Fig. 3).
     pub strip_columns: u32,
@@ -131,7 +134,7 @@ impl Default for Params {
             strip_range: [0, 0],
             patch_size: 2.5,
             variants: 4,
-            strips: 8,
+            strips: 4,
             strip_columns: 4,
             strip_margin: 0.12,
             strip_texels: 256,
