@@ -24,6 +24,7 @@
 
 pub mod calibration;
 pub mod camera;
+pub mod color;
 pub mod compare;
 pub mod error;
 pub mod frame;

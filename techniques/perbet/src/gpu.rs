@@ -2,6 +2,7 @@
 //! painted coordinates), the posture table, the strip and 2D texture arrays, the three
 //! pipelines, and the per-frame entries and receivers (grown when a frame needs more).
 
+use grassbench::color::srgb_encode;
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{FrameEncoder, GpuContext, InitContext, bytemuck, shaders, wgpu};
 
@@ -458,17 +459,6 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// Linear to sRGB-encoded 8 bits.
-fn srgb8(linear: f32) -> u8 {
-    let c = linear.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0).round() as u8
-}
-
 fn unorm8(v: f32) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).round() as u8
 }
@@ -517,7 +507,14 @@ fn upload_array(
                 image
                     .color
                     .iter()
-                    .flat_map(|c| [srgb8(c[0]), srgb8(c[1]), srgb8(c[2]), unorm8(c[3])])
+                    .flat_map(|c| {
+                        [
+                            srgb_encode(c[0]),
+                            srgb_encode(c[1]),
+                            srgb_encode(c[2]),
+                            unorm8(c[3]),
+                        ]
+                    })
                     .collect()
             } else {
                 image
