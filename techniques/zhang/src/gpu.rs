@@ -1,10 +1,12 @@
-//! GPU side: instance layouts, the parameter uniform, the procedural textures, the blade and
-//! flower pipelines (group 1 = uniform + blade texture + petal texture array + sampler).
+//! GPU side: instance layouts, the parameter uniform, the procedural textures, the blade,
+//! flower and billboard pipelines (group 1 = uniform + blade texture + petal texture array +
+//! sampler + billboard texture array).
 
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{InitContext, bytemuck, shaders, wgpu};
 
 use crate::prairie::PETAL_TEXTURES;
+use crate::billboard_texture;
 use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
 
 /// Static per-blade data (vertex buffer 0 of the blade pipeline, instance step).
@@ -39,6 +41,20 @@ pub struct FlowerInstance {
     pub axis_layer: [f32; 4],
 }
 
+/// Per-frame per-wing data (instance step): one rectangle of a billboard (Sec. 4.1-4.2).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WingInstance {
+    /// Root of the plant at the middle line xyz; w = texture `u` there.
+    pub centre_root: [f32; 4],
+    /// Root of the plant at the outer edge xyz; w = texture `u` there.
+    pub outer_root: [f32; 4],
+    /// Top of the middle line xyz; w = billboard texture layer.
+    pub centre_top: [f32; 4],
+    /// Top of the outer edge xyz; w = kept fraction of the texture's blades (density x fade).
+    pub outer_top: [f32; 4],
+}
+
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -47,7 +63,7 @@ pub struct ParamsUniform {
     pub color_root: [f32; 4],
     /// Tip colour; w = translucency.
     pub color_tip: [f32; 4],
-    /// Backbone points, alpha cut-off, petal size (m), unused.
+    /// Backbone points, alpha cut-off, petal size (m), billboard height (m).
     pub shape: [f32; 4],
 }
 
@@ -70,12 +86,20 @@ const FLOWER_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayou
     attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
 };
 
+const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<WingInstance>() as u64,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4],
+};
+
 /// The technique's pipelines and group-1 resources.
 pub struct Pipelines {
     /// Blade strips.
     pub blades: wgpu::RenderPipeline,
     /// Petal quads.
     pub flowers: wgpu::RenderPipeline,
+    /// Billboard wings.
+    pub wings: wgpu::RenderPipeline,
     /// Group 1.
     pub bind_group: wgpu::BindGroup,
     /// Bytes of textures and uniform.
@@ -111,13 +135,22 @@ fn texture(
 }
 
 impl Pipelines {
-    /// GPU memory of the textures and the uniform.
-    pub const BYTES: u64 = (BLADE_SIZE.0 * BLADE_SIZE.1 * 4) as u64
-        + (PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES) as u64
-        + std::mem::size_of::<ParamsUniform>() as u64;
+    /// GPU memory of the textures and the uniform, with `layers` billboard texture layers.
+    pub const fn bytes(layers: u32) -> u64 {
+        (BLADE_SIZE.0 * BLADE_SIZE.1 * 4) as u64
+            + (PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES) as u64
+            + (billboard_texture::SIZE.0 * billboard_texture::SIZE.1 * 4) as u64 * layers as u64
+            + std::mem::size_of::<ParamsUniform>() as u64
+    }
 
-    /// Creates textures, uniform, bind group and both pipelines.
-    pub fn new(ctx: &InitContext<'_>, uniform: &ParamsUniform, seed: u64) -> Self {
+    /// Creates textures, uniform, bind group and the pipelines; `billboard` holds `layers`
+    /// layers of the billboard texture ([`billboard_texture::billboard_texture`]).
+    pub fn new(
+        ctx: &InitContext<'_>,
+        uniform: &ParamsUniform,
+        seed: u64,
+        (billboard, layers): (&[[u8; 4]], u32),
+    ) -> Self {
         let device = &ctx.gpu.device;
         let queue = &ctx.gpu.queue;
         let blade_tex = texture(
@@ -133,6 +166,17 @@ impl Pipelines {
             "zhang petal textures",
             (PETAL_SIZE, PETAL_SIZE, PETAL_TEXTURES),
             &petal_textures(),
+        );
+        let billboard_tex = texture(
+            device,
+            queue,
+            "zhang billboard texture",
+            (
+                billboard_texture::SIZE.0,
+                billboard_texture::SIZE.1,
+                layers,
+            ),
+            billboard,
         );
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("zhang params"),
@@ -176,10 +220,15 @@ impl Pipelines {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
+                tex_entry(4, wgpu::TextureViewDimension::D2Array),
             ],
         });
         let blade_view = blade_tex.create_view(&Default::default());
         let petal_view = petal_tex.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let billboard_view = billboard_tex.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
@@ -203,15 +252,24 @@ impl Pipelines {
                     binding: 3,
                     resource: wgpu::BindingResource::Sampler(&sampler),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::TextureView(&billboard_view),
+                },
             ],
         });
         let module = shaders::module(device, "zhang", crate::SHADER);
+        let billboard_module = shaders::module(device, "zhang billboards", crate::BILLBOARD_SHADER);
         let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
-        let pipeline = |label, vs, fs, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
+        let pipeline = |label,
+                        module: &wgpu::ShaderModule,
+                        vs,
+                        fs,
+                        buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
             let spec = shaders::PipelineSpec::new(
                 label,
                 &pipeline_layout,
-                &module,
+                module,
                 (vs, fs),
                 buffers,
                 ctx.sample_count,
@@ -231,6 +289,7 @@ impl Pipelines {
         };
         let blades = pipeline(
             "zhang blades",
+            &module,
             "vs_blade",
             "fs_blade",
             &[
@@ -240,15 +299,24 @@ impl Pipelines {
         );
         let flowers = pipeline(
             "zhang flowers",
+            &module,
             "vs_flower",
             "fs_flower",
             &[Some(FLOWER_LAYOUT.clone())],
         );
+        let wings = pipeline(
+            "zhang billboard wings",
+            &billboard_module,
+            "vs_wing",
+            "fs_wing",
+            &[Some(WING_LAYOUT.clone())],
+        );
         Self {
             blades,
             flowers,
+            wings,
             bind_group,
-            bytes: Self::BYTES,
+            bytes: Self::bytes(layers),
         }
     }
 }

@@ -89,16 +89,20 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
 pub mod animate;
+pub mod billboard;
+pub mod billboard_texture;
 pub mod blade;
 pub mod culling;
 pub mod flower;
+pub mod frame;
 pub mod gpu;
+pub mod lod;
 pub mod params;
 pub mod prairie;
 pub mod textures;
 
-use grassbench::glam::Vec3;
-use grassbench::technique::TechniqueEntry;
+use grassbench::glam::{IVec2, Vec3};
+use grassbench::technique::{LodBlades, TechniqueEntry};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
@@ -106,11 +110,13 @@ use grassbench::{
 };
 
 pub use animate::Animation;
-pub use gpu::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform};
+pub use gpu::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
 pub use params::Params;
 
 /// The blade and flower shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
+/// The billboard shader (without the prelude).
+pub const BILLBOARD_SHADER: &str = include_str!("../shaders/billboard.wgsl");
 
 const INFO: TechniqueInfo = TechniqueInfo {
     id: "zhang",
@@ -123,11 +129,10 @@ const INFO: TechniqueInfo = TechniqueInfo {
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = TechniqueEntry {
     info: INFO,
-    // Part 1 draws every grid as single plants: the default is the finest representation.
-    // (Part 2's billboards add a real `finest` and a `no_transitions` variant.)
+    // Single plants everywhere (level of detail off, Sec. 5.2).
     variants: &[grassbench::technique::Variant {
         name: grassbench::technique::FINEST,
-        params: "",
+        params: "lod = false",
     }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Zhang::new(ctx, overrides)?)),
@@ -142,26 +147,47 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
         let (n, f) = (blades as f64, f64::from(params.flower_fraction));
         let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
         let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
+        // Billboard wings: at most six per billboard of the finest step in every grid.
+        let (wings, layers) = if params.lod {
+            let steps = billboard::steps(params.blades_per_side, params.grids);
+            let per_side = u64::from(lod::billboards_per_side(params.blades_per_side, 5));
+            let grids = u64::from(params.grids).pow(2);
+            (6 * per_side * per_side * grids, steps.len() as u32)
+        } else {
+            (1, 0)
+        };
         Ok(size(blades, std::mem::size_of::<BladeStatic>())
             .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
             .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
-            .plus(GpuEstimate::textures(gpu::Pipelines::BYTES)))
+            .plus(size(wings, std::mem::size_of::<WingInstance>()))
+            .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
     },
 };
 
 /// The technique.
 pub struct Zhang {
     params: Params,
+    layout: prairie::Layout,
     animation: Animation,
     pipelines: gpu::Pipelines,
     statics: wgpu::Buffer,
     dynamics: wgpu::Buffer,
     flowers: wgpu::Buffer,
+    wing_buffer: wgpu::Buffer,
     gpu_bytes: u64,
     /// The grass grids' blade and flower ranges and bounds (Sec. 5.3).
     grids: culling::GridIndex,
-    /// This frame's draws (`update` → `encode`).
-    visible: culling::Visible,
+    /// Every grid's billboards at every step and their anchor plants (Sec. 4.1-4.2).
+    billboards: billboard::Billboards,
+    /// The anchors' animation (only `P3` is drawn) and their top points at rest.
+    anchors: Animation,
+    anchor_rest: Vec<Vec3>,
+    /// Height of the billboard texture (the tallest blade), m.
+    billboard_height: f32,
+    /// This frame's plan (`update` → `prepare`, `encode`).
+    plan: frame::Plan,
+    /// This frame's wings (`update` → `prepare`).
+    wings: Vec<WingInstance>,
 }
 
 fn buffer(
@@ -185,7 +211,8 @@ impl Zhang {
         let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
         let scene = ctx.scene;
         let grass = &scene.config.grass;
-        let (_, planted) = prairie::plant(&params, grass, &scene.terrain, scene.config.seed);
+        let seed = scene.config.seed;
+        let (layout, planted) = prairie::plant(&params, grass, &scene.terrain, seed);
         let animation = Animation::new(&planted, params.flower_mass);
         let statics: Vec<BladeStatic> = planted
             .iter()
@@ -206,6 +233,31 @@ impl Zhang {
                 ),
             });
         }
+        // Billboards (Ch. 4): anchors, wings and the start-up texture of Fig. 11.
+        let billboard_height = grass.height[1];
+        let billboards = if params.lod {
+            billboard::Billboards::new(&layout, &params, grass, &scene.terrain, seed)
+        } else {
+            billboard::Billboards::empty()
+        };
+        let anchors = Animation::new(&billboards.anchors, params.flower_mass);
+        let anchor_rest = anchors
+            .blade_out
+            .iter()
+            .map(|d| Vec3::from_slice(&d.p3[..3]))
+            .collect();
+        let look = billboard_texture::Look {
+            grass,
+            spacing: layout.spacing().min_element(),
+            flower_fraction: params.flower_fraction,
+            petal_size: params.petal_size,
+        };
+        let layers = billboards.steps.len().max(1) as u32;
+        let mut billboard_texels = billboard_texture::billboard_texture(&look, &billboards.steps, seed);
+        billboard_texels.resize(
+            (billboard_texture::SIZE.0 * billboard_texture::SIZE.1 * layers) as usize,
+            [0; 4],
+        );
         let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
         let statics_buf = buffer(
             device,
@@ -225,6 +277,12 @@ impl Zhang {
             bytemuck::cast_slice(&animation.flower_out),
             usage,
         );
+        let wing_buffer = buffer(
+            device,
+            "zhang billboard wings",
+            bytemuck::cast_slice(&vec![WingInstance::default(); billboards.max_wings()]),
+            usage,
+        );
         let uniform = ParamsUniform {
             color_root: Vec3::from(grass.color_root)
                 .extend(grass.color_variation)
@@ -236,22 +294,35 @@ impl Zhang {
                 params.backbone_points as f32,
                 params.alpha_cutoff,
                 params.petal_size,
-                0.0,
+                billboard_height,
             ],
         };
-        let pipelines = gpu::Pipelines::new(ctx, &uniform, scene.config.seed);
-        let gpu_bytes = statics_buf.size() + dynamics.size() + flowers.size() + pipelines.bytes;
-        let grids = culling::GridIndex::new(&planted);
+        let pipelines = gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers));
+        let gpu_bytes = statics_buf.size()
+            + dynamics.size()
+            + flowers.size()
+            + wing_buffer.size()
+            + pipelines.bytes;
+        let mut grids = culling::GridIndex::new(&planted);
+        grids.include(&billboards.anchors, billboard_height);
+        let plan = frame::Plan::new(&layout, &grids, &billboards, IVec2::MIN, None, false);
         Ok(Self {
-            visible: grids.all(),
+            plan,
             grids,
+            layout,
             params,
             animation,
             pipelines,
             statics: statics_buf,
             dynamics,
             flowers,
+            wing_buffer,
             gpu_bytes,
+            billboards,
+            anchors,
+            anchor_rest,
+            billboard_height,
+            wings: Vec::new(),
         })
     }
 
@@ -272,47 +343,78 @@ impl GrassTechnique for Zhang {
 
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         let p = &self.params;
-        self.animation.step(
+        let frustum = inputs.camera.frustum();
+        let camera = lod::camera_grid(&self.layout, inputs.camera.eye);
+        self.plan = frame::Plan::new(
+            &self.layout,
+            &self.grids,
+            &self.billboards,
+            camera,
+            p.culling.then_some(&frustum),
+            p.lod,
+        );
+        let k = (p.wind_response, p.spring, p.damping);
+        let plan = &self.plan;
+        self.animation.step_ranges(
             inputs.wind,
             inputs.time,
             inputs.dt,
-            p.wind_response,
-            p.spring,
-            p.damping,
+            k,
+            &plan.animate_blades,
+            &plan.animate_flowers,
         );
-        self.visible = if p.culling {
-            self.grids.visible(&inputs.camera.frustum())
-        } else {
-            self.grids.all()
-        };
+        self.anchors
+            .step_ranges(inputs.wind, inputs.time, inputs.dt, k, &plan.animate_anchors, &[]);
+        frame::wings(
+            plan,
+            &self.billboards,
+            &self.anchors.blade_out,
+            &self.anchor_rest,
+            self.billboard_height,
+            p.billboard_sway,
+            |_| 1.0,
+            &mut self.wings,
+        );
         Ok(())
     }
 
+    /// Uploads what this frame animated: the blades and flowers of the grids up to two away
+    /// (all of them without LOD) and the far grids' wings.
     fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
-        if !self.animation.blade_out.is_empty() {
-            gpu.queue.write_buffer(
-                &self.dynamics,
-                0,
-                bytemuck::cast_slice(&self.animation.blade_out),
-            );
+        fn upload<T: bytemuck::Pod>(
+            gpu: &GpuContext,
+            buffer: &wgpu::Buffer,
+            data: &[T],
+            ranges: &[std::ops::Range<u32>],
+        ) {
+            let each = std::mem::size_of::<T>() as u64;
+            for r in ranges {
+                let r = (r.start as usize).min(data.len())..(r.end as usize).min(data.len());
+                if !r.is_empty() {
+                    let bytes = bytemuck::cast_slice(&data[r.clone()]);
+                    gpu.queue.write_buffer(buffer, r.start as u64 * each, bytes);
+                }
+            }
         }
-        if !self.animation.flower_out.is_empty() {
-            gpu.queue.write_buffer(
-                &self.flowers,
-                0,
-                bytemuck::cast_slice(&self.animation.flower_out),
-            );
-        }
+        let plan = &self.plan;
+        upload(gpu, &self.dynamics, &self.animation.blade_out, &plan.animate_blades);
+        upload(gpu, &self.flowers, &self.animation.flower_out, &plan.animate_flowers);
+        upload(gpu, &self.wing_buffer, &self.wings, &[0..self.wings.len() as u32]);
         Ok(())
     }
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
-        let v = &self.visible;
-        if v.blades.is_empty() && v.flowers.is_empty() {
+        let v = &self.plan;
+        if v.blades.is_empty() && v.flowers.is_empty() && self.wings.is_empty() {
             return;
         }
         let mut pass = encoder.render_pass("plants");
         pass.set_bind_group(1, &self.pipelines.bind_group, &[]);
+        if !self.wings.is_empty() {
+            pass.set_pipeline(&self.pipelines.wings);
+            pass.set_vertex_buffer(0, self.wing_buffer.slice(..));
+            pass.draw(0..4, 0..self.wings.len() as u32);
+        }
         if !v.blades.is_empty() {
             pass.set_pipeline(&self.pipelines.blades);
             pass.set_vertex_buffer(0, self.statics.slice(..));
@@ -329,26 +431,71 @@ impl GrassTechnique for Zhang {
             }
         }
         drop(pass);
-        encoder.count_draws((v.blades.len() + v.flowers.len()) as u64);
+        encoder.count_draws(self.draw_calls());
     }
 
-    /// Grass grids drawn and culled this frame (Sec. 5.3).
+    /// Grass grids drawn and culled (Sec. 5.3), single plants drawn, billboards drawn by
+    /// length `l'` (Eq. 8).
     fn counters(&self) -> Vec<(&'static str, f64)> {
-        vec![
-            ("grids_drawn", self.visible.grids as f64),
-            ("grids_culled", self.visible.culled as f64),
-        ]
+        let mut c = vec![
+            ("grids_drawn", self.plan.grids as f64),
+            ("grids_culled", self.plan.culled as f64),
+            ("single_plants", self.plan.blade_count() as f64),
+        ];
+        let mut by_level = vec![0u64; self.billboards.steps.len()];
+        for f in &self.plan.far {
+            by_level[f.level] +=
+                u64::from(self.billboards.grids[f.grid as usize][f.level].billboards);
+        }
+        for (&step, n) in self.billboards.steps.iter().zip(by_level) {
+            c.push((billboard_counter(step), n as f64));
+        }
+        c.push(("wings", self.wings.len() as f64));
+        c
     }
 
-    /// Blades and flowers of the grids drawn this frame (all of them with `culling = false`).
+    /// Blades represented: drawn as single plants or standing in the billboards drawn.
     fn stats(&self) -> TechniqueStats {
-        let blades = self.visible.blade_count();
-        let flowers = self.visible.flower_count();
+        let blades = self.plan.blade_count();
+        let flowers = self.plan.flower_count();
         TechniqueStats {
-            blades,
-            triangles: blades * u64::from(2 * (self.params.backbone_points - 1)) + 2 * flowers,
-            draw_calls: (self.visible.blades.len() + self.visible.flowers.len()) as u64,
+            blades: blades + self.plan.billboard_blades,
+            triangles: blades * u64::from(2 * (self.params.backbone_points - 1))
+                + 2 * flowers
+                + 2 * self.wings.len() as u64,
+            draw_calls: self.draw_calls(),
             gpu_bytes: self.gpu_bytes,
         }
+    }
+
+    /// Single plants as geometry, billboards as vertical slices.
+    fn lod_blades(&self) -> Option<LodBlades> {
+        Some(LodBlades {
+            geometry: self.plan.blade_count(),
+            vertical_slices: self.plan.billboard_blades,
+            horizontal_slices: 0,
+        })
+    }
+}
+
+/// The counter name of billboards of step `step` (`billboards_l5` for `l' = 5`, ...).
+fn billboard_counter(step: u32) -> &'static str {
+    match step {
+        4 => "billboards_l5",
+        8 => "billboards_l9",
+        16 => "billboards_l17",
+        32 => "billboards_l33",
+        64 => "billboards_l65",
+        128 => "billboards_l129",
+        256 => "billboards_l257",
+        512 => "billboards_l513",
+        _ => "billboards_other",
+    }
+}
+
+impl Zhang {
+    fn draw_calls(&self) -> u64 {
+        (self.plan.blades.len() + self.plan.flowers.len() + usize::from(!self.wings.is_empty()))
+            as u64
     }
 }

@@ -37,6 +37,14 @@ pub struct Params {
     pub alpha_cutoff: f32,
     /// View-frustum culling of grass grids (Sec. 5.3); off draws every grid every frame.
     pub culling: bool,
+    /// Level of detail (Sec. 5.2): the camera grid and its eight neighbours as single plants,
+    /// the other grids as billboards (Ch. 4). Off draws single plants everywhere (the
+    /// `finest` variant).
+    pub lod: bool,
+    /// Extra sway of billboards per grid of offset beyond 2 (Sec. 4.2: far billboards move
+    /// more so their motion stays visible): a billboard `g` grids away moves its top by
+    /// `1 + billboard_sway·(g − 2)` times its plants' displacement. 0 = exactly the plants'.
+    pub billboard_sway: f32,
 }
 
 impl Default for Params {
@@ -55,6 +63,8 @@ impl Default for Params {
             translucency: 0.35,
             alpha_cutoff: 0.5,
             culling: true,
+            lod: true,
+            billboard_sway: 0.05,
         }
     }
 }
@@ -72,7 +82,8 @@ impl TechniqueParams for Params {
         check("zhang.flower_fraction", self.flower_fraction, 0.0..=1.0)?;
         check("zhang.petal_size", self.petal_size, 0.001..=10.0)?;
         check("zhang.translucency", self.translucency, 0.0..=1.0)?;
-        check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)
+        check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)?;
+        check("zhang.billboard_sway", self.billboard_sway, 0.0..=1.0)
     }
 }
 
@@ -94,5 +105,6 @@ mod tests {
         bad(|p| p.wind_response = f32::NAN, "zhang.wind_response");
         bad(|p| p.flower_fraction = 2.0, "zhang.flower_fraction");
         bad(|p| p.blades_per_side = 100_000, "zhang.blades_per_side");
+        bad(|p| p.billboard_sway = f32::INFINITY, "zhang.billboard_sway");
     }
 }
