@@ -86,5 +86,6 @@ fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
     }
     let ao = mix(0.3, 1.0, v);
     let lit = shade_leaf(albedo, normalize(in.normal), in.world, ao, params.color_tip.w);
-    return vec4(apply_fog(lit, in.world), 1.0);
+    // Alpha blends with Eq. (10) when sorting, drives coverage under MSAA otherwise.
+    return vec4(apply_fog(lit, in.world), texel.a);
 }

@@ -54,6 +54,9 @@ pub struct GridLevel {
     pub wings: Vec<Wing>,
     /// Billboards with at least one wing.
     pub billboards: u32,
+    /// Wing range of each billboard block, row-major (`bz·n' + bx`), for the pre-computed
+    /// far-to-near orders of Sec. 5.4.2.
+    pub blocks: Vec<Range<u32>>,
 }
 
 /// Every grid's billboards at every step.
@@ -138,6 +141,7 @@ impl Billboards {
                     let needed = points.iter().filter(|&&(c, ..)| c >= level).count() as u32;
                     let mut wings = Vec::new();
                     let mut billboards = 0;
+                    let mut block_ranges = Vec::new();
                     let blocks = crate::lod::billboards_per_side(n, s + 1);
                     for bz in 0..blocks {
                         for bx in 0..blocks {
@@ -176,12 +180,14 @@ impl Billboards {
                                 });
                             }
                             billboards += u32::from(wings.len() > before);
+                            block_ranges.push(before as u32..wings.len() as u32);
                         }
                     }
                     GridLevel {
                         anchors: first..first + needed,
                         wings,
                         billboards,
+                        blocks: block_ranges,
                     }
                 })
                 .collect();
@@ -209,6 +215,14 @@ impl Billboards {
             .iter()
             .position(|&s| s >= step)
             .unwrap_or(self.steps.len().saturating_sub(1))
+    }
+
+    /// Billboards per grid side at each level (Eq. 9).
+    pub fn per_side(&self, n: u32) -> Vec<u32> {
+        self.steps
+            .iter()
+            .map(|&s| crate::lod::billboards_per_side(n, s + 1))
+            .collect()
     }
 
     /// Wings of every grid at its finest level (an upper bound on the wings of a frame).

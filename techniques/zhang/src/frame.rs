@@ -10,20 +10,34 @@
 use std::ops::Range;
 
 use grassbench::camera::Frustum;
-use grassbench::glam::{IVec2, Vec3};
+use grassbench::glam::{IVec2, Vec2, Vec3};
 use grassbench::technique::ranges::push_merged;
 
 use crate::billboard::Billboards;
 use crate::culling::GridIndex;
 use crate::gpu::{BladeDynamic, WingInstance};
-use crate::lod::{Level, grid_offset};
+use crate::lod::{Level, grid_coords, grid_offset};
+use crate::order::{self, BlockOrders, line_order, section};
 use crate::prairie::Layout;
+
+/// A grid drawn as single plants this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearGrid {
+    /// Non-empty grid number in the [`GridIndex`].
+    pub k: usize,
+    /// Grid index (`gz·grids + gx`).
+    pub grid: u32,
+    /// Offset from the camera grid, in grids.
+    pub delta: IVec2,
+}
 
 /// A far grid drawn as billboards this frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FarGrid {
     /// Grid index (`gz·grids + gx`).
     pub grid: u32,
+    /// Offset from the camera grid, in grids.
+    pub delta: IVec2,
     /// Billboard level (index into [`Billboards::steps`]).
     pub level: usize,
     /// Grid offset `g` from the camera grid.
@@ -43,7 +57,9 @@ pub struct Plan {
     pub blades: Vec<Range<u32>>,
     /// Flower instance ranges drawn.
     pub flowers: Vec<Range<u32>>,
-    /// Grids drawn as billboards, in grid order.
+    /// Grids drawn as single plants (far to near when sorting, else in grid order).
+    pub near: Vec<NearGrid>,
+    /// Grids drawn as billboards (far to near when sorting, else in grid order).
     pub far: Vec<FarGrid>,
     /// Grids drawn (single plants or billboards).
     pub grids: usize,
@@ -65,19 +81,21 @@ impl Plan {
     }
 
     /// The plan of a frame seen from grid `camera` through `frustum` (`None`: no culling);
-    /// `lod = false` draws single plants everywhere.
+    /// `lod = false` draws single plants everywhere; `sort` orders the grids far to near by
+    /// squared grid offset (Sec. 5.4.2).
     pub fn new(
         layout: &Layout,
         index: &GridIndex,
         billboards: &Billboards,
         camera: IVec2,
         frustum: Option<&Frustum>,
-        lod: bool,
+        (lod, sort): (bool, bool),
     ) -> Self {
         let mut plan = Self::default();
         for k in 0..index.len() {
             let grid = index.id(k);
             let g = grid_offset(layout, grid, camera);
+            let delta = grid_coords(layout, grid) - camera;
             let level = Level::at(g, lod);
             // The level one grid closer (what a border crossing can turn it into).
             let closer = Level::at(g.saturating_sub(1), lod);
@@ -113,17 +131,23 @@ impl Plan {
                 None => {
                     push_merged(&mut plan.blades, index.blades(k));
                     push_merged(&mut plan.flowers, index.flowers(k));
+                    plan.near.push(NearGrid { k, grid, delta });
                 }
                 Some(level) => {
                     let r = index.blades(k);
                     plan.billboard_blades += u64::from(r.end - r.start);
                     plan.far.push(FarGrid {
                         grid,
+                        delta,
                         level,
                         offset: g,
                     });
                 }
             }
+        }
+        if sort {
+            order::sort_grids(&mut plan.far, |f| f.delta);
+            order::sort_grids(&mut plan.near, |n| n.delta);
         }
         plan
     }
@@ -133,11 +157,14 @@ impl Plan {
 /// the anchors' roots, top vertices at their animated top points (Sec. 4.2), scaled to the
 /// billboard texture's `height` and swayed `1 + sway·(g − 2)` times as far from rest for a
 /// grid `g` away (the horizontal offset is kept within `height`, so the culling boxes hold).
-/// `rest` is each anchor's top point at rest, `fade(grid)` the alpha of Sec. 6.1.
+/// `rest` is each anchor's top point at rest, `fade(grid)` the alpha of Sec. 6.1. With
+/// `orders`, each grid's billboards follow the pre-computed far-to-near order of its section
+/// (Sec. 5.4.2); the grids come in the plan's order.
 #[allow(clippy::too_many_arguments)]
 pub fn wings(
     plan: &Plan,
     billboards: &Billboards,
+    orders: Option<&BlockOrders>,
     anchors: &[BladeDynamic],
     rest: &[Vec3],
     height: f32,
@@ -167,7 +194,7 @@ pub fn wings(
             p.root + v
         };
         let level = &billboards.grids[far.grid as usize][far.level];
-        for w in &level.wings {
+        let mut push = |w: &crate::billboard::Wing| {
             let (c, o) = (&billboards.anchors[w.centre as usize], &billboards.anchors[w.outer as usize]);
             out.push(WingInstance {
                 centre_root: c.root.extend(w.u[0]).to_array(),
@@ -175,6 +202,74 @@ pub fn wings(
                 centre_top: top(w.centre).extend(far.level as f32).to_array(),
                 outer_top: top(w.outer).extend(w.density * alpha).to_array(),
             });
+        };
+        match orders {
+            Some(orders) => {
+                for &b in orders.get(far.level, section(far.delta, IVec2::ZERO)) {
+                    let r = level.blocks[b as usize].clone();
+                    level.wings[r.start as usize..r.end as usize]
+                        .iter()
+                        .for_each(&mut push);
+                }
+            }
+            None => level.wings.iter().for_each(push),
+        }
+    }
+}
+
+/// What [`sorted_blades`] reads.
+#[derive(Clone, Copy)]
+pub struct BladeLookup<'a> {
+    /// Where the grids lie.
+    pub layout: &'a Layout,
+    /// The grids' ranges.
+    pub index: &'a GridIndex,
+    /// Blade instance at each lattice point, `grid·n² + cell` (`u32::MAX` where none grows).
+    pub slots: &'a [u32],
+    /// Each blade's root xyz and height.
+    pub plants: &'a [[f32; 4]],
+}
+
+/// The single plants of `plan`'s near grids far to near (Sec. 5.4.1), written to `out`
+/// (instance indices; cleared first): grid by grid in the plan's (sorted) order, the camera
+/// grid's plants quicksorted by squared distance to `eye`, the other grids' plants in the line
+/// order of their section (Table 1) walked towards the eye ([`line_order`]). Plants whose
+/// bounding sphere is outside `frustum` are left out (the second culling level of Sec. 5.3).
+pub fn sorted_blades(
+    plan: &Plan,
+    look: &BladeLookup<'_>,
+    eye: Vec3,
+    frustum: Option<&Frustum>,
+    scratch: &mut Vec<u32>,
+    out: &mut Vec<u32>,
+) {
+    out.clear();
+    let n = look.layout.per_side;
+    let visible = |b: u32| {
+        let [x, y, z, h] = look.plants[b as usize];
+        frustum.is_none_or(|f| f.intersects_sphere(Vec3::new(x, y + 0.5 * h, z), h))
+    };
+    let distance = |b: u32| {
+        let [x, y, z, _] = look.plants[b as usize];
+        (Vec3::new(x, y, z) - eye).length_squared()
+    };
+    for near in &plan.near {
+        if near.delta == IVec2::ZERO {
+            let start = out.len();
+            out.extend(look.index.blades(near.k).filter(|&b| visible(b)));
+            out[start..].sort_unstable_by(|&a, &b| distance(b).total_cmp(&distance(a)));
+        } else {
+            let origin = look.layout.origin
+                + grid_coords(look.layout, near.grid).as_vec2() * look.layout.grid_size;
+            let local = (Vec2::new(eye.x, eye.z) - origin) / look.layout.spacing();
+            line_order(n, near.delta.signum(), local, scratch);
+            let base = near.grid as usize * (n * n) as usize;
+            out.extend(
+                scratch
+                    .iter()
+                    .map(|&cell| look.slots[base + cell as usize])
+                    .filter(|&b| b != u32::MAX && visible(b)),
+            );
         }
     }
 }

@@ -92,6 +92,23 @@ const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout 
     attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4],
 };
 
+/// Blending of Eq. (10): `C = S·S_a + D·(1 − S_a)` for colour and alpha alike.
+const EQ10: wgpu::BlendComponent = wgpu::BlendComponent {
+    src_factor: wgpu::BlendFactor::SrcAlpha,
+    dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+    operation: wgpu::BlendOperation::Add,
+};
+
+/// The harness's colour target blended with Eq. (10) (Sec. 5.4).
+const BLENDED_TARGETS: &[Option<wgpu::ColorTargetState>] = &[Some(wgpu::ColorTargetState {
+    format: grassbench::target::COLOR_FORMAT,
+    blend: Some(wgpu::BlendState {
+        color: EQ10,
+        alpha: EQ10,
+    }),
+    write_mask: wgpu::ColorWrites::ALL,
+})];
+
 /// The technique's pipelines and group-1 resources.
 pub struct Pipelines {
     /// Blade strips.
@@ -144,12 +161,16 @@ impl Pipelines {
     }
 
     /// Creates textures, uniform, bind group and the pipelines; `billboard` holds `layers`
-    /// layers of the billboard texture ([`billboard_texture::billboard_texture`]).
+    /// layers of the billboard texture ([`billboard_texture::billboard_texture`]). With
+    /// `blend`, blades and wings are blended with Eq. (10) (drawn far to near, Sec. 5.4);
+    /// without, they are alpha-tested (alpha to coverage under MSAA). Petals are always
+    /// alpha-tested (drawn first, they need no order).
     pub fn new(
         ctx: &InitContext<'_>,
         uniform: &ParamsUniform,
         seed: u64,
         (billboard, layers): (&[[u8; 4]], u32),
+        blend: bool,
     ) -> Self {
         let device = &ctx.gpu.device;
         let queue = &ctx.gpu.queue;
@@ -263,8 +284,8 @@ impl Pipelines {
         let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
         let pipeline = |label,
                         module: &wgpu::ShaderModule,
-                        vs,
-                        fs,
+                        (vs, fs),
+                        blended: bool,
                         buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
             let spec = shaders::PipelineSpec::new(
                 label,
@@ -280,8 +301,13 @@ impl Pipelines {
                     multisample: wgpu::MultisampleState {
                         // With MSAA the texture's alpha also drives coverage (smoother
                         // cut-outs); the alpha test still discards the clear part.
-                        alpha_to_coverage_enabled: ctx.sample_count > 1,
+                        alpha_to_coverage_enabled: ctx.sample_count > 1 && !blended,
                         ..spec.multisample
+                    },
+                    targets: if blended {
+                        BLENDED_TARGETS
+                    } else {
+                        spec.targets
                     },
                     ..spec
                 },
@@ -290,8 +316,8 @@ impl Pipelines {
         let blades = pipeline(
             "zhang blades",
             &module,
-            "vs_blade",
-            "fs_blade",
+            ("vs_blade", "fs_blade"),
+            blend,
             &[
                 Some(BLADE_LAYOUTS[0].clone()),
                 Some(BLADE_LAYOUTS[1].clone()),
@@ -300,15 +326,15 @@ impl Pipelines {
         let flowers = pipeline(
             "zhang flowers",
             &module,
-            "vs_flower",
-            "fs_flower",
+            ("vs_flower", "fs_flower"),
+            false,
             &[Some(FLOWER_LAYOUT.clone())],
         );
         let wings = pipeline(
             "zhang billboard wings",
             &billboard_module,
-            "vs_wing",
-            "fs_wing",
+            ("vs_wing", "fs_wing"),
+            blend,
             &[Some(WING_LAYOUT.clone())],
         );
         Self {

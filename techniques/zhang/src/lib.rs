@@ -97,6 +97,7 @@ pub mod flower;
 pub mod frame;
 pub mod gpu;
 pub mod lod;
+pub mod order;
 pub mod params;
 pub mod prairie;
 pub mod textures;
@@ -156,8 +157,15 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
         } else {
             (1, 0)
         };
+        let sorted = if params.sorting == params::Sorting::Sort {
+            sorted_capacity(&params, blades)
+        } else {
+            0
+        };
         Ok(size(blades, std::mem::size_of::<BladeStatic>())
             .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
+            .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
+            .plus(size(sorted.max(1), std::mem::size_of::<gpu::BladeDynamic>()))
             .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
             .plus(size(wings, std::mem::size_of::<WingInstance>()))
             .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
@@ -188,6 +196,26 @@ pub struct Zhang {
     plan: frame::Plan,
     /// This frame's wings (`update` → `prepare`).
     wings: Vec<WingInstance>,
+    /// Sorting (Sec. 5.4): the pre-computed billboard orders of the nine sections, each
+    /// blade's root and height, the blade at each lattice point (`grid·n² + cell`), the
+    /// frame's single plants far to near and their instance data in that order.
+    sorting: Option<Sorted>,
+    /// CPU time of this frame's far-to-near ordering, ms (a statistic).
+    sort_ms: f64,
+}
+
+/// What sorting (Sec. 5.4) keeps.
+struct Sorted {
+    orders: order::BlockOrders,
+    statics: Vec<BladeStatic>,
+    plants: Vec<[f32; 4]>,
+    slots: Vec<u32>,
+    order: Vec<u32>,
+    scratch: Vec<u32>,
+    statics_out: Vec<BladeStatic>,
+    dynamics_out: Vec<BladeDynamic>,
+    statics_buf: wgpu::Buffer,
+    dynamics_buf: wgpu::Buffer,
 }
 
 fn buffer(
@@ -209,6 +237,7 @@ impl Zhang {
     /// Plants the prairie, builds the animation state, textures and pipelines.
     pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
         let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let sort = params.sorting == params::Sorting::Sort;
         let scene = ctx.scene;
         let grass = &scene.config.grass;
         let seed = scene.config.seed;
@@ -292,20 +321,68 @@ impl Zhang {
                 .to_array(),
             shape: [
                 params.backbone_points as f32,
-                params.alpha_cutoff,
+                if sort {
+                    params.alpha_cutoff.min(BLEND_CUTOFF)
+                } else {
+                    params.alpha_cutoff
+                },
                 params.petal_size,
                 billboard_height,
             ],
         };
-        let pipelines = gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers));
+        let pipelines =
+            gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
+        let sorting = sort.then(|| {
+            let n = layout.per_side;
+            let mut slots = vec![u32::MAX; (layout.grids * layout.grids * n * n) as usize];
+            for (b, p) in planted.iter().enumerate() {
+                slots[(p.grid * n * n + p.cell) as usize] = b as u32;
+            }
+            let capacity = sorted_capacity(&params, planted.len() as u64) as usize;
+            Sorted {
+                orders: order::BlockOrders::new(&billboards.per_side(n)),
+                plants: planted
+                    .iter()
+                    .map(|p| p.root.extend(p.height).to_array())
+                    .collect(),
+                slots,
+                order: Vec::new(),
+                scratch: Vec::new(),
+                statics_out: Vec::new(),
+                dynamics_out: Vec::new(),
+                statics_buf: buffer(
+                    device,
+                    "zhang blades far to near (static)",
+                    bytemuck::cast_slice(&vec![BladeStatic::default(); capacity]),
+                    usage,
+                ),
+                dynamics_buf: buffer(
+                    device,
+                    "zhang blades far to near (control points)",
+                    bytemuck::cast_slice(&vec![BladeDynamic::default(); capacity]),
+                    usage,
+                ),
+                statics: statics.clone(),
+            }
+        });
         let gpu_bytes = statics_buf.size()
             + dynamics.size()
             + flowers.size()
             + wing_buffer.size()
+            + sorting
+                .as_ref()
+                .map_or(0, |s| s.statics_buf.size() + s.dynamics_buf.size())
             + pipelines.bytes;
         let mut grids = culling::GridIndex::new(&planted);
         grids.include(&billboards.anchors, billboard_height);
-        let plan = frame::Plan::new(&layout, &grids, &billboards, IVec2::MIN, None, false);
+        let plan = frame::Plan::new(
+            &layout,
+            &grids,
+            &billboards,
+            IVec2::MIN,
+            None,
+            (false, false),
+        );
         Ok(Self {
             plan,
             grids,
@@ -323,6 +400,8 @@ impl Zhang {
             anchor_rest,
             billboard_height,
             wings: Vec::new(),
+            sorting,
+            sort_ms: 0.0,
         })
     }
 
@@ -344,15 +423,20 @@ impl GrassTechnique for Zhang {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         let p = &self.params;
         let frustum = inputs.camera.frustum();
-        let camera = lod::camera_grid(&self.layout, inputs.camera.eye);
+        let frustum = p.culling.then_some(&frustum);
+        let eye = inputs.camera.eye;
+        let camera = lod::camera_grid(&self.layout, eye);
+        // Sorting time is a statistic (the `sort_ms` counter), not an input of the frame.
+        let sort_start = std::time::Instant::now();
         self.plan = frame::Plan::new(
             &self.layout,
             &self.grids,
             &self.billboards,
             camera,
-            p.culling.then_some(&frustum),
-            p.lod,
+            frustum,
+            (p.lod, self.sorting.is_some()),
         );
+        let mut sort_time = sort_start.elapsed();
         let k = (p.wind_response, p.spring, p.damping);
         let plan = &self.plan;
         self.animation.step_ranges(
@@ -368,6 +452,7 @@ impl GrassTechnique for Zhang {
         frame::wings(
             plan,
             &self.billboards,
+            self.sorting.as_ref().map(|s| &s.orders),
             &self.anchors.blade_out,
             &self.anchor_rest,
             self.billboard_height,
@@ -375,6 +460,31 @@ impl GrassTechnique for Zhang {
             |_| 1.0,
             &mut self.wings,
         );
+        if let Some(s) = &mut self.sorting {
+            let start = std::time::Instant::now();
+            let look = frame::BladeLookup {
+                layout: &self.layout,
+                index: &self.grids,
+                slots: &s.slots,
+                plants: &s.plants,
+            };
+            frame::sorted_blades(plan, &look, eye, frustum, &mut s.scratch, &mut s.order);
+            sort_time += start.elapsed();
+            s.statics_out.clear();
+            s.statics_out
+                .extend(s.order.iter().map(|&b| s.statics[b as usize]));
+            s.dynamics_out.clear();
+            s.dynamics_out.extend(
+                s.order
+                    .iter()
+                    .map(|&b| self.animation.blade_out[b as usize]),
+            );
+        }
+        self.sort_ms = if self.sorting.is_some() {
+            sort_time.as_secs_f64() * 1e3
+        } else {
+            0.0
+        };
         Ok(())
     }
 
@@ -400,34 +510,61 @@ impl GrassTechnique for Zhang {
         upload(gpu, &self.dynamics, &self.animation.blade_out, &plan.animate_blades);
         upload(gpu, &self.flowers, &self.animation.flower_out, &plan.animate_flowers);
         upload(gpu, &self.wing_buffer, &self.wings, &[0..self.wings.len() as u32]);
+        if let Some(s) = &self.sorting {
+            let all = [0..s.order.len() as u32];
+            upload(gpu, &s.statics_buf, &s.statics_out, &all);
+            upload(gpu, &s.dynamics_buf, &s.dynamics_out, &all);
+        }
         Ok(())
     }
 
+    /// Without sorting: wings, then the near grids' blade ranges, then petals (all
+    /// alpha-tested). Sorting (Sec. 5.4): petals first (alpha-tested, they need no order),
+    /// then the wings and the single plants far to near, blended (Eq. 10).
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         let v = &self.plan;
-        if v.blades.is_empty() && v.flowers.is_empty() && self.wings.is_empty() {
+        let blades = self.blade_count();
+        if blades == 0 && v.flowers.is_empty() && self.wings.is_empty() {
             return;
         }
         let mut pass = encoder.render_pass("plants");
         pass.set_bind_group(1, &self.pipelines.bind_group, &[]);
+        let flowers = |pass: &mut wgpu::RenderPass<'_>| {
+            if !v.flowers.is_empty() {
+                pass.set_pipeline(&self.pipelines.flowers);
+                pass.set_vertex_buffer(0, self.flowers.slice(..));
+                for r in &v.flowers {
+                    pass.draw(0..4, r.clone());
+                }
+            }
+        };
+        if self.sorting.is_some() {
+            flowers(&mut pass);
+        }
         if !self.wings.is_empty() {
             pass.set_pipeline(&self.pipelines.wings);
             pass.set_vertex_buffer(0, self.wing_buffer.slice(..));
             pass.draw(0..4, 0..self.wings.len() as u32);
         }
-        if !v.blades.is_empty() {
-            pass.set_pipeline(&self.pipelines.blades);
-            pass.set_vertex_buffer(0, self.statics.slice(..));
-            pass.set_vertex_buffer(1, self.dynamics.slice(..));
-            for r in &v.blades {
-                pass.draw(0..2 * self.params.backbone_points, r.clone());
+        let strip = 0..2 * self.params.backbone_points;
+        match &self.sorting {
+            Some(s) if !s.order.is_empty() => {
+                pass.set_pipeline(&self.pipelines.blades);
+                pass.set_vertex_buffer(0, s.statics_buf.slice(..));
+                pass.set_vertex_buffer(1, s.dynamics_buf.slice(..));
+                pass.draw(strip, 0..s.order.len() as u32);
             }
-        }
-        if !v.flowers.is_empty() {
-            pass.set_pipeline(&self.pipelines.flowers);
-            pass.set_vertex_buffer(0, self.flowers.slice(..));
-            for r in &v.flowers {
-                pass.draw(0..4, r.clone());
+            Some(_) => {}
+            None => {
+                if !v.blades.is_empty() {
+                    pass.set_pipeline(&self.pipelines.blades);
+                    pass.set_vertex_buffer(0, self.statics.slice(..));
+                    pass.set_vertex_buffer(1, self.dynamics.slice(..));
+                    for r in &v.blades {
+                        pass.draw(strip.clone(), r.clone());
+                    }
+                }
+                flowers(&mut pass);
             }
         }
         drop(pass);
@@ -440,7 +577,7 @@ impl GrassTechnique for Zhang {
         let mut c = vec![
             ("grids_drawn", self.plan.grids as f64),
             ("grids_culled", self.plan.culled as f64),
-            ("single_plants", self.plan.blade_count() as f64),
+            ("single_plants", self.blade_count() as f64),
         ];
         let mut by_level = vec![0u64; self.billboards.steps.len()];
         for f in &self.plan.far {
@@ -451,12 +588,15 @@ impl GrassTechnique for Zhang {
             c.push((billboard_counter(step), n as f64));
         }
         c.push(("wings", self.wings.len() as f64));
+        if self.sorting.is_some() {
+            c.push(("sort_ms", self.sort_ms));
+        }
         c
     }
 
     /// Blades represented: drawn as single plants or standing in the billboards drawn.
     fn stats(&self) -> TechniqueStats {
-        let blades = self.plan.blade_count();
+        let blades = self.blade_count();
         let flowers = self.plan.flower_count();
         TechniqueStats {
             blades: blades + self.plan.billboard_blades,
@@ -471,7 +611,7 @@ impl GrassTechnique for Zhang {
     /// Single plants as geometry, billboards as vertical slices.
     fn lod_blades(&self) -> Option<LodBlades> {
         Some(LodBlades {
-            geometry: self.plan.blade_count(),
+            geometry: self.blade_count(),
             vertical_slices: self.plan.billboard_blades,
             horizontal_slices: 0,
         })
@@ -494,8 +634,31 @@ fn billboard_counter(step: u32) -> &'static str {
 }
 
 impl Zhang {
+    /// Single plants drawn (with sorting, after culling single plants, Sec. 5.3).
+    fn blade_count(&self) -> u64 {
+        self.sorting
+            .as_ref()
+            .map_or(self.plan.blade_count(), |s| s.order.len() as u64)
+    }
+
     fn draw_calls(&self) -> u64 {
-        (self.plan.blades.len() + self.plan.flowers.len() + usize::from(!self.wings.is_empty()))
-            as u64
+        let blades = match &self.sorting {
+            Some(s) => usize::from(!s.order.is_empty()),
+            None => self.plan.blades.len(),
+        };
+        (blades + self.plan.flowers.len() + usize::from(!self.wings.is_empty())) as u64
+    }
+}
+
+/// Alpha cut-off while blending (Sec. 5.4): only the clear part of the textures is discarded.
+const BLEND_CUTOFF: f32 = 0.05;
+
+/// Instances of the far-to-near blade buffers: the 3 x 3 near grids with LOD, every blade
+/// without.
+fn sorted_capacity(params: &Params, blades: u64) -> u64 {
+    if params.lod {
+        blades.min(9 * u64::from(params.blades_per_side).pow(2))
+    } else {
+        blades
     }
 }

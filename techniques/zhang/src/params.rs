@@ -5,6 +5,18 @@ use grassbench::Result;
 use grassbench::params::{TechniqueParams, check, check_int};
 use serde::{Deserialize, Serialize};
 
+/// How translucent plants are composited (Sec. 5.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Sorting {
+    /// The thesis: grids, billboards and single plants drawn far to near (quicksort and
+    /// pre-computed orders) and blended with Eq. (10).
+    Sort,
+    /// No sorting: alpha test with depth writes (alpha to coverage under MSAA), so the cost
+    /// of sorting can be measured against it.
+    AlphaToCoverage,
+}
+
 /// Parameters of [`crate::Zhang`]. Defaults follow the thesis where it gives numbers.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -45,6 +57,9 @@ pub struct Params {
     /// more so their motion stays visible): a billboard `g` grids away moves its top by
     /// `1 + billboard_sway·(g − 2)` times its plants' displacement. 0 = exactly the plants'.
     pub billboard_sway: f32,
+    /// Far-to-near sorting with blending (`"sort"`, Sec. 5.4) or alpha to coverage without
+    /// sorting (`"alpha_to_coverage"`).
+    pub sorting: Sorting,
 }
 
 impl Default for Params {
@@ -65,6 +80,7 @@ impl Default for Params {
             culling: true,
             lod: true,
             billboard_sway: 0.05,
+            sorting: Sorting::Sort,
         }
     }
 }

@@ -36,6 +36,9 @@ pub struct Planted {
     pub flower: Option<(f32, f32, u32)>,
     /// The grass grid it grows in, `gz · grids + gx` (Sec. 5.1).
     pub grid: u32,
+    /// Its lattice point within the grid, `j · n + i` (the pre-computed orders of Sec. 5.4
+    /// are over lattice points).
+    pub cell: u32,
 }
 
 /// Where the grass grids lie.
@@ -153,6 +156,7 @@ pub fn candidate(
         variation: h(8) * 2.0 - 1.0,
         flower,
         grid,
+        cell: (j as u32 % layout.per_side) * layout.per_side + i as u32 % layout.per_side,
     };
     Candidate { plant, grows }
 }
