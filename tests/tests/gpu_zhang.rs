@@ -205,10 +205,12 @@ fn bad_parameters_are_refused_naming_the_key() -> anyhow::Result<()> {
 /// Billboards (Ch. 4) stand in for the far grids (Sec. 5.2): the counters say what was drawn,
 /// far fewer triangles are submitted, and the picture stays close to single plants everywhere
 /// (`lod = false`, the `finest` variant). Measured on the meadow, frame 30 at 640x360 on
-/// lavapipe (sorted and blended, the default): FLIP against the finest 0.028 at full scale,
-/// 0.0195 at 1/4, 0.023 at 1/16 (the near grids are the same blades; thresholds ~25 % above);
-/// 3 232 single plants (those of the 3 x 3 near grids left by culling single plants) and
-/// 1 968 billboards (11 759 wings) represent 110 k blades: 50 k triangles against 803 k.
+/// lavapipe (sorted and blended, the default): FLIP against the finest 0.044 at full scale,
+/// 0.033 at 1/4, 0.031 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
+/// ways, their single plants and billboards dissolving into each other). Without fades
+/// (`no_transitions`, rendered third in the same harness) 0.031, 0.025, 0.032. Thresholds
+/// ~25 % above. 3 232 single plants (those of the near grids left by culling single plants)
+/// and 2 224 billboards (13 295 wings) represent 114 k blades: 53 k triangles against 803 k.
 #[test]
 fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let gpu = gpu()?;
@@ -239,8 +241,8 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let billboards = counter(lod.as_ref(), "billboards_l5")
         + counter(lod.as_ref(), "billboards_l9")
         + counter(lod.as_ref(), "billboards_l17");
-    // At most the 3 x 3 near grids' 9 x 1024 plants are single.
-    assert!(singles > 1000.0 && singles <= 9216.0, "{singles} single plants");
+    // At most the 4 x 4 grids around a border corner (fading, Sec. 6.1) are single plants.
+    assert!(singles > 1000.0 && singles <= 16384.0, "{singles} single plants");
     assert!(billboards > 100.0, "{billboards} billboards");
     assert_eq!(counter(finest.as_ref(), "billboards_l5"), 0.0);
     let levels = lod.lod_blades().expect("zhang reports levels");
@@ -252,10 +254,24 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
         counter(finest.as_ref(), "grids_drawn")
     );
     assert!(s.triangles * 5 < f.triangles, "{s:?} against {f:?}");
-    for (factor, limit) in [(1u32, 0.035), (4, 0.025), (16, 0.029)] {
-        let mean = flip(&downsample(&fine, factor), &downsample(&image, factor))?.mean;
-        eprintln!("measured: LOD against finest at 1/{factor}: FLIP {mean:.4}");
-        assert!(mean < limit, "1/{factor}: FLIP {mean:.4} ≥ {limit}");
+    let no_fade_params = entry
+        .variant(grassbench::technique::NO_TRANSITIONS)
+        .expect("no_transitions")?;
+    let mut no_fade = harness.create(entry, &no_fade_params)?;
+    let switched = render_with(&mut harness, no_fade.as_mut(), 30)?;
+    let mut failures = Vec::new();
+    for (what, image, limits) in [
+        ("LOD", &image, [0.055, 0.041, 0.039]),
+        ("LOD without fades", &switched, [0.039, 0.032, 0.040]),
+    ] {
+        for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
+            let mean = flip(&downsample(&fine, factor), &downsample(image, factor))?.mean;
+            eprintln!("measured: {what} against finest at 1/{factor}: FLIP {mean:.4}");
+            if mean >= limit {
+                failures.push(format!("{what} at 1/{factor}: FLIP {mean:.4} ≥ {limit}"));
+            }
+        }
     }
+    assert!(failures.is_empty(), "{failures:?}");
     Ok(())
 }

@@ -10,6 +10,8 @@ struct Params {
     color_tip: vec4<f32>,    // rgb; w: translucency
     // x: backbone points n; y: alpha cut-off; z: petal size (m); w: billboard height (m)
     shape: vec4<f32>,
+    // x: 1 when blending (fading blades scale their alpha), 0 otherwise (they dissolve)
+    modes: vec4<f32>,
 }
 
 @group(1) @binding(0) var<uniform> params: Params;

@@ -5,7 +5,8 @@
 //! Animation follows the level a grid will have one grid closer to the camera, so a grid that
 //! turns from billboards into single plants (or into finer billboards) when the camera crosses
 //! a grid border is already in motion: blades are animated in the grids up to two away, the
-//! anchors of a billboard grid at the finer of its own and its next-closer step.
+//! anchors of a grid one or more away at the finer of its own and its next-closer step.
+//! Near a border a grid may be drawn both ways, fading (Sec. 6.1, [`crate::fade`]).
 
 use std::ops::Range;
 
@@ -14,6 +15,7 @@ use grassbench::glam::{IVec2, Vec2, Vec3};
 use grassbench::technique::ranges::push_merged;
 
 use crate::billboard::Billboards;
+use crate::fade::Transition;
 use crate::culling::GridIndex;
 use crate::gpu::{BladeDynamic, WingInstance};
 use crate::lod::{Level, grid_coords, grid_offset};
@@ -29,6 +31,8 @@ pub struct NearGrid {
     pub grid: u32,
     /// Offset from the camera grid, in grids.
     pub delta: IVec2,
+    /// Alpha (1 unless fading, Sec. 6.1).
+    pub alpha: f32,
 }
 
 /// A far grid drawn as billboards this frame.
@@ -42,6 +46,8 @@ pub struct FarGrid {
     pub level: usize,
     /// Grid offset `g` from the camera grid.
     pub offset: u32,
+    /// Alpha (1 unless fading, Sec. 6.1).
+    pub alpha: f32,
 }
 
 /// What a frame animates and draws.
@@ -67,6 +73,8 @@ pub struct Plan {
     pub culled: usize,
     /// Blades standing in the billboards drawn (those of the far grids drawn).
     pub billboard_blades: u64,
+    /// Grids drawn both ways, fading between billboards and single plants (Sec. 6.1).
+    pub fading: usize,
 }
 
 impl Plan {
@@ -80,70 +88,73 @@ impl Plan {
         self.flowers.iter().map(|r| u64::from(r.end - r.start)).sum()
     }
 
-    /// The plan of a frame seen from grid `camera` through `frustum` (`None`: no culling);
-    /// `lod = false` draws single plants everywhere; `sort` orders the grids far to near by
-    /// squared grid offset (Sec. 5.4.2).
+    /// The plan of a frame seen through `frustum` (`None`: no culling) with the camera grids
+    /// and fade of `transition` (Sec. 6.1); `lod = false` draws single plants everywhere;
+    /// `sort` orders the grids far to near by squared grid offset (Sec. 5.4.2).
     pub fn new(
         layout: &Layout,
         index: &GridIndex,
         billboards: &Billboards,
-        camera: IVec2,
+        transition: &Transition,
         frustum: Option<&Frustum>,
         (lod, sort): (bool, bool),
     ) -> Self {
         let mut plan = Self::default();
+        let camera = transition.camera();
         for k in 0..index.len() {
             let grid = index.id(k);
             let g = grid_offset(layout, grid, camera);
             let delta = grid_coords(layout, grid) - camera;
-            let level = Level::at(g, lod);
-            // The level one grid closer (what a border crossing can turn it into).
-            let closer = Level::at(g.saturating_sub(1), lod);
-            if closer == Level::Single {
+            // Single plants where the camera grids of the fade (Sec. 6.1) say so; billboards
+            // where they do not, at least at the finest step (a grid fading out of single
+            // plants is one away).
+            let single = transition.single_alpha(layout, grid, lod);
+            let step = match Level::at(g.max(2), lod) {
+                Level::Billboard { step } => Some(billboards.level(step)),
+                Level::Single => None,
+            };
+            // Animated: blades up to two grids away, anchors at the finer of the grid's step
+            // and the step one grid closer (the level a border crossing can give it).
+            if g <= 2 {
                 push_merged(&mut plan.animate_blades, index.blades(k));
                 push_merged(&mut plan.animate_flowers, index.flowers(k));
             }
-            let far_level = match (level, closer) {
-                (Level::Billboard { step }, Level::Billboard { step: finer }) => {
-                    let l = billboards.level(finer);
-                    push_merged(
-                        &mut plan.animate_anchors,
-                        billboards.grids[grid as usize][l].anchors.clone(),
-                    );
-                    Some(billboards.level(step))
-                }
-                (Level::Billboard { step }, Level::Single) => {
-                    let l = billboards.level(step);
-                    push_merged(
-                        &mut plan.animate_anchors,
-                        billboards.grids[grid as usize][l].anchors.clone(),
-                    );
-                    Some(l)
-                }
-                _ => None,
-            };
+            if let (true, Level::Billboard { step: finer }) =
+                (g >= 1, Level::at(g.saturating_sub(1).max(2), lod))
+            {
+                let l = billboards.level(finer);
+                push_merged(
+                    &mut plan.animate_anchors,
+                    billboards.grids[grid as usize][l].anchors.clone(),
+                );
+            }
             if !frustum.is_none_or(|f| f.intersects_aabb(index.bounds(k))) {
                 plan.culled += 1;
                 continue;
             }
             plan.grids += 1;
-            match far_level {
-                None => {
-                    push_merged(&mut plan.blades, index.blades(k));
-                    push_merged(&mut plan.flowers, index.flowers(k));
-                    plan.near.push(NearGrid { k, grid, delta });
-                }
-                Some(level) => {
-                    let r = index.blades(k);
-                    plan.billboard_blades += u64::from(r.end - r.start);
-                    plan.far.push(FarGrid {
-                        grid,
-                        delta,
-                        level,
-                        offset: g,
-                    });
-                }
+            if single > 0.0 {
+                push_merged(&mut plan.blades, index.blades(k));
+                push_merged(&mut plan.flowers, index.flowers(k));
+                plan.near.push(NearGrid {
+                    k,
+                    grid,
+                    delta,
+                    alpha: single,
+                });
             }
+            if let (Some(level), true) = (step, single < 1.0) {
+                let r = index.blades(k);
+                plan.billboard_blades += u64::from(r.end - r.start);
+                plan.far.push(FarGrid {
+                    grid,
+                    delta,
+                    level,
+                    offset: g,
+                    alpha: 1.0 - single,
+                });
+            }
+            plan.fading += usize::from(single > 0.0 && single < 1.0);
         }
         if sort {
             order::sort_grids(&mut plan.far, |f| f.delta);
@@ -157,7 +168,8 @@ impl Plan {
 /// the anchors' roots, top vertices at their animated top points (Sec. 4.2), scaled to the
 /// billboard texture's `height` and swayed `1 + sway·(g − 2)` times as far from rest for a
 /// grid `g` away (the horizontal offset is kept within `height`, so the culling boxes hold).
-/// `rest` is each anchor's top point at rest, `fade(grid)` the alpha of Sec. 6.1. With
+/// `rest` is each anchor's top point at rest; a fading grid's alpha (Sec. 6.1) scales the
+/// kept fraction of the texture's blades (a dissolve). With
 /// `orders`, each grid's billboards follow the pre-computed far-to-near order of its section
 /// (Sec. 5.4.2); the grids come in the plan's order.
 #[allow(clippy::too_many_arguments)]
@@ -169,13 +181,12 @@ pub fn wings(
     rest: &[Vec3],
     height: f32,
     sway: f32,
-    fade: impl Fn(u32) -> f32,
     out: &mut Vec<WingInstance>,
 ) {
     out.clear();
     for far in &plan.far {
         let gain = 1.0 + sway * far.offset.saturating_sub(2) as f32;
-        let alpha = fade(far.grid);
+        let alpha = far.alpha;
         let top = |a: u32| {
             let a = a as usize;
             let p = &billboards.anchors[a];

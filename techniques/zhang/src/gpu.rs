@@ -25,7 +25,7 @@ pub struct BladeStatic {
 pub struct BladeDynamic {
     /// `P1` xyz; w = rotation θ of the top segment points (Sec. 3.2.5).
     pub p1_rotation: [f32; 4],
-    /// `P2` xyz; w unused.
+    /// `P2` xyz; w = how far the blade has faded out (Sec. 6.1; 0 = opaque).
     pub p2: [f32; 4],
     /// `P3` xyz; w unused.
     pub p3: [f32; 4],
@@ -65,6 +65,9 @@ pub struct ParamsUniform {
     pub color_tip: [f32; 4],
     /// Backbone points, alpha cut-off, petal size (m), billboard height (m).
     pub shape: [f32; 4],
+    /// x: 1 when blending (a fading blade's alpha scales its output alpha), 0 otherwise (a
+    /// fading blade dissolves); yzw unused.
+    pub modes: [f32; 4],
 }
 
 const BLADE_LAYOUTS: [wgpu::VertexBufferLayout<'static>; 2] = [

@@ -93,6 +93,7 @@ pub mod billboard;
 pub mod billboard_texture;
 pub mod blade;
 pub mod culling;
+pub mod fade;
 pub mod flower;
 pub mod frame;
 pub mod gpu;
@@ -130,11 +131,18 @@ const INFO: TechniqueInfo = TechniqueInfo {
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = TechniqueEntry {
     info: INFO,
-    // Single plants everywhere (level of detail off, Sec. 5.2).
-    variants: &[grassbench::technique::Variant {
-        name: grassbench::technique::FINEST,
-        params: "lod = false",
-    }],
+    variants: &[
+        // Single plants everywhere (level of detail off, Sec. 5.2).
+        grassbench::technique::Variant {
+            name: grassbench::technique::FINEST,
+            params: "lod = false",
+        },
+        // Billboards and single plants switch at grid borders without fading (Sec. 6.1).
+        grassbench::technique::Variant {
+            name: grassbench::technique::NO_TRANSITIONS,
+            params: "fade_radius = 0.0",
+        },
+    ],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Zhang::new(ctx, overrides)?)),
     estimate: |_, overrides| {
@@ -329,6 +337,7 @@ impl Zhang {
                 params.petal_size,
                 billboard_height,
             ],
+            modes: [f32::from(u8::from(sort)), 0.0, 0.0, 0.0],
         };
         let pipelines =
             gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
@@ -379,7 +388,7 @@ impl Zhang {
             &layout,
             &grids,
             &billboards,
-            IVec2::MIN,
+            &fade::Transition::none(IVec2::MIN),
             None,
             (false, false),
         );
@@ -425,14 +434,15 @@ impl GrassTechnique for Zhang {
         let frustum = inputs.camera.frustum();
         let frustum = p.culling.then_some(&frustum);
         let eye = inputs.camera.eye;
-        let camera = lod::camera_grid(&self.layout, eye);
+        let radius = if p.lod { p.fade_radius } else { 0.0 };
+        let transition = fade::Transition::new(&self.layout, eye, radius);
         // Sorting time is a statistic (the `sort_ms` counter), not an input of the frame.
         let sort_start = std::time::Instant::now();
         self.plan = frame::Plan::new(
             &self.layout,
             &self.grids,
             &self.billboards,
-            camera,
+            &transition,
             frustum,
             (p.lod, self.sorting.is_some()),
         );
@@ -457,9 +467,16 @@ impl GrassTechnique for Zhang {
             &self.anchor_rest,
             self.billboard_height,
             p.billboard_sway,
-            |_| 1.0,
             &mut self.wings,
         );
+        // Fading single plants (Sec. 6.1): `P2.w` carries how far each has faded out.
+        for near in &plan.near {
+            let out = &mut self.animation.blade_out;
+            let r = self.grids.blades(near.k);
+            for d in &mut out[r.start as usize..r.end as usize] {
+                d.p2[3] = 1.0 - near.alpha;
+            }
+        }
         if let Some(s) = &mut self.sorting {
             let start = std::time::Instant::now();
             let look = frame::BladeLookup {
@@ -588,6 +605,7 @@ impl GrassTechnique for Zhang {
             c.push((billboard_counter(step), n as f64));
         }
         c.push(("wings", self.wings.len() as f64));
+        c.push(("fading_grids", self.plan.fading as f64));
         if self.sorting.is_some() {
             c.push(("sort_ms", self.sort_ms));
         }
@@ -653,11 +671,12 @@ impl Zhang {
 /// Alpha cut-off while blending (Sec. 5.4): only the clear part of the textures is discarded.
 const BLEND_CUTOFF: f32 = 0.05;
 
-/// Instances of the far-to-near blade buffers: the 3 x 3 near grids with LOD, every blade
-/// without.
+/// Instances of the far-to-near blade buffers. With LOD, single plants are drawn in the grids
+/// next to the camera grid or, fading near a border corner (Sec. 6.1), next to any of the
+/// 2 x 2 camera grids around the corner: at most 4 x 4 grids. Without, every blade.
 fn sorted_capacity(params: &Params, blades: u64) -> u64 {
     if params.lod {
-        blades.min(9 * u64::from(params.blades_per_side).pow(2))
+        blades.min(16 * u64::from(params.blades_per_side).pow(2))
     } else {
         blades
     }

@@ -60,6 +60,10 @@ pub struct Params {
     /// Far-to-near sorting with blending (`"sort"`, Sec. 5.4) or alpha to coverage without
     /// sorting (`"alpha_to_coverage"`).
     pub sorting: Sorting,
+    /// Radius of the transition sphere (Sec. 6.1) as a fraction of the grid size: within it
+    /// of a grid border, grids that switch between billboards and single plants there are
+    /// drawn both ways, fading. 0 switches at once (the `no_transitions` variant).
+    pub fade_radius: f32,
 }
 
 impl Default for Params {
@@ -81,6 +85,7 @@ impl Default for Params {
             lod: true,
             billboard_sway: 0.05,
             sorting: Sorting::Sort,
+            fade_radius: 0.25,
         }
     }
 }
@@ -99,7 +104,8 @@ impl TechniqueParams for Params {
         check("zhang.petal_size", self.petal_size, 0.001..=10.0)?;
         check("zhang.translucency", self.translucency, 0.0..=1.0)?;
         check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)?;
-        check("zhang.billboard_sway", self.billboard_sway, 0.0..=1.0)
+        check("zhang.billboard_sway", self.billboard_sway, 0.0..=1.0)?;
+        check("zhang.fade_radius", self.fade_radius, 0.0..=0.5)
     }
 }
 
@@ -122,5 +128,6 @@ mod tests {
         bad(|p| p.flower_fraction = 2.0, "zhang.flower_fraction");
         bad(|p| p.blades_per_side = 100_000, "zhang.blades_per_side");
         bad(|p| p.billboard_sway = f32::INFINITY, "zhang.billboard_sway");
+        bad(|p| p.fade_radius = 0.75, "zhang.fade_radius");
     }
 }
