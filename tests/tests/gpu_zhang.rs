@@ -97,10 +97,10 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
 ///
 /// | zhang parameters | 1/1 | 1/4 | 1/16 | coverage (ref 0.467) |
 /// |---|---|---|---|---|
-/// | defaults (32 x 32 per grid, billboards beyond the 3 x 3 near grids, sorted) | 0.167 | 0.117 | 0.103 | 0.316 |
-/// | `blades_per_side = 47` (as many candidates as the reference), same | 0.168 | 0.105 | 0.079 | 0.473 |
-/// | as the defaults, `sorting = "alpha_to_coverage"` | 0.167 | 0.117 | 0.104 | 0.310 |
-/// | as the matched run, `sorting = "alpha_to_coverage"` | 0.168 | 0.105 | 0.081 | 0.465 |
+/// | defaults (32 x 32 per grid, billboards beyond the 3 x 3 near grids, sorted, fades) | 0.165 | 0.114 | 0.097 | 0.329 |
+/// | `blades_per_side = 47` (as many candidates as the reference), same | 0.165 | 0.104 | 0.076 | 0.473 |
+/// | billboards without sorting or fades (alpha test), defaults | 0.167 | 0.117 | 0.104 | 0.310 |
+/// | the same, `blades_per_side = 47` | 0.168 | 0.105 | 0.081 | 0.465 |
 /// | part 1 / `lod = false`: single plants everywhere, defaults | 0.162 | 0.108 | 0.091 | 0.302 |
 /// | part 1 / `lod = false`, `blades_per_side = 47` | 0.165 | 0.095 | 0.067 | 0.462 |
 ///
@@ -205,10 +205,10 @@ fn bad_parameters_are_refused_naming_the_key() -> anyhow::Result<()> {
 /// Billboards (Ch. 4) stand in for the far grids (Sec. 5.2): the counters say what was drawn,
 /// far fewer triangles are submitted, and the picture stays close to single plants everywhere
 /// (`lod = false`, the `finest` variant). Measured on the meadow, frame 30 at 640x360 on
-/// lavapipe (sorted and blended, the default): FLIP against the finest 0.044 at full scale,
-/// 0.033 at 1/4, 0.031 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
-/// ways, their single plants and billboards dissolving into each other). Without fades
-/// (`no_transitions`, rendered third in the same harness) 0.031, 0.025, 0.032. Thresholds
+/// lavapipe (sorted and blended, the default): FLIP against the finest 0.045 at full scale,
+/// 0.037 at 1/4, 0.037 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
+/// ways, their single plants and billboards blended into each other). Without fades
+/// (`fade_radius = 0`, rendered third in the same harness) 0.031, 0.025, 0.032. Thresholds
 /// ~25 % above. 3 232 single plants (those of the near grids left by culling single plants)
 /// and 2 224 billboards (13 295 wings) represent 114 k blades: 53 k triangles against 803 k.
 #[test]
@@ -254,14 +254,13 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
         counter(finest.as_ref(), "grids_drawn")
     );
     assert!(s.triangles * 5 < f.triangles, "{s:?} against {f:?}");
-    let no_fade_params = entry
-        .variant(grassbench::technique::NO_TRANSITIONS)
-        .expect("no_transitions")?;
+    let mut no_fade_params = toml::Table::new();
+    no_fade_params.insert("fade_radius".into(), 0.0.into());
     let mut no_fade = harness.create(entry, &no_fade_params)?;
     let switched = render_with(&mut harness, no_fade.as_mut(), 30)?;
     let mut failures = Vec::new();
     for (what, image, limits) in [
-        ("LOD", &image, [0.055, 0.041, 0.039]),
+        ("LOD", &image, [0.056, 0.046, 0.046]),
         ("LOD without fades", &switched, [0.039, 0.032, 0.040]),
     ] {
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
@@ -273,5 +272,32 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
         }
     }
     assert!(failures.is_empty(), "{failures:?}");
+    Ok(())
+}
+
+/// Across a grid border: the meadow's walker starts on a grid corner, and a dolly of 1 mm per
+/// frame (so parallax changes little) crosses the border at the first step. Without fades
+/// (`fade_radius = 0`) billboards and single plants switch there; with them (Sec. 6.1) both
+/// sides draw each representation at alpha ½ at the border. Measured on lavapipe at 320x180,
+/// quarter density, calm air (mean absolute change per channel, 0-255): at the crossing 2.07
+/// without fades against 1.26 with, 1.1-1.2 on the other steps of either. (At the comparison
+/// suite's 0.25 m per frame the switch drowns in parallax: 7.6 without against 8.3 with, the
+/// fade band's two layers adding change; see `ENTRY`.)
+#[test]
+fn fades_soften_the_switch_at_a_grid_crossing() -> anyhow::Result<()> {
+    use grassbench::compare::{CameraMotion, frame_differences};
+    let gpu = gpu()?;
+    let entry = grassbench_cli::registry::find("zhang")?;
+    let scene = scene("meadow", 0.25)?;
+    let mut no_fade = toml::Table::new();
+    no_fade.insert("fade_radius".into(), 0.0.into());
+    let motion = CameraMotion::Dolly(0.001);
+    let with = frame_differences(&gpu, &scene, entry, &toml::Table::new(), motion, 8, TEST_SIZE)?;
+    let without = frame_differences(&gpu, &scene, entry, &no_fade, motion, 8, TEST_SIZE)?;
+    eprintln!("measured: frame-to-frame change with fades {with:.3?}, without {without:.3?}");
+    // The switch is a spike over the steady steps without fades, and gone with them.
+    let steady = |d: &[f64]| d[1..].iter().copied().fold(0.0, f64::max);
+    assert!(without[0] > 1.4 * steady(&without), "no switch seen: {without:?}");
+    assert!(with[0] < 1.2 * steady(&with), "fades did not soften it: {with:?}");
     Ok(())
 }

@@ -24,7 +24,8 @@ struct WingIn {
     @location(0) centre_root: vec4<f32>,  // xyz; w: texture u at the middle line
     @location(1) outer_root: vec4<f32>,   // xyz; w: texture u at the outer edge
     @location(2) centre_top: vec4<f32>,   // xyz; w: texture layer
-    @location(3) outer_top: vec4<f32>,    // xyz; w: kept fraction (density x fade alpha)
+    @location(3) outer_top: vec4<f32>,    // xyz; w: kept fraction of the blades (density)
+    @location(4) fade: vec4<f32>,         // x: fade alpha (Sec. 6.1)
 }
 
 struct WingOut {
@@ -34,6 +35,7 @@ struct WingOut {
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) layer: u32,
     @location(4) @interpolate(flat) keep: f32,
+    @location(5) @interpolate(flat) alpha: f32,
 }
 
 // A 4-vertex strip: centre bottom, outer bottom, centre top, outer top.
@@ -54,7 +56,11 @@ fn vs_wing(@builtin(vertex_index) vertex: u32, w: WingIn) -> WingOut {
     out.normal = normalize(across + vec3(0.0, 0.5, 0.0));
     out.uv = vec2(select(w.centre_root.w, w.outer_root.w, outer), select(0.0, 1.0, top));
     out.layer = u32(w.centre_top.w);
-    out.keep = w.outer_top.w;
+    // Fading (Sec. 6.1): blended, the alpha scales the output; otherwise the wing's blades
+    // dissolve with their density thresholds.
+    let blend = params.modes.x > 0.5;
+    out.keep = w.outer_top.w * select(w.fade.x, 1.0, blend);
+    out.alpha = select(1.0, w.fade.x, blend);
     return out;
 }
 
@@ -69,7 +75,8 @@ fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
     let texel = textureLoad(billboard_texture, texel_xy, in.layer, 0);
     // Alpha test, then the shared density rule: a blade stays where its threshold is below
     // the density map (and below the fade alpha of Sec. 6.1).
-    if (texel.a < params.shape.y || texel.g >= in.keep) {
+    let alpha = texel.a * in.alpha;
+    if (alpha < params.shape.y || texel.g >= in.keep) {
         discard;
     }
     let v = in.uv.y;
@@ -89,5 +96,5 @@ fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
     let ao = mix(0.3, 1.0, v);
     let lit = shade_leaf(albedo, normalize(in.normal), in.world, ao, params.color_tip.w);
     // Alpha blends with Eq. (10) when sorting, drives coverage under MSAA otherwise.
-    return vec4(apply_fog(lit, in.world), texel.a);
+    return vec4(apply_fog(lit, in.world), alpha);
 }

@@ -168,8 +168,8 @@ impl Plan {
 /// the anchors' roots, top vertices at their animated top points (Sec. 4.2), scaled to the
 /// billboard texture's `height` and swayed `1 + sway·(g − 2)` times as far from rest for a
 /// grid `g` away (the horizontal offset is kept within `height`, so the culling boxes hold).
-/// `rest` is each anchor's top point at rest; a fading grid's alpha (Sec. 6.1) scales the
-/// kept fraction of the texture's blades (a dissolve). With
+/// `rest` is each anchor's top point at rest; a fading grid's alpha (Sec. 6.1) goes with
+/// each wing. With
 /// `orders`, each grid's billboards follow the pre-computed far-to-near order of its section
 /// (Sec. 5.4.2); the grids come in the plan's order.
 #[allow(clippy::too_many_arguments)]
@@ -211,7 +211,8 @@ pub fn wings(
                 centre_root: c.root.extend(w.u[0]).to_array(),
                 outer_root: o.root.extend(w.u[1]).to_array(),
                 centre_top: top(w.centre).extend(far.level as f32).to_array(),
-                outer_top: top(w.outer).extend(w.density * alpha).to_array(),
+                outer_top: top(w.outer).extend(w.density).to_array(),
+                fade: [alpha, 0.0, 0.0, 0.0],
             });
         };
         match orders {

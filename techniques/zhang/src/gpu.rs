@@ -51,8 +51,10 @@ pub struct WingInstance {
     pub outer_root: [f32; 4],
     /// Top of the middle line xyz; w = billboard texture layer.
     pub centre_top: [f32; 4],
-    /// Top of the outer edge xyz; w = kept fraction of the texture's blades (density x fade).
+    /// Top of the outer edge xyz; w = kept fraction of the texture's blades (the density).
     pub outer_top: [f32; 4],
+    /// x = the grid's fade alpha (Sec. 6.1; 1 unless fading); yzw unused.
+    pub fade: [f32; 4],
 }
 
 /// Mirror of the shader's `Params` uniform.
@@ -92,7 +94,9 @@ const FLOWER_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayou
 const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: std::mem::size_of::<WingInstance>() as u64,
     step_mode: wgpu::VertexStepMode::Instance,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4],
+    attributes: &wgpu::vertex_attr_array![
+        0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4
+    ],
 };
 
 /// Blending of Eq. (10): `C = S·S_a + D·(1 − S_a)` for colour and alpha alike.

@@ -131,18 +131,15 @@ const INFO: TechniqueInfo = TechniqueInfo {
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = TechniqueEntry {
     info: INFO,
-    variants: &[
-        // Single plants everywhere (level of detail off, Sec. 5.2).
-        grassbench::technique::Variant {
-            name: grassbench::technique::FINEST,
-            params: "lod = false",
-        },
-        // Billboards and single plants switch at grid borders without fading (Sec. 6.1).
-        grassbench::technique::Variant {
-            name: grassbench::technique::NO_TRANSITIONS,
-            params: "fade_radius = 0.0",
-        },
-    ],
+    // Single plants everywhere (level of detail off, Sec. 5.2). No `no_transitions` variant:
+    // `fade_radius = 0` switches without fading, but the comparison suite's popping check
+    // (a 0.25 m/frame dolly) cannot see zhang's switch under the parallax of near blades and
+    // sees more change with the fade band's two layers (peak 8.3 against 7.7 measured); the
+    // switch itself is measured by `gpu_zhang`'s crossing test instead.
+    variants: &[grassbench::technique::Variant {
+        name: grassbench::technique::FINEST,
+        params: "lod = false",
+    }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Zhang::new(ctx, overrides)?)),
     estimate: |_, overrides| {
