@@ -1,13 +1,15 @@
-//! # `zhang`: physically based prairie, part 1 (near plants everywhere)
+//! # `zhang`: physically based prairie with billboards far away
 //!
 //! Zhang Xia, *Physically Based Animation and Fast Rendering of Large-Scale Prairie* (MSc
 //! thesis, 2006). Wind comes from a Navier-Stokes (Stam "stable fluids") simulation; each
 //! blade is a cubic Bezier curve over four control points moved by that wind with Verlet
-//! integration and length constraints; flowers are petal quads on heavier points. This part
-//! draws every grass grid as individual blades, culled per grid against the view frustum
-//! (Sec. 5.3); part 2 adds the billboards of far grids (Ch. 4), the level-of-detail choice
-//! (Sec. 5.2), culling of single plants in near grids, sorting (5.4) and
-//! interaction (Ch. 6).
+//! integration and length constraints; flowers are petal quads on heavier points. The camera
+//! grid and its eight neighbours draw these single plants; every other grass grid draws
+//! billboards of six rectangles whose length doubles with the grid offset (Ch. 4, Sec. 5.2).
+//! Grids are culled against the view frustum, single plants of the near grids too (Sec. 5.3);
+//! everything is drawn far to near and blended (Sec. 5.4), and grids crossing between the two
+//! representations fade (Sec. 6.1). Not done: the sphere-plant interaction (Sec. 6.2, left to
+//! the shared moving object) and the tree and stone meshes of the covering map (Sec. 5.5.2).
 //!
 //! ## Algorithm
 //! - **Wind (Ch. 2, Sec. 3.2.2).** Whatever [`WindField`](grassbench::wind::WindField) the
@@ -39,11 +41,45 @@
 //!   Sec. 3.2.5 (segment points of backbone point `i` turn by `θ·i/(n−1)` around up).
 //!   `prepare` uploads `P1..P3` and θ (48 bytes a blade).
 //! - **Culling (Sec. 5.3, [`culling`]).** Blades are planted grid by grid, so each grass grid
-//!   is a contiguous instance range with a conservative box; `update` keeps the grids whose
-//!   box meets the frustum and `encode` draws their ranges, merged where they touch (26 draws
-//!   and 57 % of the blades on the meadow's first view; the picture is identical). All grids
-//!   are still animated, so a grid coming into view is already in motion; `culling = false`
-//!   draws everything.
+//!   is a contiguous instance range with a conservative box (widened for the billboards'
+//!   anchor plants); `update` keeps the grids whose box meets the frustum. With sorting, the
+//!   single plants of the near grids are culled one by one as well (bounding spheres), since
+//!   they are visited one by one anyway; without, near grids are drawn whole as merged
+//!   instance ranges. `culling = false` draws every grid.
+//! - **Billboards (Sec. 4.1-4.2, [`billboard`], [`billboard_texture`]).** A grid `g` grids from
+//!   the camera grid (`g = max(|Δx|, |Δz|)`) is cut into `n' x n'` blocks of
+//!   `l' = 2·2^⌊log2 g⌋ + 1` plants per side (Eq. 8-9: 8 x 8 blocks of 5 at `g = 2, 3`, 4 x 4
+//!   of 9 at `g = 4..7`, 2 x 2 of 17 beyond; the last block of a row shorter). Each block's
+//!   billboard is six rectangles ("wings") joined at a vertical middle line on the block's
+//!   centre plant, reaching to the middles of its four edges and two opposite corners. Every
+//!   wing corner is a lattice plant ("anchor"), so a wing joins the root and top points of two
+//!   plants as Sec. 4.2 says; anchors are animated like blades (only their top points are
+//!   drawn), and the anchors of step `2s` are a prefix of those of `s`, so a grid animates
+//!   just the prefix its step needs. Far billboards sway `1 + billboard_sway·(g − 2)` times
+//!   their plants' displacement. The texture (Fig. 11) is composed at start-up from the blade
+//!   and petal textures with the scene's blade sizes, one layer per step with `s/(2+√2)`
+//!   blades per spacing (what a billboard standing for `s²` plants on `(2+√2)·s` spacings of
+//!   wings must show); its texels carry luminance, a density threshold, colour variation or
+//!   petal colour, and alpha, so wings are coloured like blades and thinned by the density
+//!   map with the shared threshold rule. Gaps, trees and stones in the covering map drop the
+//!   wings that touch them, splitting billboards (Sec. 5.5.2).
+//! - **Level of detail (Sec. 5.2, [`lod`], [`frame`]).** `g ≤ 1`: single plants; otherwise
+//!   billboards. Blades are animated in the grids up to two away and anchors at the step one
+//!   grid closer, so a grid whose level changes at a border crossing is already in motion;
+//!   the far blades are not animated at all (the bulk of part 1's CPU time).
+//! - **Far to near (Sec. 5.4, [`order`]).** `sorting = "sort"`: grids by squared grid offset
+//!   (quicksort), billboards by the pre-computed orders of the nine sections of Fig. 17,
+//!   the camera grid's plants quicksorted by distance, the surrounding grids' plants line by
+//!   line (Table 1) with each line walked from its far end towards the eye. Blended with
+//!   Eq. (10) (`C = S·S_a + D·(1 − S_a)`), depth written, alpha cut at 0.05; the sorted single
+//!   plants are copied into their own instance buffers in draw order. Petals are alpha-tested
+//!   and drawn first (they need no order). `sorting = "alpha_to_coverage"`: no sorting, alpha
+//!   test with depth writes (and alpha to coverage under MSAA); the `sort_ms` counter gives
+//!   the CPU cost of ordering to compare.
+//! - **Fades (Sec. 6.1, [`fade`]).** Within `fade_radius` grid sizes of a grid border, the
+//!   grids whose level differs across it are drawn both ways with complementary alphas (the
+//!   other side's at `½·(1 − r1/r0)`), blended when sorting, dissolved (per-blade threshold)
+//!   otherwise.
 //! - **Flowers (Sec. 3.3-3.4).** A `flower_fraction` of blade positions also carry a flower:
 //!   a petal point at `0.65 · height` (±10 %) on an invisible stalk, animated like a blade's
 //!   top point with mass `flower_mass` (the wind push divided by it), drawn as a square petal
@@ -68,21 +104,41 @@
 //!   bytes of upload per blade. `blade::bezier` is the CPU mirror used by the tests.
 //! - The ground under a blade is the plane through its root; flowers attach to a blade
 //!   position rather than being sprinkled independently.
+//! - Sec. 4.2 raises the *velocity* of far billboards with distance; we scale their top
+//!   points' displacement from rest instead (faster and wider sway: the anchors' Verlet state
+//!   is shared by all steps, so their time cannot run faster per grid).
+//! - Sec. 6.1's fade reaches alpha 1 at the border, so it needs the camera's direction of
+//!   motion (Fig. 20) and pops when the camera stops or turns there; we spread the same ramp
+//!   over both sides of the border (continuous for any motion, no state between frames).
+//! - Table 1's fixed in-line arrows cannot be far to near for a camera standing beside a
+//!   line; we walk each line from its far end towards the camera (tested exhaustively).
+//! - Billboard textures and the single plants' colours come from the scene's grass colours,
+//!   not from separate photographs.
 //!
 //! ## Cost model
-//! CPU per frame: `B` blades x 3 moving control points (wind sample + Verlet + constraint)
-//! plus one `atan2` for θ, and `F` flowers x 1 point; linear in `B`, spread over the cores. Upload
-//! `48·B + 32·F` bytes. GPU: `B x 2(n−1)` triangles (8 at the default
-//! `n = 5`) + `2F` for the visible grids' `B` and `F`, one draw per run of visible grids.
-//! Memory: `80·B + 32·F` bytes of instances, 91 KB of
-//! textures. Measured numbers: `README.md`.
+//! CPU per frame: the blades of the (at most 5 x 5) grids up to two away x 3 moving control
+//! points (wind sample + Verlet + constraint) plus one `atan2` for θ, their flowers, and the
+//! anchors of the far grids (289 per grid at `l' = 5`, 81 at 9, 25 at 17, for `n = 32`);
+//! spread over the cores. Sorting: a quicksort of the camera grid's `≤ n²` plants, line walks
+//! of the surrounding grids, a sort of the visible grids (0.2-0.3 ms measured on the meadow).
+//! Upload `48·B_anim + 32·F_anim` bytes, 80 bytes per wing, and with sorting 80 bytes per
+//! drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`) per visible near blade, 2 per
+//! petal and 2 per wing (at most `6·n'²` wings per far grid); 3-5 draws. Memory: `80·B + 32·F`
+//! bytes of instances, 80 per wing, 80 per sorted single plant (16 near grids' worth), 91 KB
+//! of textures plus 128 KB per billboard layer (3 on the canonical scenes). Measured numbers:
+//! `README.md`, `results/zhang_lod/`.
 //!
 //! ## Known artifacts
-//! - Textures are sampled at mip level 0 (a cut-out's alpha would blur away with distance):
-//!   far blades alias like the reference's geometry; part 2's billboards replace them.
-//! - Without MSAA the alpha test gives hard, aliased blade outlines; there is no blending, so
-//!   no far-to-near sorting is needed yet (Sec. 5.4 comes with part 2's translucent
-//!   billboards).
+//! - Textures are sampled at mip level 0 (a cut-out's alpha would blur away with distance) and
+//!   the billboard texture nearest (its channels are ids): far billboards alias and shimmer.
+//! - Billboards are a little lighter and more uniform than the blades they replace; the step
+//!   changes of Eq. 8 (5 → 9 → 17) are not faded (the thesis fades only billboards ↔ single
+//!   plants) and show as faint seams along grid borders; petals in billboards are full-size
+//!   specks that read as more flowers far away.
+//! - Sorting is by roots and block centres: leaning blades and swaying wings can still overlap
+//!   out of order; the near grids' fading billboards are drawn in the wing pass, before the
+//!   blades of farther fading grids. Petals of a fading grid appear and vanish at once.
+//! - Without sorting and MSAA the alpha test gives hard, aliased outlines.
 //! - With the tiled fluid wind the same motion repeats every grass grid (offset per grid,
 //!   Sec. 5.1); the thesis accepts this.
 
