@@ -122,7 +122,10 @@ fn zhang_compares_with_reference_on_the_meadow() -> anyhow::Result<()> {
     let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, size, false)?;
     let background = render_with(&mut harness, &mut NoGrass, 30)?;
     let ref_coverage = grass_coverage(&reference, &background, 6)?;
-    for (overrides, limits) in [(&none, [0.20, 0.14, 0.125]), (&matched, [0.20, 0.13, 0.097])] {
+    for (overrides, limits) in [
+        (&none, [0.20, 0.14, 0.125]),
+        (&matched, [0.20, 0.13, 0.097]),
+    ] {
         let z = render(&gpu, "zhang", scene("meadow", 1.0)?, 30, size, overrides)?;
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
             let mean = flip(&downsample(&reference, factor), &downsample(&z, factor))?.mean;
@@ -219,7 +222,9 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
         height: 360,
     };
     let entry = grassbench_cli::registry::find("zhang")?;
-    let finest_params = entry.variant(grassbench::technique::FINEST).expect("finest")?;
+    let finest_params = entry
+        .variant(grassbench::technique::FINEST)
+        .expect("finest")?;
     let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, size, false)?;
     let mut lod = harness.create(entry, &toml::Table::new())?;
     let image = render_with(&mut harness, lod.as_mut(), 30)?;
@@ -242,7 +247,10 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
         + counter(lod.as_ref(), "billboards_l9")
         + counter(lod.as_ref(), "billboards_l17");
     // At most the 4 x 4 grids around a border corner (fading, Sec. 6.1) are single plants.
-    assert!(singles > 1000.0 && singles <= 16384.0, "{singles} single plants");
+    assert!(
+        singles > 1000.0 && singles <= 16384.0,
+        "{singles} single plants"
+    );
     assert!(billboards > 100.0, "{billboards} billboards");
     assert_eq!(counter(finest.as_ref(), "billboards_l5"), 0.0);
     let levels = lod.lod_blades().expect("zhang reports levels");
@@ -292,12 +300,26 @@ fn fades_soften_the_switch_at_a_grid_crossing() -> anyhow::Result<()> {
     let mut no_fade = toml::Table::new();
     no_fade.insert("fade_radius".into(), 0.0.into());
     let motion = CameraMotion::Dolly(0.001);
-    let with = frame_differences(&gpu, &scene, entry, &toml::Table::new(), motion, 8, TEST_SIZE)?;
+    let with = frame_differences(
+        &gpu,
+        &scene,
+        entry,
+        &toml::Table::new(),
+        motion,
+        8,
+        TEST_SIZE,
+    )?;
     let without = frame_differences(&gpu, &scene, entry, &no_fade, motion, 8, TEST_SIZE)?;
     eprintln!("measured: frame-to-frame change with fades {with:.3?}, without {without:.3?}");
     // The switch is a spike over the steady steps without fades, and gone with them.
     let steady = |d: &[f64]| d[1..].iter().copied().fold(0.0, f64::max);
-    assert!(without[0] > 1.4 * steady(&without), "no switch seen: {without:?}");
-    assert!(with[0] < 1.2 * steady(&with), "fades did not soften it: {with:?}");
+    assert!(
+        without[0] > 1.4 * steady(&without),
+        "no switch seen: {without:?}"
+    );
+    assert!(
+        with[0] < 1.2 * steady(&with),
+        "fades did not soften it: {with:?}"
+    );
     Ok(())
 }

@@ -100,10 +100,11 @@ impl Animation {
         spring: f32,
         damping: f32,
     ) {
-        let all = [0..self.blades.len() as u32];
-        let flowers = [0..self.flowers.len() as u32];
+        let all = 0..self.blades.len() as u32;
+        let flowers = 0..self.flowers.len() as u32;
         let k = (wind_response, spring, damping);
-        self.step_ranges(wind, time, dt, k, &all, &flowers);
+        let (all, flowers) = (std::slice::from_ref(&all), std::slice::from_ref(&flowers));
+        self.step_ranges(wind, time, dt, k, all, flowers);
     }
 
     /// Advances the blades in `blades` and the flowers in `flowers` (sorted, disjoint instance

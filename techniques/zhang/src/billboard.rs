@@ -72,7 +72,7 @@ pub struct Billboards {
 
 /// Whether lattice index `i` (of `0..n`) belongs to the anchors of half-step `t`.
 fn on(i: u32, t: u32, n: u32) -> bool {
-    i % t == 0 || i + 1 == n
+    i.is_multiple_of(t) || i + 1 == n
 }
 
 /// The billboard steps a prairie of `n` plants per grid side and `grids` grids per side uses:
@@ -112,11 +112,7 @@ impl Billboards {
             let (gx, gz) = (grid % layout.grids, grid / layout.grids);
             // Anchor classes: the largest half-step t (2, 4, ...) whose lattice holds the point.
             let halves: Vec<u32> = steps.iter().map(|s| s / 2).collect();
-            let class = |i: u32, j: u32| {
-                halves
-                    .iter()
-                    .rposition(|&t| on(i, t, n) && on(j, t, n))
-            };
+            let class = |i: u32, j: u32| halves.iter().rposition(|&t| on(i, t, n) && on(j, t, n));
             let mut points: Vec<(usize, u32, u32)> = (0..n * n)
                 .filter_map(|k| {
                     let (i, j) = (k % n, k / n);
@@ -128,9 +124,16 @@ impl Billboards {
             let mut local = vec![u32::MAX; (n * n) as usize];
             for &(_, i, j) in &points {
                 local[(j * n + i) as usize] = anchors.len() as u32;
-                let mut plant =
-                    candidate(layout, params, grass, terrain, seed, grid, (gx * n + i, gz * n + j))
-                        .plant;
+                let mut plant = candidate(
+                    layout,
+                    params,
+                    grass,
+                    terrain,
+                    seed,
+                    grid,
+                    (gx * n + i, gz * n + j),
+                )
+                .plant;
                 plant.flower = None;
                 anchors.push(plant);
             }
@@ -151,16 +154,15 @@ impl Billboards {
                             let at = |i: u32, j: u32| local[(j * n + i) as usize];
                             let centre = at(ci, cj);
                             let before = wings.len();
-                            for (oi, oj) in [(i0, cj), (i1, cj), (ci, j0), (ci, j1), (i0, j0), (i1, j1)]
+                            for (oi, oj) in
+                                [(i0, cj), (i1, cj), (ci, j0), (ci, j1), (i0, j0), (i1, j1)]
                             {
                                 if (oi, oj) == (ci, cj) {
                                     continue;
                                 }
                                 let outer = at(oi, oj);
-                                let (a, b) = (
-                                    anchors[centre as usize].root,
-                                    anchors[outer as usize].root,
-                                );
+                                let (a, b) =
+                                    (anchors[centre as usize].root, anchors[outer as usize].root);
                                 let mid = (a + b) * 0.5;
                                 if !(grass_at(a) && grass_at(b) && grass_at(mid)) {
                                     continue;
@@ -171,7 +173,10 @@ impl Billboards {
                                     .sum::<f32>()
                                     / 3.0;
                                 let length = Vec2::new(b.x - a.x, b.z - a.z).length();
-                                let u0 = hash_f32(seed, &[i64::from(grid), i64::from(level as u32), i64::from(outer)]);
+                                let u0 = hash_f32(
+                                    seed,
+                                    &[i64::from(grid), i64::from(level as u32), i64::from(outer)],
+                                );
                                 wings.push(Wing {
                                     centre,
                                     outer,
@@ -272,7 +277,10 @@ mod tests {
                 assert_eq!(l.anchors.start, levels[0].anchors.start);
                 for w in &l.wings {
                     assert!(l.anchors.contains(&w.centre) && l.anchors.contains(&w.outer));
-                    assert!(w.u[1] > w.u[0] && (w.density - 1.0).abs() < 1e-6, "level {k}");
+                    assert!(
+                        w.u[1] > w.u[0] && (w.density - 1.0).abs() < 1e-6,
+                        "level {k}"
+                    );
                 }
             }
         }

@@ -45,7 +45,9 @@ fn quantise(v: f32) -> u8 {
 
 /// Blades composed into the layer of billboard step `step`.
 pub fn blades_per_layer(step: u32) -> u32 {
-    ((step as f32 / (2.0 + std::f32::consts::SQRT_2)) * SPAN).round().max(1.0) as u32
+    ((step as f32 / (2.0 + std::f32::consts::SQRT_2)) * SPAN)
+        .round()
+        .max(1.0) as u32
 }
 
 /// The layers for `steps`, one after the other, each `SIZE.0 x SIZE.1` RGBA8 texels, row-major
@@ -146,7 +148,10 @@ mod tests {
             .chunks(n)
             .map(|l| l.iter().filter(|p| p[3] >= 128).count() as f32 / n as f32)
             .collect();
-        assert!(cover[0] > 0.02 && cover[0] < cover[1] && cover[1] < cover[2], "{cover:?}");
+        assert!(
+            cover[0] > 0.02 && cover[0] < cover[1] && cover[1] < cover[2],
+            "{cover:?}"
+        );
         // The top row is mostly sky, the bottom row mostly blades.
         let row = |l: usize, y: u32| {
             t[l * n + (y * SIZE.0) as usize..l * n + ((y + 1) * SIZE.0) as usize]
@@ -156,7 +161,10 @@ mod tests {
         };
         assert!(row(2, 0) > row(2, SIZE.1 - 1));
         // Some petals, and thresholds spread over [0, 1).
-        assert!(t.iter().any(|p| p[3] >= 128 && f32::from(p[2]) / 255.0 >= PETAL_CODE - 0.01));
+        assert!(
+            t.iter()
+                .any(|p| p[3] >= 128 && f32::from(p[2]) / 255.0 >= PETAL_CODE - 0.01)
+        );
         let g: Vec<u8> = t.iter().filter(|p| p[3] >= 128).map(|p| p[1]).collect();
         assert!(g.iter().any(|&v| v < 64) && g.iter().any(|&v| v > 192));
     }

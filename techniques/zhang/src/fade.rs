@@ -32,12 +32,7 @@ impl Transition {
     /// No fading: the camera grid only.
     pub fn none(camera: IVec2) -> Self {
         Self {
-            cameras: [
-                (camera, 1.0),
-                (camera, 0.0),
-                (camera, 0.0),
-                (camera, 0.0),
-            ],
+            cameras: [(camera, 1.0), (camera, 0.0), (camera, 0.0), (camera, 0.0)],
         }
     }
 
@@ -48,8 +43,7 @@ impl Transition {
         if radius <= 0.0 {
             return Self::none(camera);
         }
-        let local = (Vec2::new(eye.x, eye.z) - layout.origin) / layout.grid_size
-            - camera.as_vec2();
+        let local = (Vec2::new(eye.x, eye.z) - layout.origin) / layout.grid_size - camera.as_vec2();
         // Per axis: the nearer border, its side and the weight of the grid beyond it.
         let axis = |t: f32| {
             let (side, r1) = if t < 0.5 { (-1, t) } else { (1, 1.0 - t) };

@@ -15,8 +15,8 @@ use grassbench::glam::{IVec2, Vec2, Vec3};
 use grassbench::technique::ranges::push_merged;
 
 use crate::billboard::Billboards;
-use crate::fade::Transition;
 use crate::culling::GridIndex;
+use crate::fade::Transition;
 use crate::gpu::{BladeDynamic, WingInstance};
 use crate::lod::{Level, grid_coords, grid_offset};
 use crate::order::{self, BlockOrders, line_order, section};
@@ -85,7 +85,10 @@ impl Plan {
 
     /// Flowers drawn.
     pub fn flower_count(&self) -> u64 {
-        self.flowers.iter().map(|r| u64::from(r.end - r.start)).sum()
+        self.flowers
+            .iter()
+            .map(|r| u64::from(r.end - r.start))
+            .sum()
     }
 
     /// The plan of a frame seen through `frustum` (`None`: no culling) with the camera grids
@@ -191,10 +194,7 @@ pub fn wings(
             let a = a as usize;
             let p = &billboards.anchors[a];
             let tip = Vec3::from_slice(&anchors[a].p3[..3]);
-            let (d0, d) = (
-                (rest[a] - p.root) / p.height,
-                (tip - p.root) / p.height,
-            );
+            let (d0, d) = ((rest[a] - p.root) / p.height, (tip - p.root) / p.height);
             let mut v = (d0 + gain * (d - d0)) * height;
             let side = v.x.hypot(v.z);
             if side > height {
@@ -206,7 +206,10 @@ pub fn wings(
         };
         let level = &billboards.grids[far.grid as usize][far.level];
         let mut push = |w: &crate::billboard::Wing| {
-            let (c, o) = (&billboards.anchors[w.centre as usize], &billboards.anchors[w.outer as usize]);
+            let (c, o) = (
+                &billboards.anchors[w.centre as usize],
+                &billboards.anchors[w.outer as usize],
+            );
             out.push(WingInstance {
                 centre_root: c.root.extend(w.u[0]).to_array(),
                 outer_root: o.root.extend(w.u[1]).to_array(),

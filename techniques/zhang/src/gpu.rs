@@ -5,8 +5,8 @@
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{InitContext, bytemuck, shaders, wgpu};
 
-use crate::prairie::PETAL_TEXTURES;
 use crate::billboard_texture;
+use crate::prairie::PETAL_TEXTURES;
 use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
 
 /// Static per-blade data (vertex buffer 0 of the blade pipeline, instance step).
@@ -199,11 +199,7 @@ impl Pipelines {
             device,
             queue,
             "zhang billboard texture",
-            (
-                billboard_texture::SIZE.0,
-                billboard_texture::SIZE.1,
-                layers,
-            ),
+            (billboard_texture::SIZE.0, billboard_texture::SIZE.1, layers),
             billboard,
         );
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -226,7 +226,10 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
         Ok(size(blades, std::mem::size_of::<BladeStatic>())
             .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
             .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
-            .plus(size(sorted.max(1), std::mem::size_of::<gpu::BladeDynamic>()))
+            .plus(size(
+                sorted.max(1),
+                std::mem::size_of::<gpu::BladeDynamic>(),
+            ))
             .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
             .plus(size(wings, std::mem::size_of::<WingInstance>()))
             .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
@@ -343,7 +346,8 @@ impl Zhang {
             petal_size: params.petal_size,
         };
         let layers = billboards.steps.len().max(1) as u32;
-        let mut billboard_texels = billboard_texture::billboard_texture(&look, &billboards.steps, seed);
+        let mut billboard_texels =
+            billboard_texture::billboard_texture(&look, &billboards.steps, seed);
         billboard_texels.resize(
             (billboard_texture::SIZE.0 * billboard_texture::SIZE.1 * layers) as usize,
             [0; 4],
@@ -392,8 +396,7 @@ impl Zhang {
             ],
             modes: [f32::from(u8::from(sort)), 0.0, 0.0, 0.0],
         };
-        let pipelines =
-            gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
+        let pipelines = gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
         let sorting = sort.then(|| {
             let n = layout.per_side;
             let mut slots = vec![u32::MAX; (layout.grids * layout.grids * n * n) as usize];
@@ -510,8 +513,14 @@ impl GrassTechnique for Zhang {
             &plan.animate_blades,
             &plan.animate_flowers,
         );
-        self.anchors
-            .step_ranges(inputs.wind, inputs.time, inputs.dt, k, &plan.animate_anchors, &[]);
+        self.anchors.step_ranges(
+            inputs.wind,
+            inputs.time,
+            inputs.dt,
+            k,
+            &plan.animate_anchors,
+            &[],
+        );
         frame::wings(
             plan,
             &self.billboards,
@@ -577,13 +586,30 @@ impl GrassTechnique for Zhang {
             }
         }
         let plan = &self.plan;
-        upload(gpu, &self.dynamics, &self.animation.blade_out, &plan.animate_blades);
-        upload(gpu, &self.flowers, &self.animation.flower_out, &plan.animate_flowers);
-        upload(gpu, &self.wing_buffer, &self.wings, &[0..self.wings.len() as u32]);
+        upload(
+            gpu,
+            &self.dynamics,
+            &self.animation.blade_out,
+            &plan.animate_blades,
+        );
+        upload(
+            gpu,
+            &self.flowers,
+            &self.animation.flower_out,
+            &plan.animate_flowers,
+        );
+        let wings = 0..self.wings.len() as u32;
+        upload(
+            gpu,
+            &self.wing_buffer,
+            &self.wings,
+            std::slice::from_ref(&wings),
+        );
         if let Some(s) = &self.sorting {
-            let all = [0..s.order.len() as u32];
-            upload(gpu, &s.statics_buf, &s.statics_out, &all);
-            upload(gpu, &s.dynamics_buf, &s.dynamics_out, &all);
+            let all = 0..s.order.len() as u32;
+            let all = std::slice::from_ref(&all);
+            upload(gpu, &s.statics_buf, &s.statics_out, all);
+            upload(gpu, &s.dynamics_buf, &s.dynamics_out, all);
         }
         Ok(())
     }

@@ -22,7 +22,9 @@ pub fn billboard_length(l: u32, g: u32) -> u32 {
 
 /// Billboards per grid side `n' = ⌈(n−1)/(l'−1)⌉` for `n` plants per side, Eq. (9).
 pub fn billboards_per_side(n: u32, length: u32) -> u32 {
-    (n.saturating_sub(1)).div_ceil(length.saturating_sub(1).max(1)).max(1)
+    (n.saturating_sub(1))
+        .div_ceil(length.saturating_sub(1).max(1))
+        .max(1)
 }
 
 /// How a grass grid is drawn this frame.
@@ -106,7 +108,10 @@ mod tests {
             origin: Vec2::splat(-40.0),
         };
         // Camera grid (7, 8), as in Fig. 13.
-        let cam = camera_grid(&layout, Vec3::new(-40.0 + 7.5 * 5.0, 1.6, -40.0 + 8.2 * 5.0));
+        let cam = camera_grid(
+            &layout,
+            Vec3::new(-40.0 + 7.5 * 5.0, 1.6, -40.0 + 8.2 * 5.0),
+        );
         assert_eq!(cam, IVec2::new(7, 8));
         let offset = |gx: u32, gz: u32| grid_offset(&layout, gz * 16 + gx, cam);
         assert_eq!(offset(7, 8), 0);

@@ -203,7 +203,11 @@ mod tests {
                         .collect();
                     assert_eq!(cells.len() as u32, count * count);
                     for eye in eyes() {
-                        check(eye, &cells, &format!("billboards of grid {g}, {count} per side"));
+                        check(
+                            eye,
+                            &cells,
+                            &format!("billboards of grid {g}, {count} per side"),
+                        );
                     }
                 }
             }
@@ -254,7 +258,12 @@ mod tests {
         let mut order = Vec::new();
         // Camera near the grid's border, at the left end of its rows, rows walked left to right
         // (as if the camera were far to the right).
-        line_order(n, section(g, IVec2::ZERO), Vec2::new(100.0, -0.1), &mut order);
+        line_order(
+            n,
+            section(g, IVec2::ZERO),
+            Vec2::new(100.0, -0.1),
+            &mut order,
+        );
         let eye = Vec2::new(0.02, 0.999);
         let cells: Vec<(Vec2, Vec2)> = order
             .iter()
@@ -265,6 +274,9 @@ mod tests {
             })
             .collect();
         let failed = std::panic::catch_unwind(|| check(eye, &cells, "fixed arrows")).is_err();
-        assert!(failed, "the check accepted an order that paints near plants first");
+        assert!(
+            failed,
+            "the check accepted an order that paints near plants first"
+        );
     }
 }
