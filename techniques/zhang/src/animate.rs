@@ -312,4 +312,47 @@ mod tests {
         let rest = Animation::new(&planted, params.flower_mass);
         assert_ne!(one.0, rest.blade_out);
     }
+
+    #[test]
+    fn step_ranges_moves_only_its_ranges_and_like_a_full_step() {
+        let terrain = Terrain::flat(Vec2::new(40.0, 40.0));
+        let params = Params {
+            grids: 4,
+            blades_per_side: 24,
+            flower_fraction: 0.1,
+            ..Params::default()
+        };
+        let planted = plant(&params, &GrassConfig::default(), &terrain, 5).1;
+        let wind = Breeze::new(BreezeConfig::default(), 5);
+        let mut full = Animation::new(&planted, params.flower_mass);
+        let mut part = full.clone();
+        part.set_threads(3);
+        let n = planted.len() as u32;
+        let ranges = [10..700, 900..901, 3000..n];
+        let m = part.flower_count() as u32;
+        let flowers = [0..m / 2];
+        for f in 0..10 {
+            let t = f as f32 / 30.0;
+            full.step(&wind, t, 1.0 / 30.0, 2.5, 40.0, 4.0);
+            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), &ranges, &flowers);
+        }
+        let rest = Animation::new(&planted, params.flower_mass);
+        for b in 0..n as usize {
+            let inside = ranges.iter().any(|r| r.contains(&(b as u32)));
+            let expected = if inside {
+                &full.blade_out[b]
+            } else {
+                &rest.blade_out[b]
+            };
+            assert_eq!(&part.blade_out[b], expected, "blade {b}");
+        }
+        for k in 0..m as usize {
+            let expected = if k < (m / 2) as usize {
+                &full.flower_out[k]
+            } else {
+                &rest.flower_out[k]
+            };
+            assert_eq!(&part.flower_out[k], expected, "flower {k}");
+        }
+    }
 }

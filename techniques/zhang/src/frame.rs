@@ -288,3 +288,96 @@ pub fn sorted_blades(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Params;
+    use crate::prairie::plant;
+    use grassbench::camera::Camera;
+    use grassbench::grass::GrassConfig;
+    use grassbench::terrain::Terrain;
+
+    #[test]
+    fn sorted_blades_are_the_visible_near_plants_once_camera_grid_last_and_far_to_near() {
+        let terrain = Terrain::flat(Vec2::new(80.0, 80.0));
+        let params = Params {
+            grids: 8,
+            blades_per_side: 12,
+            ..Params::default()
+        };
+        let (layout, planted) = plant(&params, &GrassConfig::default(), &terrain, 3);
+        let index = GridIndex::new(&planted);
+        let billboards = Billboards::new(&layout, &params, &GrassConfig::default(), &terrain, 3);
+        let n = layout.per_side;
+        let mut slots = vec![u32::MAX; (64 * n * n) as usize];
+        for (b, p) in planted.iter().enumerate() {
+            slots[(p.grid * n * n + p.cell) as usize] = b as u32;
+        }
+        let plants: Vec<[f32; 4]> = planted
+            .iter()
+            .map(|p| p.root.extend(p.height).to_array())
+            .collect();
+        let look = BladeLookup {
+            layout: &layout,
+            index: &index,
+            slots: &slots,
+            plants: &plants,
+        };
+        for (eye, target) in [
+            (Vec3::new(3.0, 1.6, 2.0), Vec3::new(20.0, 0.0, 9.0)),
+            (Vec3::new(-12.0, 1.6, 7.0), Vec3::new(-30.0, 0.0, -2.0)),
+        ] {
+            let camera = Camera::look_at(eye, target, 1.0, 0.1, 300.0, 16.0 / 9.0);
+            let frustum = camera.frustum();
+            let transition = Transition::new(&layout, eye, 0.0);
+            let plan = Plan::new(
+                &layout,
+                &index,
+                &billboards,
+                &transition,
+                Some(&frustum),
+                (true, true),
+            );
+            let (mut scratch, mut out) = (Vec::new(), Vec::new());
+            sorted_blades(&plan, &look, eye, Some(&frustum), &mut scratch, &mut out);
+            let mut seen = out.clone();
+            seen.sort_unstable();
+            seen.dedup();
+            assert_eq!(seen.len(), out.len(), "a plant drawn twice");
+            // Exactly the near grids' plants whose sphere is in view.
+            let expected: Vec<u32> = plan
+                .near
+                .iter()
+                .flat_map(|g| index.blades(g.k))
+                .filter(|&b| {
+                    let [x, y, z, h] = plants[b as usize];
+                    frustum.intersects_sphere(Vec3::new(x, y + 0.5 * h, z), h)
+                })
+                .collect();
+            let mut expected_sorted = expected.clone();
+            expected_sorted.sort_unstable();
+            assert_eq!(seen, expected_sorted);
+            assert!(out.len() > 100 && out.len() < planted.len());
+            // The camera grid comes last, its plants farthest first.
+            let camera_grid = plan.near.last().expect("near grids").grid;
+            assert_eq!(plan.near.last().map(|g| g.delta), Some(IVec2::ZERO));
+            let tail: Vec<f32> = out
+                .iter()
+                .filter(|&&b| planted[b as usize].grid == camera_grid)
+                .map(|&b| (planted[b as usize].root - eye).length())
+                .collect();
+            assert!(!tail.is_empty());
+            assert!(tail.windows(2).all(|w| w[0] >= w[1]));
+            let first_camera = out
+                .iter()
+                .position(|&b| planted[b as usize].grid == camera_grid)
+                .expect("camera grid");
+            assert!(
+                out[first_camera..]
+                    .iter()
+                    .all(|&b| planted[b as usize].grid == camera_grid)
+            );
+        }
+    }
+}
