@@ -330,11 +330,12 @@ mod tests {
         let n = planted.len() as u32;
         let ranges = [10..700, 900..901, 3000..n];
         let m = part.flower_count() as u32;
-        let flowers = vec![0..m / 2];
+        let half = 0..m / 2;
+        let flowers = std::slice::from_ref(&half);
         for f in 0..10 {
             let t = f as f32 / 30.0;
             full.step(&wind, t, 1.0 / 30.0, 2.5, 40.0, 4.0);
-            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), &ranges, &flowers);
+            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), &ranges, flowers);
         }
         let rest = Animation::new(&planted, params.flower_mass);
         for b in 0..n as usize {
