@@ -116,9 +116,10 @@ impl Plan {
                 Level::Billboard { step } => Some(billboards.level(step)),
                 Level::Single => None,
             };
-            // Animated: blades up to two grids away, anchors at the finer of the grid's step
-            // and the step one grid closer (the level a border crossing can give it).
-            if g <= 2 {
+            // Animated: blades up to two grids away (every grid without LOD), anchors at the
+            // finer of the grid's step and the step one grid closer (the level a border
+            // crossing can give it).
+            if g <= 2 || !lod {
                 push_merged(&mut plan.animate_blades, index.blades(k));
                 push_merged(&mut plan.animate_flowers, index.flowers(k));
             }
