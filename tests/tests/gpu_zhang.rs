@@ -208,10 +208,10 @@ fn bad_parameters_are_refused_naming_the_key() -> anyhow::Result<()> {
 /// Billboards (Ch. 4) stand in for the far grids (Sec. 5.2): the counters say what was drawn,
 /// far fewer triangles are submitted, and the picture stays close to single plants everywhere
 /// (`lod = false`, the `finest` variant). Measured on the meadow, frame 30 at 640x360 on
-/// lavapipe (sorted and blended, the default): FLIP against the finest 0.045 at full scale,
-/// 0.037 at 1/4, 0.037 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
+/// lavapipe (sorted and blended, the default): FLIP against the finest 0.042 at full scale,
+/// 0.031 at 1/4, 0.029 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
 /// ways, their single plants and billboards blended into each other). Without fades
-/// (`fade_radius = 0`, rendered third in the same harness) 0.031, 0.025, 0.032. Thresholds
+/// (`fade_radius = 0`) 0.028, 0.0195, 0.023 (the near grids are the same blades). Thresholds
 /// ~25 % above. 3 232 single plants (those of the near grids left by culling single plants)
 /// and 2 224 billboards (13 295 wings) represent 114 k blades: 53 k triangles against 803 k.
 #[test]
@@ -268,8 +268,8 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let switched = render_with(&mut harness, no_fade.as_mut(), 30)?;
     let mut failures = Vec::new();
     for (what, image, limits) in [
-        ("LOD", &image, [0.056, 0.046, 0.046]),
-        ("LOD without fades", &switched, [0.039, 0.032, 0.040]),
+        ("LOD", &image, [0.052, 0.039, 0.036]),
+        ("LOD without fades", &switched, [0.035, 0.025, 0.029]),
     ] {
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
             let mean = flip(&downsample(&fine, factor), &downsample(image, factor))?.mean;
