@@ -129,6 +129,10 @@ fn shader_consts_in_crates_match_files() {
         std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/blade.wgsl")).unwrap()
     );
     assert_eq!(
+        grassbench_zhang::PROPS_SHADER,
+        std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/props.wgsl")).unwrap()
+    );
+    assert_eq!(
         grassbench_zhang::BILLBOARD_SHADER,
         std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/billboard.wgsl"))
             .unwrap()

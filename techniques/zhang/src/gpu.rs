@@ -57,6 +57,18 @@ pub struct WingInstance {
     pub fade: [f32; 4],
 }
 
+/// One vertex of the trees and stones (Sec. 5.5.2; vertex step, a triangle list).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PropVertex {
+    /// Position xyz; w = 1.
+    pub position: [f32; 4],
+    /// Face normal xyz; w unused.
+    pub normal: [f32; 4],
+    /// Albedo rgb; w unused.
+    pub color: [f32; 4],
+}
+
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -99,6 +111,12 @@ const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout 
     ],
 };
 
+const PROP_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<PropVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4],
+};
+
 /// Blending of Eq. (10): `C = S·S_a + D·(1 − S_a)` for colour and alpha alike.
 const EQ10: wgpu::BlendComponent = wgpu::BlendComponent {
     src_factor: wgpu::BlendFactor::SrcAlpha,
@@ -124,6 +142,8 @@ pub struct Pipelines {
     pub flowers: wgpu::RenderPipeline,
     /// Billboard wings.
     pub wings: wgpu::RenderPipeline,
+    /// Trees and stones (Sec. 5.5.2).
+    pub props: wgpu::RenderPipeline,
     /// Group 1.
     pub bind_group: wgpu::BindGroup,
     /// Bytes of textures and uniform.
@@ -340,10 +360,32 @@ impl Pipelines {
             blend,
             &[Some(WING_LAYOUT.clone())],
         );
+        let props_module = shaders::module(device, "zhang props", crate::PROPS_SHADER);
+        let props_buffers = [Some(PROP_LAYOUT.clone())];
+        let props_spec = shaders::PipelineSpec::new(
+            "zhang trees and stones",
+            &pipeline_layout,
+            &props_module,
+            ("vs_prop", "fs_prop"),
+            &props_buffers,
+            ctx.sample_count,
+        );
+        let props = shaders::render_pipeline(
+            device,
+            &shaders::PipelineSpec {
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleList,
+                    cull_mode: Some(wgpu::Face::Back),
+                    ..Default::default()
+                },
+                ..props_spec
+            },
+        );
         Self {
             blades,
             flowers,
             wings,
+            props,
             bind_group,
             bytes: Self::bytes(layers),
         }

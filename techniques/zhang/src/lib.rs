@@ -157,6 +157,7 @@ pub mod lod;
 pub mod order;
 pub mod params;
 pub mod prairie;
+pub mod props;
 pub mod textures;
 
 use grassbench::glam::{IVec2, Vec3};
@@ -168,13 +169,15 @@ use grassbench::{
 };
 
 pub use animate::Animation;
-pub use gpu::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
+pub use gpu::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance};
 pub use params::Params;
 
 /// The blade and flower shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
 /// The billboard shader (without the prelude).
 pub const BILLBOARD_SHADER: &str = include_str!("../shaders/billboard.wgsl");
+/// The tree and stone shader (without the prelude).
+pub const PROPS_SHADER: &str = include_str!("../shaders/props.wgsl");
 
 const INFO: TechniqueInfo = TechniqueInfo {
     id: "zhang",
@@ -198,7 +201,7 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
     }],
     default_params: || grassbench::params::to_table(&Params::default()),
     create: |ctx, overrides| Ok(Box::new(Zhang::new(ctx, overrides)?)),
-    estimate: |_, overrides| {
+    estimate: |scene, overrides| {
         use grassbench::gpu::GpuEstimate;
         let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
         // At most one blade per lattice point; each carries a flower with probability
@@ -232,6 +235,10 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
             ))
             .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
             .plus(size(wings, std::mem::size_of::<WingInstance>()))
+            .plus(size(
+                prop_vertices(&params, &scene.terrain),
+                std::mem::size_of::<PropVertex>(),
+            ))
             .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
     },
 };
@@ -246,6 +253,9 @@ pub struct Zhang {
     dynamics: wgpu::Buffer,
     flowers: wgpu::Buffer,
     wing_buffer: wgpu::Buffer,
+    /// The trees and stones (Sec. 5.5.2) and their vertex count.
+    props: wgpu::Buffer,
+    prop_count: u32,
     gpu_bytes: u64,
     /// The grass grids' blade and flower ranges and bounds (Sec. 5.3).
     grids: culling::GridIndex,
@@ -377,6 +387,17 @@ impl Zhang {
             bytemuck::cast_slice(&vec![WingInstance::default(); billboards.max_wings()]),
             usage,
         );
+        let prop_vertices = if params.props {
+            props::meshes(&scene.terrain, seed)
+        } else {
+            Vec::new()
+        };
+        let props_buf = buffer(
+            device,
+            "zhang trees and stones",
+            bytemuck::cast_slice(&prop_vertices),
+            wgpu::BufferUsages::VERTEX,
+        );
         let uniform = ParamsUniform {
             color_root: Vec3::from(grass.color_root)
                 .extend(grass.color_variation)
@@ -434,6 +455,7 @@ impl Zhang {
             + dynamics.size()
             + flowers.size()
             + wing_buffer.size()
+            + props_buf.size()
             + sorting
                 .as_ref()
                 .map_or(0, |s| s.statics_buf.size() + s.dynamics_buf.size())
@@ -459,6 +481,8 @@ impl Zhang {
             dynamics,
             flowers,
             wing_buffer,
+            props: props_buf,
+            prop_count: prop_vertices.len() as u32,
             gpu_bytes,
             billboards,
             anchors,
@@ -620,11 +644,17 @@ impl GrassTechnique for Zhang {
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         let v = &self.plan;
         let blades = self.blade_count();
-        if blades == 0 && v.flowers.is_empty() && self.wings.is_empty() {
+        if blades == 0 && v.flowers.is_empty() && self.wings.is_empty() && self.prop_count == 0 {
             return;
         }
         let mut pass = encoder.render_pass("plants");
         pass.set_bind_group(1, &self.pipelines.bind_group, &[]);
+        // Trees and stones first: opaque, they need no order.
+        if self.prop_count > 0 {
+            pass.set_pipeline(&self.pipelines.props);
+            pass.set_vertex_buffer(0, self.props.slice(..));
+            pass.draw(0..self.prop_count, 0..1);
+        }
         let flowers = |pass: &mut wgpu::RenderPass<'_>| {
             if !v.flowers.is_empty() {
                 pass.set_pipeline(&self.pipelines.flowers);
@@ -699,7 +729,8 @@ impl GrassTechnique for Zhang {
             blades: blades + self.plan.billboard_blades,
             triangles: blades * u64::from(2 * (self.params.backbone_points - 1))
                 + 2 * flowers
-                + 2 * self.wings.len() as u64,
+                + 2 * self.wings.len() as u64
+                + u64::from(self.prop_count / 3),
             draw_calls: self.draw_calls(),
             gpu_bytes: self.gpu_bytes,
         }
@@ -743,8 +774,21 @@ impl Zhang {
             Some(s) => usize::from(!s.order.is_empty()),
             None => self.plan.blades.len(),
         };
-        (blades + self.plan.flowers.len() + usize::from(!self.wings.is_empty())) as u64
+        (blades
+            + self.plan.flowers.len()
+            + usize::from(!self.wings.is_empty())
+            + usize::from(self.prop_count > 0)) as u64
     }
+}
+
+/// Vertices of the trees and stones (Sec. 5.5.2; at least one: an empty buffer keeps 64 bytes).
+fn prop_vertices(params: &Params, terrain: &grassbench::terrain::Terrain) -> u64 {
+    let (trees, stones) = if params.props {
+        props::count(terrain)
+    } else {
+        (0, 0)
+    };
+    ((trees * props::TREE_VERTICES + stones * props::STONE_VERTICES) as u64).max(2)
 }
 
 /// Alpha cut-off while blending (Sec. 5.4): only the clear part of the textures is discarded.

@@ -64,6 +64,8 @@ pub struct Params {
     /// of a grid border, grids that switch between billboards and single plants there are
     /// drawn both ways, fading. 0 switches at once (the `no_transitions` variant).
     pub fade_radius: f32,
+    /// Simple tree and stone meshes where the covering map holds IDs 253 and 254 (Sec. 5.5.2).
+    pub props: bool,
 }
 
 impl Default for Params {
@@ -86,6 +88,7 @@ impl Default for Params {
             billboard_sway: 0.05,
             sorting: Sorting::Sort,
             fade_radius: 0.25,
+            props: true,
         }
     }
 }
