@@ -68,9 +68,9 @@ fn thresholds(id: &str) -> Thresholds {
         // LOD FLIP against `lod = false` 0.039 / 0.022 / 0.036 (meadow / football field /
         // prairie; frame 30 of the meadow stands in a fade band). Against the reference FLIP
         // 1/16 0.055 / 0.012 / 0.016 (the prairie's trees and stones, Sec. 5.5.2, which the
-        // reference does not draw, add 0.002) and coverage per tile 0.116 / 0.016 / 0.019 (part 1,
-        // single plants everywhere: 0.053 / 0.011 / 0.015 and 0.088 / 0.024 / 0.019; the
-        // billboards cover more of the meadow's far field than the blades they replace);
+        // reference does not draw, add 0.002) and coverage per tile 0.116 / 0.016 / 0.019
+        // (part 1, single plants everywhere: 0.053 / 0.011 / 0.015 and 0.088 / 0.024 / 0.019;
+        // the billboards cover more of the meadow's far field than the blades they replace);
         // popping 1.75 (dolly) and 1.76 (pan), part 1 1.64 and 1.65: its blades sway
         // differently from the reference's.
         "zhang" => Thresholds {
