@@ -77,7 +77,8 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
         "with culling {drawn} drawn, {culled_grids} culled; without, {all_drawn} and {none_culled}"
     );
     eprintln!("measured: culling {culled:?}, without {every:?}");
-    assert!(every.blades > 100_000 && every.draw_calls == 2, "{every:?}");
+    // Blades, flowers and wings of every grid (near blades in a few runs of grids).
+    assert!(every.blades > 100_000 && every.draw_calls >= 3, "{every:?}");
     assert!(
         culled.blades > 0 && culled.blades < every.blades && culled.draw_calls >= 2,
         "{culled:?} against {every:?}"
@@ -96,12 +97,17 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
 ///
 /// | zhang parameters | 1/1 | 1/4 | 1/16 | coverage (ref 0.467) |
 /// |---|---|---|---|---|
-/// | defaults (32 x 32 per grid, 197 k blades) | 0.162 | 0.108 | 0.091 | 0.302 |
-/// | `blades_per_side = 47` (as many candidates as the reference) | 0.165 | 0.095 | 0.067 | 0.462 |
+/// | defaults (32 x 32 per grid, billboards beyond the 3 x 3 near grids, sorted, fades) | 0.165 | 0.114 | 0.097 | 0.329 |
+/// | `blades_per_side = 47` (as many candidates as the reference), same | 0.165 | 0.104 | 0.076 | 0.473 |
+/// | billboards without sorting or fades (alpha test), defaults | 0.167 | 0.117 | 0.104 | 0.310 |
+/// | the same, `blades_per_side = 47` | 0.168 | 0.105 | 0.081 | 0.465 |
+/// | part 1 / `lod = false`: single plants everywhere, defaults | 0.162 | 0.108 | 0.091 | 0.302 |
+/// | part 1 / `lod = false`, `blades_per_side = 47` | 0.165 | 0.095 | 0.067 | 0.462 |
 ///
-/// Thresholds sit ~20 % above the measurements: they catch a broken picture (missing blades,
-/// wrong colours, black frames), not the placement difference. The matched run must also
-/// cover the same share of the image as the reference (±0.05).
+/// The billboards (Ch. 4) cost 0.01-0.015 of FLIP at the reduced scales. Thresholds sit
+/// ~20 % above the measurements: they catch a broken picture (missing blades, wrong colours,
+/// black frames), not the placement difference. The matched run must also cover the same
+/// share of the image as the reference (±0.05).
 #[test]
 fn zhang_compares_with_reference_on_the_meadow() -> anyhow::Result<()> {
     let gpu = gpu()?;
@@ -116,17 +122,22 @@ fn zhang_compares_with_reference_on_the_meadow() -> anyhow::Result<()> {
     let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, size, false)?;
     let background = render_with(&mut harness, &mut NoGrass, 30)?;
     let ref_coverage = grass_coverage(&reference, &background, 6)?;
-    for (overrides, limits) in [(&none, [0.20, 0.13, 0.11]), (&matched, [0.20, 0.12, 0.08])] {
+    for (overrides, limits) in [
+        (&none, [0.20, 0.14, 0.125]),
+        (&matched, [0.20, 0.13, 0.097]),
+    ] {
         let z = render(&gpu, "zhang", scene("meadow", 1.0)?, 30, size, overrides)?;
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
             let mean = flip(&downsample(&reference, factor), &downsample(&z, factor))?.mean;
+            eprintln!("measured: {overrides:?} at 1/{factor}: FLIP {mean:.4}");
             assert!(
                 mean < limit,
                 "{overrides:?} at 1/{factor}: FLIP {mean:.4} ≥ {limit}"
             );
         }
+        let c = grass_coverage(&z, &background, 6)?;
+        eprintln!("measured: {overrides:?} coverage {c:.3} (reference {ref_coverage:.3})");
         if overrides == &matched {
-            let c = grass_coverage(&z, &background, 6)?;
             assert!(
                 (c - ref_coverage).abs() < 0.05,
                 "coverage {c:.3} vs {ref_coverage:.3}"
@@ -191,5 +202,124 @@ fn bad_parameters_are_refused_naming_the_key() -> anyhow::Result<()> {
             .to_string();
         assert!(e.contains(&format!("zhang.{key}")), "{e}");
     }
+    Ok(())
+}
+
+/// Billboards (Ch. 4) stand in for the far grids (Sec. 5.2): the counters say what was drawn,
+/// far fewer triangles are submitted, and the picture stays close to single plants everywhere
+/// (`lod = false`, the `finest` variant). Measured on the meadow, frame 30 at 640x360 on
+/// lavapipe (sorted and blended, the default): FLIP against the finest 0.042 at full scale,
+/// 0.031 at 1/4, 0.029 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
+/// ways, their single plants and billboards blended into each other). Without fades
+/// (`fade_radius = 0`) 0.028, 0.0195, 0.023 (the near grids are the same blades). Thresholds
+/// ~25 % above. 3 232 single plants (those of the near grids left by culling single plants)
+/// and 2 224 billboards (13 295 wings) represent 114 k blades: 53 k triangles against 803 k.
+#[test]
+fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let size = Size {
+        width: 640,
+        height: 360,
+    };
+    let entry = grassbench_cli::registry::find("zhang")?;
+    let finest_params = entry
+        .variant(grassbench::technique::FINEST)
+        .expect("finest")?;
+    let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, size, false)?;
+    let mut lod = harness.create(entry, &toml::Table::new())?;
+    let image = render_with(&mut harness, lod.as_mut(), 30)?;
+    let mut finest = harness.create(entry, &finest_params)?;
+    let fine = render_with(&mut harness, finest.as_mut(), 30)?;
+    let counter = |t: &dyn grassbench::GrassTechnique, name: &str| {
+        t.counters()
+            .iter()
+            .find(|(k, _)| *k == name)
+            .map_or(0.0, |(_, v)| *v)
+    };
+    let (s, f) = (lod.stats(), finest.stats());
+    eprintln!(
+        "measured: LOD {s:?} {:?}; finest {f:?} {:?}",
+        lod.counters(),
+        lod.lod_blades()
+    );
+    let singles = counter(lod.as_ref(), "single_plants");
+    let billboards = counter(lod.as_ref(), "billboards_l5")
+        + counter(lod.as_ref(), "billboards_l9")
+        + counter(lod.as_ref(), "billboards_l17");
+    // At most the 4 x 4 grids around a border corner (fading, Sec. 6.1) are single plants.
+    assert!(
+        singles > 1000.0 && singles <= 16384.0,
+        "{singles} single plants"
+    );
+    assert!(billboards > 100.0, "{billboards} billboards");
+    assert_eq!(counter(finest.as_ref(), "billboards_l5"), 0.0);
+    let levels = lod.lod_blades().expect("zhang reports levels");
+    assert_eq!(levels.geometry as f64, singles);
+    assert_eq!(levels.geometry + levels.vertical_slices, s.blades);
+    // The same grids drawn, far fewer triangles.
+    assert_eq!(
+        counter(lod.as_ref(), "grids_drawn"),
+        counter(finest.as_ref(), "grids_drawn")
+    );
+    assert!(s.triangles * 5 < f.triangles, "{s:?} against {f:?}");
+    let mut no_fade_params = toml::Table::new();
+    no_fade_params.insert("fade_radius".into(), 0.0.into());
+    let mut no_fade = harness.create(entry, &no_fade_params)?;
+    let switched = render_with(&mut harness, no_fade.as_mut(), 30)?;
+    let mut failures = Vec::new();
+    for (what, image, limits) in [
+        ("LOD", &image, [0.052, 0.039, 0.036]),
+        ("LOD without fades", &switched, [0.035, 0.025, 0.029]),
+    ] {
+        for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
+            let mean = flip(&downsample(&fine, factor), &downsample(image, factor))?.mean;
+            eprintln!("measured: {what} against finest at 1/{factor}: FLIP {mean:.4}");
+            if mean >= limit {
+                failures.push(format!("{what} at 1/{factor}: FLIP {mean:.4} ≥ {limit}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:?}");
+    Ok(())
+}
+
+/// Across a grid border: the meadow's walker starts on a grid corner, and a dolly of 1 mm per
+/// frame (so parallax changes little) crosses the border at the first step. Without fades
+/// (`fade_radius = 0`) billboards and single plants switch there; with them (Sec. 6.1) both
+/// sides draw each representation at alpha ½ at the border. Measured on lavapipe at 320x180,
+/// quarter density, calm air (mean absolute change per channel, 0-255): at the crossing 2.07
+/// without fades against 1.26 with, 1.1-1.2 on the other steps of either. (At the comparison
+/// suite's 0.25 m per frame the switch drowns in parallax: 7.6 without against 8.3 with, the
+/// fade band's two layers adding change; see `ENTRY`.)
+#[test]
+fn fades_soften_the_switch_at_a_grid_crossing() -> anyhow::Result<()> {
+    use grassbench::compare::{CameraMotion, frame_differences};
+    let gpu = gpu()?;
+    let entry = grassbench_cli::registry::find("zhang")?;
+    let scene = scene("meadow", 0.25)?;
+    let mut no_fade = toml::Table::new();
+    no_fade.insert("fade_radius".into(), 0.0.into());
+    let motion = CameraMotion::Dolly(0.001);
+    let with = frame_differences(
+        &gpu,
+        &scene,
+        entry,
+        &toml::Table::new(),
+        motion,
+        8,
+        TEST_SIZE,
+    )?;
+    let without = frame_differences(&gpu, &scene, entry, &no_fade, motion, 8, TEST_SIZE)?;
+    eprintln!("measured: frame-to-frame change with fades {with:.3?}, without {without:.3?}");
+    // The switch is a spike over the steady steps without fades, and gone with them.
+    let steady = |d: &[f64]| d[1..].iter().copied().fold(0.0, f64::max);
+    assert!(
+        without[0] > 1.4 * steady(&without),
+        "no switch seen: {without:?}"
+    );
+    assert!(
+        with[0] < 1.2 * steady(&with),
+        "fades did not soften it: {with:?}"
+    );
     Ok(())
 }

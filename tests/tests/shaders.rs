@@ -84,6 +84,11 @@ fn uniform_mirrors_match_wgsl_layouts() {
         wgsl_size(&zhang, "Params") as usize,
         std::mem::size_of::<grassbench_zhang::ParamsUniform>()
     );
+    let zhang_billboards = module_of(&root.join("techniques/zhang/shaders/billboard.wgsl"));
+    assert_eq!(
+        wgsl_size(&zhang_billboards, "Params") as usize,
+        std::mem::size_of::<grassbench_zhang::ParamsUniform>()
+    );
     let boulanger = module_of(&root.join("techniques/boulanger/shaders/grass.wgsl"));
     assert_eq!(
         wgsl_size(&boulanger, "Params") as usize,
@@ -139,6 +144,15 @@ fn shader_consts_in_crates_match_files() {
     assert_eq!(
         grassbench_zhang::SHADER,
         std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/blade.wgsl")).unwrap()
+    );
+    assert_eq!(
+        grassbench_zhang::PROPS_SHADER,
+        std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/props.wgsl")).unwrap()
+    );
+    assert_eq!(
+        grassbench_zhang::BILLBOARD_SHADER,
+        std::fs::read_to_string(repo_root().join("techniques/zhang/shaders/billboard.wgsl"))
+            .unwrap()
     );
     assert_eq!(
         grassbench_bakay::SHADER,

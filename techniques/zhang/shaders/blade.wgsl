@@ -6,8 +6,10 @@
 struct Params {
     color_root: vec4<f32>,   // rgb; w: colour variation
     color_tip: vec4<f32>,    // rgb; w: translucency
-    // x: backbone points n; y: alpha cut-off; z: petal size (m); w: unused
+    // x: backbone points n; y: alpha cut-off; z: petal size (m); w: billboard height (m)
     shape: vec4<f32>,
+    // x: 1 when blending (fading blades scale their alpha), 0 otherwise (they dissolve)
+    modes: vec4<f32>,
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
@@ -19,7 +21,7 @@ struct BladeIn {
     @location(0) root_facing: vec4<f32>,  // P0 xyz, facing angle
     @location(1) shape: vec4<f32>,        // height, width, colour variation, -
     @location(2) p1_rotation: vec4<f32>,  // P1 xyz, rotation of the top segment points
-    @location(3) p2: vec4<f32>,
+    @location(3) p2: vec4<f32>,           // P2 xyz, faded-out fraction (Sec. 6.1)
     @location(4) p3: vec4<f32>,
 }
 
@@ -31,6 +33,8 @@ struct PlantOut {
     @location(3) uv: vec2<f32>,
     @location(4) ao: f32,
     @location(5) @interpolate(flat) layer: u32,
+    // Fade alpha (Sec. 6.1) and a per-blade threshold in [0, 1) for the dissolve.
+    @location(6) @interpolate(flat) fade: vec2<f32>,
 }
 
 // Eq. (5): p = P0(1-t)^3 + 3 P1 t(1-t)^2 + 3 P2 t^2(1-t) + P3 t^3 (same as `blade::bezier`).
@@ -77,6 +81,7 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, b: BladeIn) -> PlantOut {
     // Darker near the root: neighbouring blades hide the sky.
     out.ao = mix(0.3, 1.0, t);
     out.layer = 0u;
+    out.fade = vec2(1.0 - b.p2.w, fract(sin(dot(p0.xz, vec2(12.9898, 78.233))) * 43758.547));
     return out;
 }
 
@@ -84,13 +89,16 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, b: BladeIn) -> PlantOut {
 fn fs_blade(in: PlantOut) -> @location(0) vec4<f32> {
     // Level 0 only: a cut-out's alpha must not blur away with distance (see the essay).
     let texel = textureSampleLevel(blade_texture, texture_sampler, in.uv, 0.0);
-    if (texel.a < params.shape.y) {
+    // Fading (Sec. 6.1): blended, the alpha scales; otherwise the blade dissolves.
+    let blend = params.modes.x > 0.5;
+    let alpha = texel.a * select(1.0, in.fade.x, blend);
+    if (alpha < params.shape.y || (!blend && in.fade.y >= in.fade.x)) {
         discard;
     }
     // The texture holds a luminance around 0.85: lift it so the mean matches the plain colours.
     let albedo = in.albedo * texel.rgb * 1.15;
     let lit = shade_leaf(albedo, normalize(in.normal), in.world, in.ao, params.color_tip.w);
-    return vec4(apply_fog(lit, in.world), texel.a);
+    return vec4(apply_fog(lit, in.world), alpha);
 }
 
 struct FlowerIn {
@@ -120,6 +128,7 @@ fn vs_flower(@builtin(vertex_index) vertex: u32, f: FlowerIn) -> PlantOut {
     out.uv = corner;
     out.ao = 1.0;
     out.layer = u32(f.axis_layer.w);
+    out.fade = vec2(1.0, 0.0);
     return out;
 }
 

@@ -1,6 +1,8 @@
 //! The per-frame CPU animation of every near blade and flower (Sec. 3.2, 3.4), writing the
 //! instance data the vertex shader expands into quads.
 
+use std::ops::Range;
+
 use grassbench::glam::Vec3;
 use grassbench::wind::WindField;
 
@@ -88,13 +90,7 @@ impl Animation {
         &self.flowers
     }
 
-    /// Advances every blade and flower by `dt` in `wind` at `time`: the wind is read once per
-    /// frame at each moving control point (`P1..P3`; the root's wind is irrelevant, its
-    /// inverse mass is 0) and at each petal, in batched [`WindField::velocities`] calls,
-    /// then `ceil(dt / MAX_STEP)` Verlet steps follow. The blades are split into one chunk per
-    /// core (scoped threads, at least `MIN_CHUNK` blades each); the sample buffers are reused,
-    /// so nothing is allocated but the threads. The result does not depend on the split.
-    /// A `dt` that is not positive and finite does nothing.
+    /// Advances every blade and flower by `dt` in `wind` at `time` (see [`Self::step_ranges`]).
     pub fn step(
         &mut self,
         wind: &dyn WindField,
@@ -104,6 +100,32 @@ impl Animation {
         spring: f32,
         damping: f32,
     ) {
+        let all = 0..self.blades.len() as u32;
+        let flowers = 0..self.flowers.len() as u32;
+        let k = (wind_response, spring, damping);
+        let (all, flowers) = (std::slice::from_ref(&all), std::slice::from_ref(&flowers));
+        self.step_ranges(wind, time, dt, k, all, flowers);
+    }
+
+    /// Advances the blades in `blades` and the flowers in `flowers` (sorted, disjoint instance
+    /// ranges) by `dt` in `wind` at `time`; the others keep their state (the level-of-detail
+    /// choice animates only what it will draw, Sec. 5.2). The wind is read once per frame at
+    /// each moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is
+    /// 0) and at each petal, in batched [`WindField::velocities`] calls, then
+    /// `ceil(dt / MAX_STEP)` Verlet steps follow. `k` is (wind response, spring, damping).
+    /// The ranges are cut into pieces of at most one chunk per core (scoped threads, at least
+    /// `MIN_CHUNK` blades each); the sample buffers are reused, so nothing is allocated but
+    /// the threads and the piece list. The result does not depend on the split. A `dt` that
+    /// is not positive and finite does nothing; ranges beyond the blades are clipped.
+    pub fn step_ranges(
+        &mut self,
+        wind: &dyn WindField,
+        time: f32,
+        dt: f32,
+        (wind_response, spring, damping): (f32, f32, f32),
+        blades: &[Range<u32>],
+        flowers: &[Range<u32>],
+    ) {
         if !(dt.is_finite() && dt > 0.0) {
             return;
         }
@@ -112,32 +134,68 @@ impl Animation {
         let n = self.blades.len();
         let (blade_points, flower_points) = self.points.split_at_mut(3 * n);
         let (blade_winds, flower_winds) = self.winds.split_at_mut(3 * n);
-        // Blades are independent: split them into one contiguous chunk per core, each with
-        // its own batched wind query. Same result for any number of threads.
-        let chunk = n
-            .div_ceil(self.threads.clamp(1, MAX_THREADS))
-            .max(MIN_CHUNK);
+        let total: usize = blades.iter().map(|r| r.len()).sum();
+        let threads = self.threads.clamp(1, MAX_THREADS);
+        let chunk = total.div_ceil(threads).max(MIN_CHUNK);
+        // Disjoint pieces of at most `chunk` blades, dealt round-robin to the threads.
+        let mut buckets: Vec<Vec<Piece<'_>>> = (0..threads).map(|_| Vec::new()).collect();
+        let mut rest = (
+            self.blades.as_mut_slice(),
+            blade_points,
+            blade_winds,
+            self.blade_out.as_mut_slice(),
+        );
+        let (mut offset, mut next) = (0usize, 0usize);
+        for r in blades {
+            let (start, end) = ((r.start as usize).max(offset), (r.end as usize).min(n));
+            let mut at = start;
+            while at < end {
+                let len = (end - at).min(chunk);
+                let skip = at - offset;
+                let (blades, points, winds, out) = rest;
+                let (_, blades) = blades.split_at_mut(skip);
+                let (piece_b, blades) = blades.split_at_mut(len);
+                let (_, points) = points.split_at_mut(3 * skip);
+                let (piece_p, points) = points.split_at_mut(3 * len);
+                let (_, winds) = winds.split_at_mut(3 * skip);
+                let (piece_w, winds) = winds.split_at_mut(3 * len);
+                let (_, out) = out.split_at_mut(skip);
+                let (piece_o, out) = out.split_at_mut(len);
+                buckets[next % threads].push((piece_b, piece_p, piece_w, piece_o));
+                next += 1;
+                rest = (blades, points, winds, out);
+                offset = at + len;
+                at = offset;
+            }
+        }
         std::thread::scope(|scope| {
-            let work = self
-                .blades
-                .chunks_mut(chunk)
-                .zip(blade_points.chunks_mut(3 * chunk))
-                .zip(blade_winds.chunks_mut(3 * chunk))
-                .zip(self.blade_out.chunks_mut(chunk));
-            for (((blades, points), winds), out) in work {
-                let k = &k;
+            let k = &k;
+            let mut buckets = buckets.into_iter().filter(|b| !b.is_empty());
+            // The first bucket runs on the caller's thread.
+            let first = buckets.next();
+            for bucket in buckets {
                 scope.spawn(move || {
-                    step_blades(blades, points, winds, out, wind, time, steps, k);
+                    for (blades, points, winds, out) in bucket {
+                        step_blades(blades, points, winds, out, wind, time, steps, k);
+                    }
                 });
             }
+            for (blades, points, winds, out) in first.into_iter().flatten() {
+                step_blades(blades, points, winds, out, wind, time, steps, k);
+            }
         });
-        for (p, f) in flower_points.iter_mut().zip(&self.flowers) {
-            *p = f.pos;
-        }
-        wind.velocities(flower_points, time, flower_winds);
-        for (f, &w) in self.flowers.iter_mut().zip(flower_winds.iter()) {
-            for _ in 0..steps {
-                f.step(w, &k);
+        let m = self.flowers.len();
+        for r in flowers {
+            let r = (r.start as usize).min(m)..(r.end as usize).min(m);
+            let (points, winds) = (&mut flower_points[r.clone()], &mut flower_winds[r.clone()]);
+            for (p, f) in points.iter_mut().zip(&self.flowers[r.clone()]) {
+                *p = f.pos;
+            }
+            wind.velocities(points, time, winds);
+            for (f, &w) in self.flowers[r].iter_mut().zip(winds.iter()) {
+                for _ in 0..steps {
+                    f.step(w, &k);
+                }
             }
         }
         self.write_flowers();
@@ -168,6 +226,14 @@ impl Animation {
 const MAX_THREADS: usize = 16;
 /// Fewest blades a thread takes (below that, spawning costs more than it saves).
 const MIN_CHUNK: usize = 2048;
+
+/// A thread's share of one blade range: states, sample points, winds, instance data.
+type Piece<'a> = (
+    &'a mut [BladeState],
+    &'a mut [Vec3],
+    &'a mut [Vec3],
+    &'a mut [BladeDynamic],
+);
 
 /// One chunk of the frame's blade step: gather the moving control points, one batched wind
 /// query, `steps` Verlet steps per blade, then the instance data.
@@ -245,5 +311,49 @@ mod tests {
         // And the blades did move.
         let rest = Animation::new(&planted, params.flower_mass);
         assert_ne!(one.0, rest.blade_out);
+    }
+
+    #[test]
+    fn step_ranges_moves_only_its_ranges_and_like_a_full_step() {
+        let terrain = Terrain::flat(Vec2::new(40.0, 40.0));
+        let params = Params {
+            grids: 4,
+            blades_per_side: 24,
+            flower_fraction: 0.1,
+            ..Params::default()
+        };
+        let planted = plant(&params, &GrassConfig::default(), &terrain, 5).1;
+        let wind = Breeze::new(BreezeConfig::default(), 5);
+        let mut full = Animation::new(&planted, params.flower_mass);
+        let mut part = full.clone();
+        part.set_threads(3);
+        let n = planted.len() as u32;
+        let ranges = [10..700, 900..901, 3000..n];
+        let m = part.flower_count() as u32;
+        let half = 0..m / 2;
+        let flowers = std::slice::from_ref(&half);
+        for f in 0..10 {
+            let t = f as f32 / 30.0;
+            full.step(&wind, t, 1.0 / 30.0, 2.5, 40.0, 4.0);
+            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), &ranges, flowers);
+        }
+        let rest = Animation::new(&planted, params.flower_mass);
+        for b in 0..n as usize {
+            let inside = ranges.iter().any(|r| r.contains(&(b as u32)));
+            let expected = if inside {
+                &full.blade_out[b]
+            } else {
+                &rest.blade_out[b]
+            };
+            assert_eq!(&part.blade_out[b], expected, "blade {b}");
+        }
+        for k in 0..m as usize {
+            let expected = if k < (m / 2) as usize {
+                &full.flower_out[k]
+            } else {
+                &rest.flower_out[k]
+            };
+            assert_eq!(&part.flower_out[k], expected, "flower {k}");
+        }
     }
 }

@@ -26,6 +26,8 @@ pub struct GridIndex {
     flowers: Vec<Range<u32>>,
     /// Conservative box of each non-empty grid (same order).
     bounds: Vec<Aabb>,
+    /// Grid index (`gz·grids + gx`) of each non-empty grid (same order, ascending).
+    ids: Vec<u32>,
 }
 
 /// What a frame draws.
@@ -80,12 +82,47 @@ impl GridIndex {
                 min: lo - reach,
                 max: hi + reach + Vec3::Y * tallest,
             });
+            index.ids.push(grid);
             index.blades.push(start as u32..(start + len) as u32);
             index.flowers.push(flower..flower + flowers);
             flower += flowers;
             start += len;
         }
         index
+    }
+
+    /// Widens the boxes to hold `plants` standing up to `reach` high and leaning up to `reach`
+    /// sideways (the billboards' anchor plants, which need not grow: [`crate::billboard`]);
+    /// plants of grids without blades are ignored.
+    pub fn include(&mut self, plants: &[Planted], reach: f32) {
+        let r = Vec3::new(reach, 0.0, reach);
+        for p in plants {
+            if let Ok(k) = self.ids.binary_search(&p.grid) {
+                let b = &mut self.bounds[k];
+                b.min = b.min.min(p.root - r);
+                b.max = b.max.max(p.root + r + Vec3::Y * reach);
+            }
+        }
+    }
+
+    /// Grid index (`gz·grids + gx`) of non-empty grid `k`.
+    pub fn id(&self, k: usize) -> u32 {
+        self.ids[k]
+    }
+
+    /// Blade range of non-empty grid `k`.
+    pub fn blades(&self, k: usize) -> std::ops::Range<u32> {
+        self.blades[k].clone()
+    }
+
+    /// Flower range of non-empty grid `k`.
+    pub fn flowers(&self, k: usize) -> std::ops::Range<u32> {
+        self.flowers[k].clone()
+    }
+
+    /// Conservative box of non-empty grid `k`.
+    pub fn bounds(&self, k: usize) -> &Aabb {
+        &self.bounds[k]
     }
 
     /// Non-empty grids.

@@ -1,9 +1,11 @@
-//! GPU side: instance layouts, the parameter uniform, the procedural textures, the blade and
-//! flower pipelines (group 1 = uniform + blade texture + petal texture array + sampler).
+//! GPU side: instance layouts, the parameter uniform, the procedural textures, the blade,
+//! flower and billboard pipelines (group 1 = uniform + blade texture + petal texture array +
+//! sampler + billboard texture array).
 
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{InitContext, bytemuck, shaders, wgpu};
 
+use crate::billboard_texture;
 use crate::prairie::PETAL_TEXTURES;
 use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
 
@@ -23,7 +25,7 @@ pub struct BladeStatic {
 pub struct BladeDynamic {
     /// `P1` xyz; w = rotation θ of the top segment points (Sec. 3.2.5).
     pub p1_rotation: [f32; 4],
-    /// `P2` xyz; w unused.
+    /// `P2` xyz; w = how far the blade has faded out (Sec. 6.1; 0 = opaque).
     pub p2: [f32; 4],
     /// `P3` xyz; w unused.
     pub p3: [f32; 4],
@@ -39,6 +41,34 @@ pub struct FlowerInstance {
     pub axis_layer: [f32; 4],
 }
 
+/// Per-frame per-wing data (instance step): one rectangle of a billboard (Sec. 4.1-4.2).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WingInstance {
+    /// Root of the plant at the middle line xyz; w = texture `u` there.
+    pub centre_root: [f32; 4],
+    /// Root of the plant at the outer edge xyz; w = texture `u` there.
+    pub outer_root: [f32; 4],
+    /// Top of the middle line xyz; w = billboard texture layer.
+    pub centre_top: [f32; 4],
+    /// Top of the outer edge xyz; w = kept fraction of the texture's blades (the density).
+    pub outer_top: [f32; 4],
+    /// x = the grid's fade alpha (Sec. 6.1; 1 unless fading); yzw unused.
+    pub fade: [f32; 4],
+}
+
+/// One vertex of the trees and stones (Sec. 5.5.2; vertex step, a triangle list).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PropVertex {
+    /// Position xyz; w = 1.
+    pub position: [f32; 4],
+    /// Face normal xyz; w unused.
+    pub normal: [f32; 4],
+    /// Albedo rgb; w unused.
+    pub color: [f32; 4],
+}
+
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -47,8 +77,11 @@ pub struct ParamsUniform {
     pub color_root: [f32; 4],
     /// Tip colour; w = translucency.
     pub color_tip: [f32; 4],
-    /// Backbone points, alpha cut-off, petal size (m), unused.
+    /// Backbone points, alpha cut-off, petal size (m), billboard height (m).
     pub shape: [f32; 4],
+    /// x: 1 when blending (a fading blade's alpha scales its output alpha), 0 otherwise (a
+    /// fading blade dissolves); yzw unused.
+    pub modes: [f32; 4],
 }
 
 const BLADE_LAYOUTS: [wgpu::VertexBufferLayout<'static>; 2] = [
@@ -70,12 +103,47 @@ const FLOWER_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayou
     attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
 };
 
+const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<WingInstance>() as u64,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![
+        0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4
+    ],
+};
+
+const PROP_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<PropVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4],
+};
+
+/// Blending of Eq. (10): `C = S·S_a + D·(1 − S_a)` for colour and alpha alike.
+const EQ10: wgpu::BlendComponent = wgpu::BlendComponent {
+    src_factor: wgpu::BlendFactor::SrcAlpha,
+    dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+    operation: wgpu::BlendOperation::Add,
+};
+
+/// The harness's colour target blended with Eq. (10) (Sec. 5.4).
+const BLENDED_TARGETS: &[Option<wgpu::ColorTargetState>] = &[Some(wgpu::ColorTargetState {
+    format: grassbench::target::COLOR_FORMAT,
+    blend: Some(wgpu::BlendState {
+        color: EQ10,
+        alpha: EQ10,
+    }),
+    write_mask: wgpu::ColorWrites::ALL,
+})];
+
 /// The technique's pipelines and group-1 resources.
 pub struct Pipelines {
     /// Blade strips.
     pub blades: wgpu::RenderPipeline,
     /// Petal quads.
     pub flowers: wgpu::RenderPipeline,
+    /// Billboard wings.
+    pub wings: wgpu::RenderPipeline,
+    /// Trees and stones (Sec. 5.5.2).
+    pub props: wgpu::RenderPipeline,
     /// Group 1.
     pub bind_group: wgpu::BindGroup,
     /// Bytes of textures and uniform.
@@ -111,13 +179,26 @@ fn texture(
 }
 
 impl Pipelines {
-    /// GPU memory of the textures and the uniform.
-    pub const BYTES: u64 = (BLADE_SIZE.0 * BLADE_SIZE.1 * 4) as u64
-        + (PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES) as u64
-        + std::mem::size_of::<ParamsUniform>() as u64;
+    /// GPU memory of the textures and the uniform, with `layers` billboard texture layers.
+    pub const fn bytes(layers: u32) -> u64 {
+        (BLADE_SIZE.0 * BLADE_SIZE.1 * 4) as u64
+            + (PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES) as u64
+            + (billboard_texture::SIZE.0 * billboard_texture::SIZE.1 * 4) as u64 * layers as u64
+            + std::mem::size_of::<ParamsUniform>() as u64
+    }
 
-    /// Creates textures, uniform, bind group and both pipelines.
-    pub fn new(ctx: &InitContext<'_>, uniform: &ParamsUniform, seed: u64) -> Self {
+    /// Creates textures, uniform, bind group and the pipelines; `billboard` holds `layers`
+    /// layers of the billboard texture ([`billboard_texture::billboard_texture`]). With
+    /// `blend`, blades and wings are blended with Eq. (10) (drawn far to near, Sec. 5.4);
+    /// without, they are alpha-tested (alpha to coverage under MSAA). Petals are always
+    /// alpha-tested (drawn first, they need no order).
+    pub fn new(
+        ctx: &InitContext<'_>,
+        uniform: &ParamsUniform,
+        seed: u64,
+        (billboard, layers): (&[[u8; 4]], u32),
+        blend: bool,
+    ) -> Self {
         let device = &ctx.gpu.device;
         let queue = &ctx.gpu.queue;
         let blade_tex = texture(
@@ -133,6 +214,13 @@ impl Pipelines {
             "zhang petal textures",
             (PETAL_SIZE, PETAL_SIZE, PETAL_TEXTURES),
             &petal_textures(),
+        );
+        let billboard_tex = texture(
+            device,
+            queue,
+            "zhang billboard texture",
+            (billboard_texture::SIZE.0, billboard_texture::SIZE.1, layers),
+            billboard,
         );
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("zhang params"),
@@ -176,10 +264,15 @@ impl Pipelines {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
+                tex_entry(4, wgpu::TextureViewDimension::D2Array),
             ],
         });
         let blade_view = blade_tex.create_view(&Default::default());
         let petal_view = petal_tex.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let billboard_view = billboard_tex.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
@@ -203,15 +296,24 @@ impl Pipelines {
                     binding: 3,
                     resource: wgpu::BindingResource::Sampler(&sampler),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::TextureView(&billboard_view),
+                },
             ],
         });
         let module = shaders::module(device, "zhang", crate::SHADER);
+        let billboard_module = shaders::module(device, "zhang billboards", crate::BILLBOARD_SHADER);
         let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
-        let pipeline = |label, vs, fs, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
+        let pipeline = |label,
+                        module: &wgpu::ShaderModule,
+                        (vs, fs),
+                        blended: bool,
+                        buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
             let spec = shaders::PipelineSpec::new(
                 label,
                 &pipeline_layout,
-                &module,
+                module,
                 (vs, fs),
                 buffers,
                 ctx.sample_count,
@@ -222,8 +324,13 @@ impl Pipelines {
                     multisample: wgpu::MultisampleState {
                         // With MSAA the texture's alpha also drives coverage (smoother
                         // cut-outs); the alpha test still discards the clear part.
-                        alpha_to_coverage_enabled: ctx.sample_count > 1,
+                        alpha_to_coverage_enabled: ctx.sample_count > 1 && !blended,
                         ..spec.multisample
+                    },
+                    targets: if blended {
+                        BLENDED_TARGETS
+                    } else {
+                        spec.targets
                     },
                     ..spec
                 },
@@ -231,8 +338,9 @@ impl Pipelines {
         };
         let blades = pipeline(
             "zhang blades",
-            "vs_blade",
-            "fs_blade",
+            &module,
+            ("vs_blade", "fs_blade"),
+            blend,
             &[
                 Some(BLADE_LAYOUTS[0].clone()),
                 Some(BLADE_LAYOUTS[1].clone()),
@@ -240,15 +348,46 @@ impl Pipelines {
         );
         let flowers = pipeline(
             "zhang flowers",
-            "vs_flower",
-            "fs_flower",
+            &module,
+            ("vs_flower", "fs_flower"),
+            false,
             &[Some(FLOWER_LAYOUT.clone())],
+        );
+        let wings = pipeline(
+            "zhang billboard wings",
+            &billboard_module,
+            ("vs_wing", "fs_wing"),
+            blend,
+            &[Some(WING_LAYOUT.clone())],
+        );
+        let props_module = shaders::module(device, "zhang props", crate::PROPS_SHADER);
+        let props_buffers = [Some(PROP_LAYOUT.clone())];
+        let props_spec = shaders::PipelineSpec::new(
+            "zhang trees and stones",
+            &pipeline_layout,
+            &props_module,
+            ("vs_prop", "fs_prop"),
+            &props_buffers,
+            ctx.sample_count,
+        );
+        let props = shaders::render_pipeline(
+            device,
+            &shaders::PipelineSpec {
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleList,
+                    cull_mode: Some(wgpu::Face::Back),
+                    ..Default::default()
+                },
+                ..props_spec
+            },
         );
         Self {
             blades,
             flowers,
+            wings,
+            props,
             bind_group,
-            bytes: Self::BYTES,
+            bytes: Self::bytes(layers),
         }
     }
 }

@@ -5,6 +5,18 @@ use grassbench::Result;
 use grassbench::params::{TechniqueParams, check, check_int};
 use serde::{Deserialize, Serialize};
 
+/// How translucent plants are composited (Sec. 5.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Sorting {
+    /// The thesis: grids, billboards and single plants drawn far to near (quicksort and
+    /// pre-computed orders) and blended with Eq. (10).
+    Sort,
+    /// No sorting: alpha test with depth writes (alpha to coverage under MSAA), so the cost
+    /// of sorting can be measured against it.
+    AlphaToCoverage,
+}
+
 /// Parameters of [`crate::Zhang`]. Defaults follow the thesis where it gives numbers.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -37,6 +49,23 @@ pub struct Params {
     pub alpha_cutoff: f32,
     /// View-frustum culling of grass grids (Sec. 5.3); off draws every grid every frame.
     pub culling: bool,
+    /// Level of detail (Sec. 5.2): the camera grid and its eight neighbours as single plants,
+    /// the other grids as billboards (Ch. 4). Off draws single plants everywhere (the
+    /// `finest` variant).
+    pub lod: bool,
+    /// Extra sway of billboards per grid of offset beyond 2 (Sec. 4.2: far billboards move
+    /// more so their motion stays visible): a billboard `g` grids away moves its top by
+    /// `1 + billboard_sway·(g − 2)` times its plants' displacement. 0 = exactly the plants'.
+    pub billboard_sway: f32,
+    /// Far-to-near sorting with blending (`"sort"`, Sec. 5.4) or alpha to coverage without
+    /// sorting (`"alpha_to_coverage"`).
+    pub sorting: Sorting,
+    /// Radius of the transition sphere (Sec. 6.1) as a fraction of the grid size: within it
+    /// of a grid border, grids that switch between billboards and single plants there are
+    /// drawn both ways, fading. 0 switches at once (the `no_transitions` variant).
+    pub fade_radius: f32,
+    /// Simple tree and stone meshes where the covering map holds IDs 253 and 254 (Sec. 5.5.2).
+    pub props: bool,
 }
 
 impl Default for Params {
@@ -55,6 +84,11 @@ impl Default for Params {
             translucency: 0.35,
             alpha_cutoff: 0.5,
             culling: true,
+            lod: true,
+            billboard_sway: 0.05,
+            sorting: Sorting::Sort,
+            fade_radius: 0.25,
+            props: true,
         }
     }
 }
@@ -72,7 +106,9 @@ impl TechniqueParams for Params {
         check("zhang.flower_fraction", self.flower_fraction, 0.0..=1.0)?;
         check("zhang.petal_size", self.petal_size, 0.001..=10.0)?;
         check("zhang.translucency", self.translucency, 0.0..=1.0)?;
-        check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)
+        check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)?;
+        check("zhang.billboard_sway", self.billboard_sway, 0.0..=1.0)?;
+        check("zhang.fade_radius", self.fade_radius, 0.0..=0.5)
     }
 }
 
@@ -94,5 +130,7 @@ mod tests {
         bad(|p| p.wind_response = f32::NAN, "zhang.wind_response");
         bad(|p| p.flower_fraction = 2.0, "zhang.flower_fraction");
         bad(|p| p.blades_per_side = 100_000, "zhang.blades_per_side");
+        bad(|p| p.billboard_sway = f32::INFINITY, "zhang.billboard_sway");
+        bad(|p| p.fade_radius = 0.75, "zhang.fade_radius");
     }
 }

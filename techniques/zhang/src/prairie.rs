@@ -36,6 +36,9 @@ pub struct Planted {
     pub flower: Option<(f32, f32, u32)>,
     /// The grass grid it grows in, `gz · grids + gx` (Sec. 5.1).
     pub grid: u32,
+    /// Its lattice point within the grid, `j · n + i` (the pre-computed orders of Sec. 5.4
+    /// are over lattice points).
+    pub cell: u32,
 }
 
 /// Where the grass grids lie.
@@ -86,49 +89,76 @@ pub fn plant(
     seed: u64,
 ) -> (Layout, Vec<Planted>) {
     let layout = Layout::new(params, terrain);
-    let spacing = layout.spacing();
-    let seed = seed ^ 0x5a_4841_4e47;
-    let lerp = |r: [f32; 2], t: f32| r[0] + (r[1] - r[0]) * t;
-    let n = i64::from(layout.per_side);
-    let grids = i64::from(layout.grids);
+    let n = layout.per_side;
+    let grids = layout.grids;
     // Grid by grid, so each grass grid's blades are contiguous (culled and drawn per grid,
     // Sec. 5.3); a blade's draw depends only on its lattice point (i, j), not on the order.
     let lattice = (0..grids * grids).flat_map(move |g| {
         let (gx, gz) = (g % grids, g / grids);
-        (0..n * n).map(move |k| (g as u32, gx * n + k % n, gz * n + k / n))
+        (0..n * n).map(move |k| (g, gx * n + k % n, gz * n + k / n))
     });
-    let mut out = Vec::new();
-    for (grid, i, j) in lattice {
-        let h = |k: i64| (hash(seed, &[i, j, k]) >> 40) as f32 / (1u64 << 24) as f32;
-        let jitter = Vec2::new(h(0) - 0.5, h(1) - 0.5) * params.jitter;
-        let xz = layout.origin + (Vec2::new(i as f32, j as f32) + 0.5 + jitter) * spacing;
-        if !(terrain.contains(xz)
-            && terrain.covering_at(xz) == covering::GRASS
-            && h(9) < terrain.density_at(xz))
-        {
-            continue;
-        }
-        let size = h(3);
-        let height = lerp(grass.height, size);
-        let flower = (h(10) < params.flower_fraction).then(|| {
-            let layer = ((h(11) * PETAL_TEXTURES as f32) as u32).min(PETAL_TEXTURES - 1);
-            // "0.65 times the height of blade with a little random offset" (Sec. 3.3).
-            let petal = height * FLOWER_HEIGHT * (0.9 + 0.2 * h(12));
-            (petal, h(13) * std::f32::consts::TAU, layer)
-        });
-        out.push(Planted {
-            root: terrain.point_at(xz),
-            height,
-            width: lerp(grass.width, 0.5 * size + 0.5 * h(4)),
-            facing: h(2) * std::f32::consts::TAU,
-            lean: Vec2::new(h(6) * std::f32::consts::TAU, grass.lean * h(7).sqrt()),
-            stiffness: lerp(grass.stiffness, h(5)),
-            variation: h(8) * 2.0 - 1.0,
-            flower,
-            grid,
-        });
-    }
+    let out = lattice
+        .filter_map(|(grid, i, j)| {
+            let c = candidate(&layout, params, grass, terrain, seed, grid, (i, j));
+            c.grows.then_some(c.plant)
+        })
+        .collect();
     (layout, out)
+}
+
+/// The plant of one lattice point, and whether it grows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Candidate {
+    /// The plant as it would stand there.
+    pub plant: Planted,
+    /// Whether it grows: inside the terrain, on grass (covering), and its hashed threshold
+    /// below the density map.
+    pub grows: bool,
+}
+
+/// The plant at lattice point `(i, j)` of the whole prairie (`grid` is the grass grid it lies
+/// in), grown or not: [`plant`] keeps the ones that grow, the billboards of far grids
+/// ([`crate::billboard`]) animate the ones standing at their corners (Sec. 4.2) whether they
+/// grow or not. Everything is hashed from the lattice point, so both agree.
+pub fn candidate(
+    layout: &Layout,
+    params: &Params,
+    grass: &GrassConfig,
+    terrain: &Terrain,
+    seed: u64,
+    grid: u32,
+    (i, j): (u32, u32),
+) -> Candidate {
+    let seed = seed ^ 0x5a_4841_4e47;
+    let lerp = |r: [f32; 2], t: f32| r[0] + (r[1] - r[0]) * t;
+    let (i, j) = (i64::from(i), i64::from(j));
+    let h = |k: i64| (hash(seed, &[i, j, k]) >> 40) as f32 / (1u64 << 24) as f32;
+    let jitter = Vec2::new(h(0) - 0.5, h(1) - 0.5) * params.jitter;
+    let xz = layout.origin + (Vec2::new(i as f32, j as f32) + 0.5 + jitter) * layout.spacing();
+    let grows = terrain.contains(xz)
+        && terrain.covering_at(xz) == covering::GRASS
+        && h(9) < terrain.density_at(xz);
+    let size = h(3);
+    let height = lerp(grass.height, size);
+    let flower = (h(10) < params.flower_fraction).then(|| {
+        let layer = ((h(11) * PETAL_TEXTURES as f32) as u32).min(PETAL_TEXTURES - 1);
+        // "0.65 times the height of blade with a little random offset" (Sec. 3.3).
+        let petal = height * FLOWER_HEIGHT * (0.9 + 0.2 * h(12));
+        (petal, h(13) * std::f32::consts::TAU, layer)
+    });
+    let plant = Planted {
+        root: terrain.point_at(xz),
+        height,
+        width: lerp(grass.width, 0.5 * size + 0.5 * h(4)),
+        facing: h(2) * std::f32::consts::TAU,
+        lean: Vec2::new(h(6) * std::f32::consts::TAU, grass.lean * h(7).sqrt()),
+        stiffness: lerp(grass.stiffness, h(5)),
+        variation: h(8) * 2.0 - 1.0,
+        flower,
+        grid,
+        cell: (j as u32 % layout.per_side) * layout.per_side + i as u32 % layout.per_side,
+    };
+    Candidate { plant, grows }
 }
 
 #[cfg(test)]

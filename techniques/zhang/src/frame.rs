@@ -1,0 +1,384 @@
+//! One frame's plan: for every grass grid its level of detail (Sec. 5.2), whether it is seen
+//! (Sec. 5.3), what must be animated, and what is drawn: the single plants' instance ranges
+//! and the billboards' wings (Sec. 4.1-4.2).
+//!
+//! Animation follows the level a grid will have one grid closer to the camera, so a grid that
+//! turns from billboards into single plants (or into finer billboards) when the camera crosses
+//! a grid border is already in motion: blades are animated in the grids up to two away, the
+//! anchors of a grid one or more away at the finer of its own and its next-closer step.
+//! Near a border a grid may be drawn both ways, fading (Sec. 6.1, [`crate::fade`]).
+
+use std::ops::Range;
+
+use grassbench::camera::Frustum;
+use grassbench::glam::{IVec2, Vec2, Vec3};
+use grassbench::technique::ranges::push_merged;
+
+use crate::billboard::Billboards;
+use crate::culling::GridIndex;
+use crate::fade::Transition;
+use crate::gpu::{BladeDynamic, WingInstance};
+use crate::lod::{Level, grid_coords, grid_offset};
+use crate::order::{self, BlockOrders, line_order, section};
+use crate::prairie::Layout;
+
+/// A grid drawn as single plants this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearGrid {
+    /// Non-empty grid number in the [`GridIndex`].
+    pub k: usize,
+    /// Grid index (`gz·grids + gx`).
+    pub grid: u32,
+    /// Offset from the camera grid, in grids.
+    pub delta: IVec2,
+    /// Alpha (1 unless fading, Sec. 6.1).
+    pub alpha: f32,
+}
+
+/// A far grid drawn as billboards this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FarGrid {
+    /// Grid index (`gz·grids + gx`).
+    pub grid: u32,
+    /// Offset from the camera grid, in grids.
+    pub delta: IVec2,
+    /// Billboard level (index into [`Billboards::steps`]).
+    pub level: usize,
+    /// Grid offset `g` from the camera grid.
+    pub offset: u32,
+    /// Alpha (1 unless fading, Sec. 6.1).
+    pub alpha: f32,
+}
+
+/// What a frame animates and draws.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Plan {
+    /// Blade ranges to animate (sorted).
+    pub animate_blades: Vec<Range<u32>>,
+    /// Flower ranges to animate (sorted).
+    pub animate_flowers: Vec<Range<u32>>,
+    /// Anchor ranges to animate (sorted).
+    pub animate_anchors: Vec<Range<u32>>,
+    /// Blade instance ranges drawn as single plants.
+    pub blades: Vec<Range<u32>>,
+    /// Flower instance ranges drawn.
+    pub flowers: Vec<Range<u32>>,
+    /// Grids drawn as single plants (far to near when sorting, else in grid order).
+    pub near: Vec<NearGrid>,
+    /// Grids drawn as billboards (far to near when sorting, else in grid order).
+    pub far: Vec<FarGrid>,
+    /// Grids drawn (single plants or billboards).
+    pub grids: usize,
+    /// Grids culled.
+    pub culled: usize,
+    /// Blades standing in the billboards drawn (those of the far grids drawn).
+    pub billboard_blades: u64,
+    /// Grids drawn both ways, fading between billboards and single plants (Sec. 6.1).
+    pub fading: usize,
+}
+
+impl Plan {
+    /// Blades drawn as single plants.
+    pub fn blade_count(&self) -> u64 {
+        self.blades.iter().map(|r| u64::from(r.end - r.start)).sum()
+    }
+
+    /// Flowers drawn.
+    pub fn flower_count(&self) -> u64 {
+        self.flowers
+            .iter()
+            .map(|r| u64::from(r.end - r.start))
+            .sum()
+    }
+
+    /// The plan of a frame seen through `frustum` (`None`: no culling) with the camera grids
+    /// and fade of `transition` (Sec. 6.1); `lod = false` draws single plants everywhere;
+    /// `sort` orders the grids far to near by squared grid offset (Sec. 5.4.2).
+    pub fn new(
+        layout: &Layout,
+        index: &GridIndex,
+        billboards: &Billboards,
+        transition: &Transition,
+        frustum: Option<&Frustum>,
+        (lod, sort): (bool, bool),
+    ) -> Self {
+        let mut plan = Self::default();
+        let camera = transition.camera();
+        for k in 0..index.len() {
+            let grid = index.id(k);
+            let g = grid_offset(layout, grid, camera);
+            let delta = grid_coords(layout, grid) - camera;
+            // Single plants where the camera grids of the fade (Sec. 6.1) say so; billboards
+            // where they do not, at least at the finest step (a grid fading out of single
+            // plants is one away).
+            let single = transition.single_alpha(layout, grid, lod);
+            let step = match Level::at(g.max(2), lod) {
+                Level::Billboard { step } => Some(billboards.level(step)),
+                Level::Single => None,
+            };
+            // Animated: blades up to two grids away (every grid without LOD), anchors at the
+            // finer of the grid's step and the step one grid closer (the level a border
+            // crossing can give it).
+            if g <= 2 || !lod {
+                push_merged(&mut plan.animate_blades, index.blades(k));
+                push_merged(&mut plan.animate_flowers, index.flowers(k));
+            }
+            if let (true, Level::Billboard { step: finer }) =
+                (g >= 1, Level::at(g.saturating_sub(1).max(2), lod))
+            {
+                let l = billboards.level(finer);
+                push_merged(
+                    &mut plan.animate_anchors,
+                    billboards.grids[grid as usize][l].anchors.clone(),
+                );
+            }
+            if !frustum.is_none_or(|f| f.intersects_aabb(index.bounds(k))) {
+                plan.culled += 1;
+                continue;
+            }
+            plan.grids += 1;
+            if single > 0.0 {
+                push_merged(&mut plan.blades, index.blades(k));
+                push_merged(&mut plan.flowers, index.flowers(k));
+                plan.near.push(NearGrid {
+                    k,
+                    grid,
+                    delta,
+                    alpha: single,
+                });
+            }
+            if let (Some(level), true) = (step, single < 1.0) {
+                let r = index.blades(k);
+                plan.billboard_blades += u64::from(r.end - r.start);
+                plan.far.push(FarGrid {
+                    grid,
+                    delta,
+                    level,
+                    offset: g,
+                    alpha: 1.0 - single,
+                });
+            }
+            plan.fading += usize::from(single > 0.0 && single < 1.0);
+        }
+        if sort {
+            order::sort_grids(&mut plan.far, |f| f.delta);
+            order::sort_grids(&mut plan.near, |n| n.delta);
+        }
+        plan
+    }
+}
+
+/// Builds the wings of the far grids of `plan` into `out` (cleared first): bottom vertices at
+/// the anchors' roots, top vertices at their animated top points (Sec. 4.2), scaled to the
+/// billboard texture's `height` and swayed `1 + sway·(g − 2)` times as far from rest for a
+/// grid `g` away (the horizontal offset is kept within `height`, so the culling boxes hold).
+/// `rest` is each anchor's top point at rest; a fading grid's alpha (Sec. 6.1) goes with
+/// each wing. With
+/// `orders`, each grid's billboards follow the pre-computed far-to-near order of its section
+/// (Sec. 5.4.2); the grids come in the plan's order.
+#[allow(clippy::too_many_arguments)]
+pub fn wings(
+    plan: &Plan,
+    billboards: &Billboards,
+    orders: Option<&BlockOrders>,
+    anchors: &[BladeDynamic],
+    rest: &[Vec3],
+    height: f32,
+    sway: f32,
+    out: &mut Vec<WingInstance>,
+) {
+    out.clear();
+    for far in &plan.far {
+        let gain = 1.0 + sway * far.offset.saturating_sub(2) as f32;
+        let alpha = far.alpha;
+        let top = |a: u32| {
+            let a = a as usize;
+            let p = &billboards.anchors[a];
+            let tip = Vec3::from_slice(&anchors[a].p3[..3]);
+            let (d0, d) = ((rest[a] - p.root) / p.height, (tip - p.root) / p.height);
+            let mut v = (d0 + gain * (d - d0)) * height;
+            let side = v.x.hypot(v.z);
+            if side > height {
+                v.x *= height / side;
+                v.z *= height / side;
+            }
+            v.y = v.y.clamp(0.1 * height, height);
+            p.root + v
+        };
+        let level = &billboards.grids[far.grid as usize][far.level];
+        let mut push = |w: &crate::billboard::Wing| {
+            let (c, o) = (
+                &billboards.anchors[w.centre as usize],
+                &billboards.anchors[w.outer as usize],
+            );
+            out.push(WingInstance {
+                centre_root: c.root.extend(w.u[0]).to_array(),
+                outer_root: o.root.extend(w.u[1]).to_array(),
+                centre_top: top(w.centre).extend(far.level as f32).to_array(),
+                outer_top: top(w.outer).extend(w.density).to_array(),
+                fade: [alpha, 0.0, 0.0, 0.0],
+            });
+        };
+        match orders {
+            Some(orders) => {
+                for &b in orders.get(far.level, section(far.delta, IVec2::ZERO)) {
+                    let r = level.blocks[b as usize].clone();
+                    level.wings[r.start as usize..r.end as usize]
+                        .iter()
+                        .for_each(&mut push);
+                }
+            }
+            None => level.wings.iter().for_each(push),
+        }
+    }
+}
+
+/// What [`sorted_blades`] reads.
+#[derive(Clone, Copy)]
+pub struct BladeLookup<'a> {
+    /// Where the grids lie.
+    pub layout: &'a Layout,
+    /// The grids' ranges.
+    pub index: &'a GridIndex,
+    /// Blade instance at each lattice point, `grid·n² + cell` (`u32::MAX` where none grows).
+    pub slots: &'a [u32],
+    /// Each blade's root xyz and height.
+    pub plants: &'a [[f32; 4]],
+}
+
+/// The single plants of `plan`'s near grids far to near (Sec. 5.4.1), written to `out`
+/// (instance indices; cleared first): grid by grid in the plan's (sorted) order, the camera
+/// grid's plants quicksorted by squared distance to `eye`, the other grids' plants in the line
+/// order of their section (Table 1) walked towards the eye ([`line_order`]). Plants whose
+/// bounding sphere is outside `frustum` are left out (the second culling level of Sec. 5.3).
+pub fn sorted_blades(
+    plan: &Plan,
+    look: &BladeLookup<'_>,
+    eye: Vec3,
+    frustum: Option<&Frustum>,
+    scratch: &mut Vec<u32>,
+    out: &mut Vec<u32>,
+) {
+    out.clear();
+    let n = look.layout.per_side;
+    let visible = |b: u32| {
+        let [x, y, z, h] = look.plants[b as usize];
+        frustum.is_none_or(|f| f.intersects_sphere(Vec3::new(x, y + 0.5 * h, z), h))
+    };
+    let distance = |b: u32| {
+        let [x, y, z, _] = look.plants[b as usize];
+        (Vec3::new(x, y, z) - eye).length_squared()
+    };
+    for near in &plan.near {
+        if near.delta == IVec2::ZERO {
+            let start = out.len();
+            out.extend(look.index.blades(near.k).filter(|&b| visible(b)));
+            out[start..].sort_unstable_by(|&a, &b| distance(b).total_cmp(&distance(a)));
+        } else {
+            let origin = look.layout.origin
+                + grid_coords(look.layout, near.grid).as_vec2() * look.layout.grid_size;
+            let local = (Vec2::new(eye.x, eye.z) - origin) / look.layout.spacing();
+            line_order(n, near.delta.signum(), local, scratch);
+            let base = near.grid as usize * (n * n) as usize;
+            out.extend(
+                scratch
+                    .iter()
+                    .map(|&cell| look.slots[base + cell as usize])
+                    .filter(|&b| b != u32::MAX && visible(b)),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Params;
+    use crate::prairie::plant;
+    use grassbench::camera::Camera;
+    use grassbench::grass::GrassConfig;
+    use grassbench::terrain::Terrain;
+
+    #[test]
+    fn sorted_blades_are_the_visible_near_plants_once_camera_grid_last_and_far_to_near() {
+        let terrain = Terrain::flat(Vec2::new(80.0, 80.0));
+        let params = Params {
+            grids: 8,
+            blades_per_side: 12,
+            ..Params::default()
+        };
+        let (layout, planted) = plant(&params, &GrassConfig::default(), &terrain, 3);
+        let index = GridIndex::new(&planted);
+        let billboards = Billboards::new(&layout, &params, &GrassConfig::default(), &terrain, 3);
+        let n = layout.per_side;
+        let mut slots = vec![u32::MAX; (64 * n * n) as usize];
+        for (b, p) in planted.iter().enumerate() {
+            slots[(p.grid * n * n + p.cell) as usize] = b as u32;
+        }
+        let plants: Vec<[f32; 4]> = planted
+            .iter()
+            .map(|p| p.root.extend(p.height).to_array())
+            .collect();
+        let look = BladeLookup {
+            layout: &layout,
+            index: &index,
+            slots: &slots,
+            plants: &plants,
+        };
+        for (eye, target) in [
+            (Vec3::new(3.0, 1.6, 2.0), Vec3::new(20.0, 0.0, 9.0)),
+            (Vec3::new(-12.0, 1.6, 7.0), Vec3::new(-30.0, 0.0, -2.0)),
+        ] {
+            let camera = Camera::look_at(eye, target, 1.0, 0.1, 300.0, 16.0 / 9.0);
+            let frustum = camera.frustum();
+            let transition = Transition::new(&layout, eye, 0.0);
+            let plan = Plan::new(
+                &layout,
+                &index,
+                &billboards,
+                &transition,
+                Some(&frustum),
+                (true, true),
+            );
+            let (mut scratch, mut out) = (Vec::new(), Vec::new());
+            sorted_blades(&plan, &look, eye, Some(&frustum), &mut scratch, &mut out);
+            let mut seen = out.clone();
+            seen.sort_unstable();
+            seen.dedup();
+            assert_eq!(seen.len(), out.len(), "a plant drawn twice");
+            // Exactly the near grids' plants whose sphere is in view.
+            let expected: Vec<u32> = plan
+                .near
+                .iter()
+                .flat_map(|g| index.blades(g.k))
+                .filter(|&b| {
+                    let [x, y, z, h] = plants[b as usize];
+                    frustum.intersects_sphere(Vec3::new(x, y + 0.5 * h, z), h)
+                })
+                .collect();
+            let mut expected_sorted = expected.clone();
+            expected_sorted.sort_unstable();
+            assert_eq!(seen, expected_sorted);
+            assert!(out.len() > 100 && out.len() < planted.len());
+            // The camera grid comes last, its plants farthest first.
+            let camera_grid = plan.near.last().expect("near grids").grid;
+            assert_eq!(plan.near.last().map(|g| g.delta), Some(IVec2::ZERO));
+            let tail: Vec<f32> = out
+                .iter()
+                .filter(|&&b| planted[b as usize].grid == camera_grid)
+                .map(|&b| (planted[b as usize].root - eye).length())
+                .collect();
+            assert!(!tail.is_empty());
+            assert!(tail.windows(2).all(|w| w[0] >= w[1]));
+            let first_camera = out
+                .iter()
+                .position(|&b| planted[b as usize].grid == camera_grid)
+                .expect("camera grid");
+            assert!(
+                out[first_camera..]
+                    .iter()
+                    .all(|&b| planted[b as usize].grid == camera_grid)
+            );
+        }
+    }
+}
