@@ -32,6 +32,8 @@ pub struct Animation {
     winds: Vec<Vec3>,
     /// Threads the blade step may use (the machine's cores by default).
     threads: usize,
+    /// The interaction sphere (centre, radius) of the next steps (Sec. 6.2), if any.
+    sphere: Option<(Vec3, f32)>,
 }
 
 impl Animation {
@@ -57,6 +59,7 @@ impl Animation {
             points: Vec::new(),
             winds: Vec::new(),
             threads: std::thread::available_parallelism().map_or(1, |t| t.get()),
+            sphere: None,
         };
         let samples = 3 * a.blades.len() + a.flowers.len();
         a.points = vec![Vec3::ZERO; samples];
@@ -68,6 +71,12 @@ impl Animation {
     /// Sets the threads the blade step may use (1 = on the caller's thread; at most 16).
     pub fn set_threads(&mut self, threads: usize) {
         self.threads = threads;
+    }
+
+    /// Sets the interaction sphere (centre, radius) the next steps push blades out of (Sec.
+    /// 6.2); `None` for no interaction.
+    pub fn set_sphere(&mut self, sphere: Option<(Vec3, f32)>) {
+        self.sphere = sphere;
     }
 
     /// Blades animated.
@@ -168,6 +177,7 @@ impl Animation {
                 at = offset;
             }
         }
+        let sphere = self.sphere;
         std::thread::scope(|scope| {
             let k = &k;
             let mut buckets = buckets.into_iter().filter(|b| !b.is_empty());
@@ -176,12 +186,12 @@ impl Animation {
             for bucket in buckets {
                 scope.spawn(move || {
                     for (blades, points, winds, out) in bucket {
-                        step_blades(blades, points, winds, out, wind, time, steps, k);
+                        step_blades(blades, points, winds, out, wind, time, steps, k, sphere);
                     }
                 });
             }
             for (blades, points, winds, out) in first.into_iter().flatten() {
-                step_blades(blades, points, winds, out, wind, time, steps, k);
+                step_blades(blades, points, winds, out, wind, time, steps, k, sphere);
             }
         });
         let m = self.flowers.len();
@@ -236,7 +246,7 @@ type Piece<'a> = (
 );
 
 /// One chunk of the frame's blade step: gather the moving control points, one batched wind
-/// query, `steps` Verlet steps per blade, then the instance data.
+/// query, `steps` Verlet steps per blade, the sphere's push (Sec. 6.2), then the instance data.
 #[allow(clippy::too_many_arguments)]
 fn step_blades(
     blades: &mut [BladeState],
@@ -247,6 +257,7 @@ fn step_blades(
     time: f32,
     steps: u32,
     k: &Dynamics,
+    sphere: Option<(Vec3, f32)>,
 ) {
     for (p, b) in points.chunks_exact_mut(3).zip(blades.iter()) {
         p.copy_from_slice(&b.pos[1..]);
@@ -257,6 +268,9 @@ fn step_blades(
         let ground = b.pos[0].y;
         for _ in 0..steps {
             b.step(&w, k, ground);
+        }
+        if let Some((centre, radius)) = sphere {
+            b.interact(centre, radius, ground);
         }
     }
     write_blades(blades, out);

@@ -160,6 +160,49 @@ impl BladeState {
         }
     }
 
+    /// Sec. 6.2, sphere-plant interaction, after a step: for a plant whose root lies inside the
+    /// ground circle of the sphere (`centre`, `radius`), the first backbone point inside the
+    /// sphere (from the bottom) is moved out to the sphere's surface along the ray from the
+    /// centre, the length constraint of Sec. 3.2.4 brings it back to one segment from the point
+    /// below, and the points above continue in that segment's direction, so the blade leans
+    /// tangent to the sphere. Where that direction would leave a point inside the sphere or
+    /// under the ground (a blade right under the centre: the thesis' push is straight down
+    /// there), the rest of the blade points away from the centre instead, laid along the
+    /// ground if that is down. Moved points lose their velocity (their previous positions are
+    /// set to the new ones): the blade is held, and springs back once the sphere has passed.
+    /// Returns whether the blade was touched.
+    pub fn interact(&mut self, centre: Vec3, radius: f32, ground: f32) -> bool {
+        let root = self.pos[0];
+        if Vec2::new(root.x - centre.x, root.z - centre.z).length() > radius {
+            return false;
+        }
+        let Some(i) = (1..CONTROL_POINTS).find(|&i| self.pos[i].distance(centre) < radius) else {
+            return false;
+        };
+        let below = self.pos[i - 1];
+        let out = centre + (self.pos[i] - centre).normalize_or(Vec3::Y) * radius;
+        let remaining = (CONTROL_POINTS - i) as f32;
+        let clear = |d: Vec3| {
+            (1..=CONTROL_POINTS - i).all(|k| {
+                (below + d * (self.segment * k as f32)).distance(centre) >= radius * (1.0 - 1e-5)
+            }) && below.y + d.y * self.segment * remaining >= ground
+        };
+        let mut direction = (out - below).normalize_or(Vec3::Y);
+        if !clear(direction) {
+            let away = (below - centre).normalize_or(Vec3::Y);
+            direction = if away.y >= 0.0 {
+                away
+            } else {
+                Vec3::new(away.x, 0.0, away.z).normalize_or(Vec3::X)
+            };
+        }
+        for j in i..CONTROL_POINTS {
+            self.pos[j] = self.pos[j - 1] + direction * self.segment;
+            self.old[j] = self.pos[j];
+        }
+        true
+    }
+
     /// Sec. 3.2.5: the rotation θ (radians around y) of the top segment points, so that the
     /// blade's width axis ends up perpendicular to the "wind direction" (the horizontal
     /// direction from the bottom backbone point `P0` to the top one `P3`); the segment points
@@ -200,6 +243,37 @@ mod tests {
     }
 
     proptest! {
+        /// Sec. 6.2: a sphere over a blade pushes it out: its points end outside the sphere,
+        /// every segment keeps its length, the root stays, and nothing goes underground.
+        #[test]
+        fn a_blade_pushed_by_the_sphere_ends_outside_it_with_its_lengths(
+            h in 0.2f32..1.0,
+            lean in 0.0f32..0.8,
+            lean_dir in 0.0f32..6.3,
+            offset in (-0.9f32..0.9, -0.9f32..0.9),
+            radius in 0.2f32..1.0,
+            lift in 0.0f32..0.8,
+        ) {
+            let root = Vec3::new(2.0, 1.0, -1.0);
+            let mut b = BladeState::new(root, h, 0.3, lean_dir, lean, 1.0);
+            // The sphere's bottom `lift · h` above the ground, its centre within its own
+            // radius of the root horizontally.
+            let centre = root
+                + Vec3::new(offset.0 * radius, lift * h + radius, offset.1 * radius);
+            let touched = b.interact(centre, radius, root.y);
+            prop_assert_eq!(b.pos[0], root);
+            for i in 1..CONTROL_POINTS {
+                let l = (b.pos[i] - b.pos[i - 1]).length();
+                prop_assert!((l - b.segment).abs() < 1e-4, "segment {} = {} vs {}", i, l, b.segment);
+                prop_assert!(b.pos[i].y >= root.y - 1e-5);
+            }
+            if touched {
+                for p in &b.pos[1..] {
+                    prop_assert!(p.distance(centre) >= radius - 1e-3 * radius.max(h), "{p} inside");
+                }
+            }
+        }
+
         /// Eq. (5) passes through P0 at t = 0 and P3 at t = 1.
         #[test]
         fn bezier_passes_through_end_points(a in vec3(), b in vec3(), c in vec3(), d in vec3()) {

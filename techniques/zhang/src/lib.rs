@@ -8,8 +8,8 @@
 //! billboards of six rectangles whose length doubles with the grid offset (Ch. 4, Sec. 5.2).
 //! Grids are culled against the view frustum, single plants of the near grids too (Sec. 5.3);
 //! everything is drawn far to near and blended (Sec. 5.4), and grids crossing between the two
-//! representations fade (Sec. 6.1). Not done: the sphere-plant interaction (Sec. 6.2, left to
-//! the shared moving object) and the tree and stone meshes of the covering map (Sec. 5.5.2).
+//! representations fade (Sec. 6.1); the scene's moving object pushes blades aside (Sec. 6.2),
+//! and the covering map's trees and stones are simple meshes (Sec. 5.5.2).
 //!
 //! ## Algorithm
 //! - **Wind (Ch. 2, Sec. 3.2.2).** Whatever [`WindField`](grassbench::wind::WindField) the
@@ -80,6 +80,15 @@
 //!   grids whose level differs across it are drawn both ways with complementary alphas (the
 //!   other side's at `½·(1 − r1/r0)`), blended when sorting, dissolved (per-blade threshold)
 //!   otherwise.
+//! - **Sphere-plant interaction (Sec. 6.2, `BladeState::interact`).** The scene's moving
+//!   object (`[object]`, shared with every technique) is the interaction sphere. After each
+//!   frame's Verlet steps, a blade whose root lies under the sphere has its first backbone
+//!   point inside it moved out to the surface along the ray from the centre, the length
+//!   constraint applied, and the points above continued in that direction, tangent to the
+//!   sphere. Where that would leave a point inside (a blade right under the centre) the rest
+//!   of the blade points away from the centre. Pushed points lose their velocity; the spring
+//!   brings the blade back after the sphere has passed. Only animated (near) blades react:
+//!   billboards do not.
 //! - **Flowers (Sec. 3.3-3.4).** A `flower_fraction` of blade positions also carry a flower:
 //!   a petal point at `0.65 · height` (±10 %) on an invisible stalk, animated like a blade's
 //!   top point with mass `flower_mass` (the wind push divided by it), drawn as a square petal
@@ -529,6 +538,8 @@ impl GrassTechnique for Zhang {
         let mut sort_time = sort_start.elapsed();
         let k = (p.wind_response, p.spring, p.damping);
         let plan = &self.plan;
+        // Sec. 6.2: the scene's moving object is the interaction sphere.
+        self.animation.set_sphere(inputs.object());
         self.animation.step_ranges(
             inputs.wind,
             inputs.time,
