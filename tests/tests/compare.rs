@@ -102,9 +102,9 @@ fn thresholds(id: &str) -> Thresholds {
             popping_p95: 1.6,
             ..Default::default()
         },
-        // perbet (scene density, medium preset's levels): LOD FLIP 0.042 / 0.007 / 0.028
-        // (strips and 2D textures against 3D blades everywhere); FLIP 1/16 0.047 / 0.007 /
-        // 0.018, coverage per tile 0.053 / 0.008 / 0.051; popping 0.56 (dolly; 0.61 without
+        // perbet (scene density, medium preset's levels): LOD FLIP 0.041 / 0.007 / 0.028
+        // (strips and 2D textures against 3D blades everywhere); FLIP 1/16 0.046 / 0.007 /
+        // 0.018, coverage per tile 0.052 / 0.008 / 0.051; popping 0.56 (dolly; 0.61 without
         // transitions), 0.57 (pan; the same without transitions: levels follow position).
         "perbet" => Thresholds {
             lod_flip: 0.055,

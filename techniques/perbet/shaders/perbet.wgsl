@@ -10,7 +10,8 @@ struct Params {
     // x: blades per patch; y: segments per blade (= strip rows); z: strips per orientation;
     // w: polygons along a strip
     counts: vec4<u32>,
-    // x: postures K; y: variants; z: 2D grid cells per patch side; w: unused
+    // x: postures K per kind; y: variants; z: 2D grid cells per patch side; w: the kind strip
+    // edges bend as
     more: vec4<u32>,
     color_root: vec4<f32>,  // rgb; w: colour variation
     color_tip: vec4<f32>,   // rgb; w: translucency
@@ -34,7 +35,7 @@ struct Entry {
 struct Blade {
     root_facing: vec4<f32>,  // root x, z in the patch; facing; height
     shape: vec4<f32>,        // width, colour variation, density threshold, -
-    strips: vec4<u32>,       // the strip painting it, per orientation
+    strips: vec4<u32>,       // the strip painting it, per orientation; its kind of grass
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
@@ -75,15 +76,15 @@ struct VsOut {
 
 // --- Receivers and postures (Sec. 3.2) ------------------------------------------------------
 
-// Bend angle of segment `i` at posture `index`: linear between the two nearest pre-computed
-// postures (`receiver::angles_at` on the CPU).
-fn bend_angle(index: f32, i: u32) -> f32 {
+// Bend angle of segment `i` of a blade of `kind` at posture `index`: linear between the two
+// nearest pre-computed postures of its kind (`receiver::angles_at` on the CPU).
+fn bend_angle(kind: u32, index: f32, i: u32) -> f32 {
     let k = params.more.x;
     let n = params.counts.y;
     let u = (clamp(index, -1.0, 1.0) + 1.0) * f32(k - 1u) * 0.5;
     let row = min(u32(floor(u)), k - 2u);
-    let f = u - f32(row);
-    return mix(postures[row * n + i], postures[(row + 1u) * n + i], f);
+    let at = (kind * k + row) * n + i;
+    return mix(postures[at], postures[at + n], u - f32(row));
 }
 
 // Unit direction of a segment tilted by `t` (direction of the tilt, length the angle).
@@ -133,7 +134,7 @@ fn edge_point(e: Entry, slot: u32, k: u32, j: u32, level: f32) -> vec3<f32> {
     var p = vec3(xz.x, terrain_height(xz) - (1.0 - e.grow) * params.sizes.y, xz.y);
     for (var i = 0u; i < n; i++) {
         let t = clamp(level - f32(i), 0.0, 1.0);
-        let a = bend_angle(r.z, i);
+        let a = bend_angle(params.more.w, r.z, i);
         p += segment * t * (sin(a) * d + cos(a) * UP);
     }
     return p;
@@ -290,7 +291,7 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     var p = vec3(root_xz.x, terrain_height(root_xz), root_xz.y);
     var tangent = UP;
     for (var i = 0u; i < n; i++) {
-        let dir = segment_direction(tilts[b * n + i] + r.xy * bend_angle(r.z, i));
+        let dir = segment_direction(tilts[b * n + i] + r.xy * bend_angle(blade.strips.z, r.z, i));
         if (i < level) {
             p += segment * dir;
         }

@@ -23,7 +23,7 @@ pub struct BladeGpu {
     pub root_facing: [f32; 4],
     /// Width, colour variation, density threshold, unused.
     pub shape: [f32; 4],
-    /// The strip painting the blade, per orientation; unused.
+    /// The strip painting the blade, per orientation; its kind; unused.
     pub strips: [u32; 4],
 }
 
@@ -35,7 +35,7 @@ pub struct ParamsUniform {
     pub sizes: [f32; 4],
     /// Blades per patch, segments, strips per orientation, polygons along a strip.
     pub counts: [u32; 4],
-    /// Postures, variants, 2D cells per side, unused.
+    /// Postures per kind, variants, 2D cells per side, the kind strip edges bend as.
     pub more: [u32; 4],
     /// Root colour; w: colour variation.
     pub color_root: [f32; 4],
@@ -55,7 +55,7 @@ pub struct Statics<'a> {
     pub tilts: &'a [[f32; 2]],
     /// Painted coordinates of every point of every blade, per orientation.
     pub painted: &'a [[f32; 2]],
-    /// The posture table.
+    /// The posture tables of every kind, kind after kind.
     pub postures: &'a [f32],
     /// Strip textures: one mip chain per layer.
     pub strip_layers: &'a [Vec<Image>],

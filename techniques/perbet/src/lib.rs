@@ -36,10 +36,12 @@
 //!   [`PrimitiveSet::sample`](grassbench::wind::PrimitiveSet::sample) (breeze, gust,
 //!   whirlwind, blast, mixed by priority, Sec. 3.3); any other wind model drives the receivers
 //!   through its velocity (index = speed / `wind_speed`). The index selects a shape among the
-//!   pre-computed postures of `grassbench::wind::posture` (a simulated chain, Fig. 6),
-//!   interpolated between the two nearest and resampled to the blade's segment count; the
+//!   pre-computed postures of `grassbench::wind::posture` (a simulated chain, Fig. 6) of the
+//!   blade's kind of grass (`kinds` height classes, each simulated at its mean height, so the
+//!   same wind bends tall grass further), interpolated between the two nearest postures and
+//!   resampled to the blade's segment count; the
 //!   vertex shader adds each segment's posture angle towards the direction to its rest tilt.
-//!   Strip edges bend the same way, carrying the texture with them.
+//!   Strip edges bend the same way (as the middle kind), carrying the texture with them.
 //! - **Drawing** (Sec. 2.2, `shaders/perbet.wgsl`). One render pass, three instanced draws:
 //!   2D patches (a terrain-following grid at half the strip height above the ground, Sec.
 //!   4.3), then strips (each patch's strips in the orientation the view is least parallel to,
@@ -232,20 +234,26 @@ fn layout(params: &Params, strip_height: f32) -> Layout {
     }
 }
 
-/// The postures the receivers use: the scene's grass kind under a primitives wind, else a
-/// blade of the scene's mean grass height simulated under `wind_speed`.
-fn postures(scene: &Scene, params: &Params) -> Result<Postures> {
-    match &scene.config.wind {
-        WindConfig::Primitives(c) => Postures::new(&c.blade),
-        _ => {
-            let g = &scene.config.grass;
+/// The postures of each kind of grass (Sec. 3.2: "for each kind of grass, we have
+/// precomputed the range of possible bent postures"): the blade of the scene's primitives wind
+/// (or a default blade under `wind_speed`) at each kind's mean height.
+fn postures(scene: &Scene, params: &Params) -> Result<Vec<Postures>> {
+    let base = match &scene.config.wind {
+        WindConfig::Primitives(c) => c.blade.clone(),
+        _ => BladeConfig {
+            wind_speed: params.wind_speed,
+            ..BladeConfig::default()
+        },
+    };
+    let range = scene.config.grass.height;
+    (0..params.kinds)
+        .map(|k| {
             Postures::new(&BladeConfig {
-                height: 0.5 * (g.height[0] + g.height[1]),
-                wind_speed: params.wind_speed,
-                ..BladeConfig::default()
+                height: patch::kind_height(k, range, params.kinds),
+                ..base.clone()
             })
-        }
-    }
+        })
+        .collect()
 }
 
 /// The technique.
@@ -295,7 +303,7 @@ impl Perbet {
             blades.push(BladeGpu {
                 root_facing: [b.root.x, b.root.y, b.facing, b.height],
                 shape: [b.width, b.variation, b.threshold, 0.0],
-                strips: [b.strips[0], b.strips[1], 0, 0],
+                strips: [b.strips[0], b.strips[1], b.kind, 0],
             });
             tilts.extend(b.tilts.iter().map(|t| t.to_array()));
             let points = b.rest_points(layout.segments);
@@ -304,7 +312,11 @@ impl Perbet {
             }
         }
         debug_assert_eq!(tilts.len(), blades.len() * n);
-        let table = receiver::posture_table(&postures, layout.segments);
+        let table: Vec<f32> = postures
+            .iter()
+            .flat_map(|p| receiver::posture_table(p, layout.segments))
+            .collect();
+        let posture_count = postures.first().map_or(0, Postures::count) as u32;
         let sizes = Sizes::new(scene, &params, layout.strip_height);
         let gpu = Gpu::new(
             ctx,
@@ -352,7 +364,13 @@ impl Perbet {
                 params.strips,
                 params.strip_columns,
             ],
-            more: [postures.count() as u32, params.variants, gpu::FLAT_CELLS, 0],
+            // Strip edges bend like the middle kind.
+            more: [
+                posture_count,
+                params.variants,
+                gpu::FLAT_CELLS,
+                params.kinds / 2,
+            ],
             color_root: Vec3::from(grass.color_root)
                 .extend(grass.color_variation)
                 .to_array(),
@@ -444,8 +462,8 @@ pub struct Precomputed {
     pub layout: Layout,
     /// The pre-computed patches.
     pub patches: Vec<Patch>,
-    /// The postures of the grass kind.
-    pub postures: Postures,
+    /// The postures of each kind of grass, shortest first.
+    pub postures: Vec<Postures>,
     /// Strip textures: for variant `v`, orientation `o`, strip `k`, layer
     /// `(v · 2 + o) · strips + k`, each a mip chain.
     pub strip_layers: Vec<Vec<paint::Image>>,
@@ -462,8 +480,7 @@ impl Precomputed {
         let patches = patch::build(
             grass,
             &layout,
-            params.variants,
-            params.blades(grass.density),
+            (params.variants, params.blades(grass.density), params.kinds),
             params.segment_jitter,
             scene.config.seed,
         );
@@ -640,5 +657,52 @@ impl GrassTechnique for Perbet {
                 (self.blade_receivers.len() + self.edge_receivers.len()) as f64,
             ),
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn meadow() -> Scene {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../experiments/scenes/meadow.toml");
+        Scene::load(&path).unwrap()
+    }
+
+    #[test]
+    fn each_kind_of_grass_has_its_postures_and_tall_grass_bends_further() {
+        let scene = meadow();
+        let params = Params {
+            kinds: 3,
+            ..Params::default()
+        };
+        let p = Precomputed::new(&scene, &params).unwrap();
+        assert_eq!(p.postures.len(), 3);
+        let tips: Vec<f32> = p
+            .postures
+            .iter()
+            .map(|k| k.tip_displacement(k.count() - 1))
+            .collect();
+        assert!(tips.windows(2).all(|w| w[1] > w[0]), "{tips:?}");
+        // Every blade is of a kind that exists, and all kinds are planted.
+        let kinds: std::collections::BTreeSet<u32> = p
+            .patches
+            .iter()
+            .flat_map(|v| &v.blades)
+            .map(|b| b.kind)
+            .collect();
+        assert_eq!(kinds.into_iter().collect::<Vec<_>>(), vec![0, 1, 2]);
+    }
+
+    #[test]
+    fn precomputation_is_deterministic() {
+        let scene = meadow();
+        let params = Params::default();
+        let a = Precomputed::new(&scene, &params).unwrap();
+        let b = Precomputed::new(&scene, &params).unwrap();
+        assert_eq!(a.patches, b.patches);
+        assert_eq!(a.strip_layers, b.strip_layers);
+        assert_eq!(a.flat_layers, b.flat_layers);
     }
 }

@@ -408,7 +408,7 @@ mod tests {
             margin: 0.12,
             strip_height: 1.0,
         };
-        let patches = patch::build(&grass, &layout, 1, 320, 0.12, 5);
+        let patches = patch::build(&grass, &layout, (1, 320, 2), 0.12, 5);
         layout.strip_height = patch::tallest(&patches, layout.segments, 0.5);
         (layout, patches, grass)
     }

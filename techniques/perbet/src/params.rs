@@ -91,6 +91,9 @@ pub struct Params {
     pub patch_size: f32,
     /// Different pre-computed patches tiled over the terrain (chosen per patch by a hash).
     pub variants: u32,
+    /// Kinds of grass (Sec. 3.2): the scene's height range cut into this many classes, each
+    /// with its own simulated postures, so one wind bends tall grass further than short.
+    pub kinds: u32,
     /// Parallel strips per orientation in a patch (the number of polygons of the 2.5D
     /// representation, Sec. 2.1). Strips are what costs: a view across the 2.5D band crosses
     /// `strips / patch_size` semi-transparent layers per metre. On the meadow (medium preset,
@@ -134,6 +137,7 @@ impl Default for Params {
             strip_range: [0, 0],
             patch_size: 2.5,
             variants: 4,
+            kinds: 2,
             strips: 4,
             strip_columns: 4,
             strip_margin: 0.12,
@@ -211,6 +215,7 @@ impl TechniqueParams for Params {
         }
         check("perbet.patch_size", self.patch_size, 0.25..=50.0)?;
         check_int("perbet.variants", self.variants, 1..=16)?;
+        check_int("perbet.kinds", self.kinds, 1..=4)?;
         check_int("perbet.strips", self.strips, 1..=64)?;
         check_int("perbet.strip_columns", self.strip_columns, 1..=32)?;
         check("perbet.strip_margin", self.strip_margin, 0.0..=0.5)?;

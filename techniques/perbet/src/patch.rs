@@ -30,6 +30,8 @@ pub struct PatchBlade {
     pub variation: f32,
     /// Density threshold in `[0, 1)` (drawn where the density map exceeds it).
     pub threshold: f32,
+    /// Its kind of grass (which postures it bends with), `0..kinds`, shortest first.
+    pub kind: u32,
     /// Rest tilt of each segment from the vertical, as a horizontal vector (direction of the
     /// tilt, length the angle in radians), root segment first.
     pub tilts: Vec<Vec2>,
@@ -149,14 +151,25 @@ impl PatchBlade {
     }
 }
 
+/// The kind of a blade of `height` among `kinds` equal classes of the scene's height range.
+pub fn kind_of(height: f32, range: [f32; 2], kinds: u32) -> u32 {
+    let span = (range[1] - range[0]).max(1e-6);
+    let k = ((height - range[0]) / span * kinds as f32).floor();
+    (k.max(0.0) as u32).min(kinds.saturating_sub(1))
+}
+
+/// The mean height of kind `k` of `kinds` over the height range.
+pub fn kind_height(k: u32, range: [f32; 2], kinds: u32) -> f32 {
+    range[0] + (k as f32 + 0.5) / kinds.max(1) as f32 * (range[1] - range[0])
+}
+
 /// Builds `variants` patches of `blades` blades each with `layout.segments` segments, from the
-/// scene's grass ranges; `jitter` is the largest random turn of a segment from its
-/// predecessor (radians). Deterministic in `seed`.
+/// scene's grass ranges, in `kinds` kinds by height; `jitter` is the largest random turn of a
+/// segment from its predecessor (radians). Deterministic in `seed`.
 pub fn build(
     grass: &GrassConfig,
     layout: &Layout,
-    variants: u32,
-    blades: u32,
+    (variants, blades, kinds): (u32, u32, u32),
     jitter: f32,
     seed: u64,
 ) -> Vec<Patch> {
@@ -164,14 +177,20 @@ pub fn build(
         .map(|v| {
             let mut rng = Rng::new(grassbench::rng::hash(seed ^ 0x5045_5242, &[i64::from(v)]));
             let blades = (0..blades)
-                .map(|_| blade(grass, layout, jitter, &mut rng))
+                .map(|_| blade(grass, layout, jitter, kinds, &mut rng))
                 .collect();
             Patch { blades }
         })
         .collect()
 }
 
-fn blade(grass: &GrassConfig, layout: &Layout, jitter: f32, rng: &mut Rng) -> PatchBlade {
+fn blade(
+    grass: &GrassConfig,
+    layout: &Layout,
+    jitter: f32,
+    kinds: u32,
+    rng: &mut Rng,
+) -> PatchBlade {
     let root = Vec2::new(rng.range(0.0, layout.size), rng.range(0.0, layout.size));
     let height = rng.range(grass.height[0], grass.height[1]);
     let width = rng.range(grass.width[0], grass.width[1]);
@@ -199,6 +218,7 @@ fn blade(grass: &GrassConfig, layout: &Layout, jitter: f32, rng: &mut Rng) -> Pa
         facing,
         variation,
         threshold,
+        kind: kind_of(height, grass.height, kinds),
         tilts,
         strips,
     }
@@ -250,7 +270,7 @@ mod tests {
     #[test]
     fn every_blade_is_in_the_slab_of_its_strip() {
         let l = layout();
-        let patches = build(&GrassConfig::default(), &l, 2, 300, 0.12, 9);
+        let patches = build(&GrassConfig::default(), &l, (2, 300, 1), 0.12, 9);
         assert_eq!(patches.len(), 2);
         for b in patches.iter().flat_map(|p| &p.blades) {
             for o in 0..2 {
@@ -260,6 +280,23 @@ mod tests {
                 assert!(across >= k as f32 * slab - 1e-5 && across <= (k + 1) as f32 * slab + 1e-5);
             }
         }
+    }
+
+    #[test]
+    fn kinds_split_the_height_range_evenly() {
+        let range = [0.3, 0.7];
+        assert_eq!(kind_of(0.3, range, 2), 0);
+        assert_eq!(kind_of(0.49, range, 2), 0);
+        assert_eq!(kind_of(0.51, range, 2), 1);
+        assert_eq!(kind_of(0.7, range, 2), 1);
+        assert_eq!(kind_of(0.9, range, 3), 2);
+        assert!((kind_height(1, range, 2) - 0.6).abs() < 1e-6);
+        let blades = build(&GrassConfig::default(), &layout(), (1, 400, 2), 0.1, 1);
+        let tall = blades[0].blades.iter().filter(|b| b.kind == 1).count();
+        assert!(
+            (150..250).contains(&tall),
+            "{tall} of 400 in the taller kind"
+        );
     }
 
     #[test]
@@ -278,7 +315,13 @@ mod tests {
     fn patches_are_deterministic_and_seeded() {
         let l = layout();
         let g = GrassConfig::default();
-        assert_eq!(build(&g, &l, 1, 50, 0.1, 3), build(&g, &l, 1, 50, 0.1, 3));
-        assert_ne!(build(&g, &l, 1, 50, 0.1, 3), build(&g, &l, 1, 50, 0.1, 4));
+        assert_eq!(
+            build(&g, &l, (1, 50, 2), 0.1, 3),
+            build(&g, &l, (1, 50, 2), 0.1, 3)
+        );
+        assert_ne!(
+            build(&g, &l, (1, 50, 2), 0.1, 3),
+            build(&g, &l, (1, 50, 2), 0.1, 4)
+        );
     }
 }
