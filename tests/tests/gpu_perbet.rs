@@ -251,3 +251,23 @@ fn blades_morphed_to_their_painted_targets_look_like_the_strips() -> anyhow::Res
     );
     Ok(())
 }
+
+#[test]
+fn more_receivers_than_the_adapter_can_bind_is_an_error_not_a_panic() -> anyhow::Result<()> {
+    // 3D everywhere on the 240 m prairie with 4096 blades a patch: 9216 patches x 4096 blade
+    // receivers of 16 bytes, 600 MB, beyond any adapter's storage binding.
+    let gpu = gpu()?;
+    let mut harness = Harness::new(&gpu, scene("prairie_flyover", 1.0)?, TEST_SIZE, false)?;
+    let entry = grassbench_cli::registry::find("perbet")?;
+    let params = table("blades_per_patch = 4096\nstrip_range = [100000, 100000]");
+    let outcome = harness
+        .create(entry, &params)
+        .and_then(|mut t| harness.frame(t.as_mut(), 0, false).map(|_| ()));
+    let message = format!(
+        "{:#}",
+        outcome.expect_err("600 MB of receivers cannot be bound")
+    );
+    eprintln!("refused: {message}");
+    assert!(message.contains("blades_per_patch"), "{message}");
+    Ok(())
+}

@@ -4,7 +4,7 @@
 
 use grassbench::color::srgb_encode;
 use grassbench::wgpu::util::DeviceExt as _;
-use grassbench::{FrameEncoder, GpuContext, InitContext, bytemuck, shaders, wgpu};
+use grassbench::{Error, FrameEncoder, GpuContext, InitContext, Result, bytemuck, shaders, wgpu};
 
 use crate::frame::Entry;
 use crate::paint::Image;
@@ -70,22 +70,36 @@ struct Growing {
 }
 
 impl Growing {
+    /// A buffer of `bytes` (the expected need; at most what one binding may hold).
     fn new(device: &wgpu::Device, label: &'static str, bytes: u64) -> Self {
+        let max = device.limits().max_storage_buffer_binding_size;
         Self {
             label,
-            buffer: storage(device, label, bytes.max(16)),
+            buffer: storage(device, label, bytes.clamp(16, max.max(16))),
         }
     }
 
     /// Makes room for `bytes` (twice as much, to grow rarely); true if the buffer was replaced.
-    fn reserve(&mut self, device: &wgpu::Device, bytes: u64) -> bool {
+    /// More than one storage binding may hold is an error naming the fix.
+    fn reserve(&mut self, device: &wgpu::Device, bytes: u64) -> Result<bool> {
         if bytes <= self.buffer.size() {
-            return false;
+            return Ok(false);
         }
         let max = device.limits().max_storage_buffer_binding_size;
-        let size = bytes.saturating_mul(2).min(max).max(bytes);
+        if bytes > max {
+            return Err(Error::Technique {
+                technique: "perbet".into(),
+                message: format!(
+                    "this frame's {} need {bytes} bytes but this adapter binds at most {max}; \
+                     lower blades_per_patch (or the scene's grass density) or draw fewer patches \
+                     in 3D (a smaller strip_range[0])",
+                    self.label
+                ),
+            });
+        }
+        let size = bytes.saturating_mul(2).min(max);
         self.buffer = storage(device, self.label, size);
-        true
+        Ok(true)
     }
 }
 
@@ -297,7 +311,8 @@ impl Gpu {
         );
     }
 
-    /// Uploads one frame: the uniform, the entries and the receivers.
+    /// Uploads one frame: the uniform, the entries and the receivers (growing their buffers
+    /// if needed; an error if they would exceed what the adapter can bind).
     pub fn upload(
         &mut self,
         gpu: &GpuContext,
@@ -305,14 +320,14 @@ impl Gpu {
         entries: &[Entry],
         blade_receivers: &[[f32; 4]],
         edge_receivers: &[[f32; 4]],
-    ) {
+    ) -> Result<()> {
         let device = &gpu.device;
         let entry_bytes = std::mem::size_of_val(entries) as u64;
         let blade_bytes = std::mem::size_of_val(blade_receivers) as u64;
         let edge_bytes = std::mem::size_of_val(edge_receivers) as u64;
-        let grew = self.entries.reserve(device, entry_bytes)
-            | self.blade_receivers.reserve(device, blade_bytes)
-            | self.edge_receivers.reserve(device, edge_bytes);
+        let grew = self.entries.reserve(device, entry_bytes)?
+            | self.blade_receivers.reserve(device, blade_bytes)?
+            | self.edge_receivers.reserve(device, edge_bytes)?;
         if grew {
             self.rebind(device);
         }
@@ -329,6 +344,7 @@ impl Gpu {
             0,
             bytemuck::cast_slice(edge_receivers),
         );
+        Ok(())
     }
 
     /// Bytes held: static resources and the per-frame buffers as they are now.

@@ -611,8 +611,7 @@ impl GrassTechnique for Perbet {
             &self.entries,
             &self.blade_receivers,
             &self.edge_receivers,
-        );
-        Ok(())
+        )
     }
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
