@@ -4,6 +4,7 @@
 
 mod background;
 mod gpu;
+pub mod keyframes;
 mod lighting;
 mod object;
 

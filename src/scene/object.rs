@@ -50,19 +50,9 @@ impl Default for ObjectConfig {
 /// A ground position along a path: piecewise linear through `keyframes` (`[time, x, z]`,
 /// held before the first and after the last), or `start + velocity · time` without any.
 pub fn track(start: [f32; 2], velocity: [f32; 2], keyframes: &[[f32; 3]], time: f32) -> Vec2 {
-    let key = |k: &[f32; 3]| Vec2::new(k[1], k[2]);
-    let (Some(first), Some(last)) = (keyframes.first(), keyframes.last()) else {
-        return Vec2::from(start) + Vec2::from(velocity) * time;
-    };
-    if time <= first[0] {
-        return key(first);
-    }
-    keyframes
-        .windows(2)
-        .find(|w| time <= w[1][0])
-        .map_or(key(last), |w| {
-            let f = (time - w[0][0]) / (w[1][0] - w[0][0]);
-            key(&w[0]).lerp(key(&w[1]), f)
+    super::keyframes::sample(keyframes, time, |k| (k[0], Vec3::new(k[1], 0.0, k[2])))
+        .map_or(Vec2::from(start) + Vec2::from(velocity) * time, |p| {
+            Vec2::new(p.x, p.z)
         })
 }
 
