@@ -416,26 +416,11 @@ impl Perbet {
         })
     }
 
-    /// The level state of patch `i` (for tests and tools).
-    pub fn patch_state(&self, i: usize) -> lod::PatchLod {
-        self.lod.state(i)
-    }
-
     /// Draws every visible patch in `state` instead of its own level from the next `update` on
     /// (`None` goes back to the levels): a tool to inspect one level, or the whole view frozen
     /// at one step of a transition. The patches' own levels keep being updated underneath.
     pub fn freeze(&mut self, state: Option<lod::PatchLod>) {
         self.frozen = state;
-    }
-
-    /// The tiling of the terrain.
-    pub fn tiling(&self) -> &Tiling {
-        &self.tiling
-    }
-
-    /// This frame's entries per representation, far to near.
-    pub fn frame_lists(&self) -> &Lists {
-        &self.lists
     }
 
     /// Keeps or flips patch `i`'s strip orientation for a view from `eye` (xz): strips of
