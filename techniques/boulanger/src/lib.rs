@@ -92,6 +92,7 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod barycentric;
 pub mod cells;
 pub mod lod;
 pub mod params;
