@@ -103,9 +103,12 @@ fn draws_a_believable_field_on_football_field_and_meadow() -> anyhow::Result<()>
 }
 
 #[test]
-fn lod_false_colours_put_geometry_near_and_the_slice_far() -> anyhow::Result<()> {
-    // Fig. 12's debug view on the walker view of the pitch: bottom rows (2.5-3.5 m away) are
-    // geometry (red), the middle of the image (tens of metres) the horizontal slice (green).
+fn lod_false_colours_put_geometry_near_vertical_slices_mid_and_the_slice_far() -> anyhow::Result<()> {
+    // Fig. 12's debug view on the walker view of the pitch at 320x180: the bottom rows
+    // (2.5-3.5 m away) are geometry (red), the middle of the image (4-30 m) the vertical slices
+    // (blue), the band just under the horizon (beyond max_btf = 30 m) the horizontal slice
+    // (green). Row means measured on lavapipe: rows 172-179 (65, 72, 143) with red blades over
+    // blue, rows 100-119 (40, 66, 159), rows 62-67 (64, 158, 72).
     let f = render(
         "football_field_human",
         3,
@@ -113,13 +116,24 @@ fn lod_false_colours_put_geometry_near_and_the_slice_far() -> anyhow::Result<()>
         &overrides(TEST_BLADES_PER_M2),
         1,
     )?;
+    let rows = |y0: u32, n: u32| {
+        mean_color(
+            &grassbench::image::imageops::crop_imm(&f.image, 0, y0, TEST_SIZE.width, n)
+                .to_image(),
+        )
+    };
     let near = bottom_rows(&f.image, 8);
-    assert!(near[0] > near[1] && near[0] > near[2], "near: {near:?}");
-    let mid = mean_color(
-        &grassbench::image::imageops::crop_imm(&f.image, 0, 100, TEST_SIZE.width, 20).to_image(),
+    assert!(near[0] > 55.0, "near: no geometry (red): {near:?}");
+    let mid = rows(100, 20);
+    assert!(mid[2] > mid[0] && mid[2] > mid[1], "mid: {mid:?}");
+    let far = rows(62, 6);
+    assert!(far[1] > far[0] && far[1] > far[2], "far: {far:?}");
+    assert!(f.lod.geometry > 0 && f.lod.vertical_slices > 0 && f.lod.horizontal_slices > 0);
+    assert!(
+        f.lod.horizontal_slices > f.lod.vertical_slices,
+        "the horizontal slice holds the far field: {:?}",
+        f.lod
     );
-    assert!(mid[1] > mid[0] && mid[1] > mid[2], "far: {mid:?}");
-    assert!(f.lod.geometry > 0 && f.lod.horizontal_slices > 0);
     Ok(())
 }
 

@@ -93,6 +93,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
 pub mod barycentric;
+pub mod btf;
 pub mod cells;
 pub mod lod;
 pub mod params;
@@ -100,6 +101,7 @@ pub mod patch;
 pub mod quadtree;
 pub mod slice;
 pub mod texture;
+pub mod vertical;
 
 use glam::{Vec2, Vec3};
 use grassbench::camera::Aabb;
@@ -126,7 +128,7 @@ const INFO: TechniqueInfo = TechniqueInfo {
     paper: "Boulanger, Pattanaik, Bouatouch 2006: Rendering Grass in Real Time with Dynamic Light Sources",
     gpu_state: false,
     debug_views: &[
-        "LOD false colours (Fig. 12): geometry red, horizontal slice green (vertical slices blue in part 2)",
+        "LOD false colours (Fig. 12): geometry red, vertical slices blue, horizontal slice green",
         "patch orientation: one colour per mirrored version",
     ],
 };
@@ -168,8 +170,8 @@ pub struct ParamsUniform {
     pub lod: [f32; 4],
     /// Patch size, slice height (m), slice texture side, bake top (m).
     pub tile: [f32; 4],
-    /// Unit vector towards the scene's sun (for the slice bake); w unused.
-    pub sun: [f32; 4],
+    /// Vertical slices per axis, min_btf, max_btf; w unused.
+    pub btf: [f32; 4],
 }
 
 /// Mirror of the shader's `Cell` (one per geometry cell in a storage buffer, [`cells`]).
@@ -178,8 +180,18 @@ pub struct ParamsUniform {
 pub struct CellUniform {
     /// World (x, z) of the patch centre, mirror signs for x and z.
     pub center_signs: [f32; 4],
-    /// x = 1 when baking; yzw unused.
+    /// x = 1 when baking; then y = projection (0 top, 1 across x, 2 across z), z = the
+    /// slice's coordinate on its axis (m from the patch centre), w = side of the camera (±1).
     pub mode: [f32; 4],
+}
+
+impl CellUniform {
+    /// As instance attributes (the vertical slices' vertex buffer).
+    const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Self>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
+    };
 }
 
 /// One horizontal slice quad (instance of the slice pipeline).
@@ -206,7 +218,8 @@ impl SliceQuad {
 /// finer grain than the cell, since a cell may hold 20 000 blades).
 pub const BLOCKS: u32 = 4;
 
-/// Slice quads the buffer holds at first (it grows by powers of two).
+/// Slice quads (and cells with vertical slices) the buffers hold at first (they grow by powers
+/// of two).
 const INITIAL_QUADS: usize = 256;
 
 /// Tessellations of slice quads (quads per side), one draw each.
@@ -231,6 +244,7 @@ pub struct Boulanger {
     patch: Patch,
     blade_pipeline: wgpu::RenderPipeline,
     slice_pipeline: wgpu::RenderPipeline,
+    vslice_pipeline: wgpu::RenderPipeline,
     group1: wgpu::BindGroup,
     cell_layout: wgpu::BindGroupLayout,
     cell_group: wgpu::BindGroup,
@@ -243,11 +257,16 @@ pub struct Boulanger {
     blades: wgpu::Buffer,
     quad_buffer: wgpu::Buffer,
     quad_capacity: usize,
+    vcell_buffer: wgpu::Buffer,
+    vcell_capacity: usize,
     fixed_bytes: u64,
     // Per frame (update → prepare → encode).
     selection: Selection,
     geometry: Vec<GeometryCell>,
     quads: Vec<SliceQuad>,
+    /// Cells with vertical slices this frame, far to near, with their nearest distance.
+    vcells: Vec<(CellUniform, f32)>,
+    vcell_uniforms: Vec<CellUniform>,
     quad_groups: Vec<(u32, std::ops::Range<u32>)>,
     lod_blades: LodBlades,
     /// Opacity under which a blade is alpha-tested away whatever its texture (the shader's
@@ -259,8 +278,9 @@ pub struct Boulanger {
 }
 
 impl Boulanger {
-    /// GPU memory `new` will allocate: the patch, the slice textures, the orientation map
-    /// (one byte per cell), the blade texture and the per-frame buffers at their first size.
+    /// GPU memory `new` will allocate: the patch, the horizontal and vertical BTF arrays, the
+    /// orientation map (one byte per cell), the blade texture and the per-frame buffers at
+    /// their first size.
     pub fn estimate(
         scene: &grassbench::Scene,
         overrides: &toml::Table,
@@ -274,6 +294,12 @@ impl Boulanger {
         Ok([
             GpuEstimate::buffer((strata * strata).saturating_mul(blade)),
             GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
+            GpuEstimate::textures(btf::texture_bytes(
+                params.vslice_width,
+                params.vslice_height,
+                4 * params.vertical_slices,
+            )),
+            GpuEstimate::buffer((INITIAL_QUADS * std::mem::size_of::<CellUniform>()) as u64),
             GpuEstimate::textures(u64::from(grid.nx) * u64::from(grid.nz)),
             GpuEstimate::textures(texture::BYTES_BOUND),
             GpuEstimate::buffer(std::mem::size_of::<ParamsUniform>() as u64),
@@ -367,10 +393,12 @@ impl Boulanger {
                 params.slice_resolution as f32,
                 1.3 * tallest + 0.05,
             ],
-            sun: Vec3::from(scene.config.lights.sun_direction)
-                .normalize_or(Vec3::Y)
-                .extend(0.0)
-                .to_array(),
+            btf: [
+                params.vertical_slices as f32,
+                params.min_btf,
+                params.max_btf,
+                0.0,
+            ],
         };
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("boulanger params"),
@@ -450,11 +478,25 @@ impl Boulanger {
             ],
         });
         let cell_layout = cells::layout(device);
+        let array_texture = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: vf,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        };
         let slice_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("boulanger slice (group 2)"),
+            label: Some("boulanger slices (group 2)"),
             entries: &[
-                float_texture(1),
-                float_texture(2),
+                array_texture(1),
+                array_texture(2),
+                array_texture(5),
+                array_texture(6),
+                array_texture(7),
+                array_texture(8),
                 wgpu::BindGroupLayoutEntry {
                     binding: 3,
                     visibility: vf,
@@ -534,8 +576,31 @@ impl Boulanger {
                 )
             },
         );
-        let bake_target = Some(wgpu::ColorTargetState::from(slice::FORMAT));
-        let bake_targets = [bake_target.clone(), bake_target];
+        let vslice_pipeline = render_pipeline(
+            device,
+            &PipelineSpec {
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                ..spec(
+                    "boulanger vertical slices",
+                    &slice_pipeline_layout,
+                    "vs_vslice",
+                    "fs_vslice",
+                    &[Some(CellUniform::LAYOUT)],
+                )
+            },
+        );
+        // The BTF bake (Sec. 3.3): the blade shader in baking mode, three targets, 4x MSAA.
+        let refs_layout = btf::refs_layout(device);
+        let bake_layout = ctx.scene_gpu.pipeline_layout(
+            device,
+            "boulanger BTF bake",
+            &[&group1_layout, &cell_layout, &refs_layout],
+        );
+        let bake_target = Some(wgpu::ColorTargetState::from(btf::FORMAT));
+        let bake_targets = [bake_target.clone(), bake_target.clone(), bake_target];
         let bake_pipeline = render_pipeline(
             device,
             &PipelineSpec {
@@ -546,26 +611,49 @@ impl Boulanger {
                 },
                 targets: &bake_targets,
                 ..spec(
-                    "boulanger slice bake",
-                    &blade_layout,
-                    "vs_blade",
+                    "boulanger BTF bake",
+                    &bake_layout,
+                    "vs_bake",
                     "fs_bake",
                     &[],
                 )
             },
         );
-        let vertices = 2 * params.segments + 2;
-        let baked = slice::bake(
+        let bake_inputs = btf::BakeInputs {
+            pipeline: &bake_pipeline,
+            group1: &group1,
+            cell_layout: &cell_layout,
+            refs_layout: &refs_layout,
+            blades: &blades,
+            vertices: 2 * params.segments + 2,
+        };
+        let blade_count = patch.blades.len() as u32;
+        let (h_cells, h_refs, h_range) = slice::bake_layer(params.patch_size, blade_count);
+        let horizontal = btf::bake(
             ctx,
-            &slice::BakeInputs {
-                pipeline: &bake_pipeline,
-                group1: &group1,
-                cell_layout: &cell_layout,
-                blades: &blades,
-                blade_count: patch.blades.len() as u32,
-                vertices,
-                patch_size: params.patch_size,
-                resolution: params.slice_resolution,
+            &bake_inputs,
+            params.slice_resolution,
+            params.slice_resolution,
+            &btf::Layers {
+                cells: &h_cells,
+                refs: &h_refs,
+                ranges: std::slice::from_ref(&h_range),
+            },
+        )?;
+        let layout = vertical::SliceLayout {
+            per_axis: params.vertical_slices,
+            patch_size: params.patch_size,
+        };
+        let (v_refs, v_ranges) = layout.bake_refs(&patch.blades, params.gravity);
+        let verticals = btf::bake(
+            ctx,
+            &bake_inputs,
+            params.vslice_width,
+            params.vslice_height,
+            &btf::Layers {
+                cells: &layout.bake_cells(),
+                refs: &v_refs,
+                ranges: &v_ranges,
             },
         )?;
         let (orientation, orientation_bytes) =
@@ -576,11 +664,27 @@ impl Boulanger {
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&baked.color),
+                    resource: wgpu::BindingResource::TextureView(&horizontal.color),
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&baked.aux),
+                    resource: wgpu::BindingResource::TextureView(&horizontal.diffuse),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&horizontal.extra),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: wgpu::BindingResource::TextureView(&verticals.color),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 7,
+                    resource: wgpu::BindingResource::TextureView(&verticals.diffuse),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&verticals.extra),
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
@@ -600,6 +704,8 @@ impl Boulanger {
         );
         let quad_capacity = INITIAL_QUADS;
         let quad_buffer = quad_buffer(device, quad_capacity);
+        let vcell_capacity = INITIAL_QUADS;
+        let vcell_buffer = vcell_buffer(device, vcell_capacity);
         Ok(Self {
             lod,
             blades_per_patch: patch.blades.len() as u32,
@@ -608,6 +714,7 @@ impl Boulanger {
             patch,
             blade_pipeline,
             slice_pipeline,
+            vslice_pipeline,
             group1,
             cell_layout,
             cell_group,
@@ -619,8 +726,11 @@ impl Boulanger {
             blades,
             quad_buffer,
             quad_capacity,
+            vcell_buffer,
+            vcell_capacity,
             fixed_bytes: blade_bytes
-                + baked.bytes
+                + horizontal.bytes
+                + verticals.bytes
                 + orientation_bytes
                 + blade_texture_bytes
                 + std::mem::size_of::<ParamsUniform>() as u64,
@@ -628,6 +738,8 @@ impl Boulanger {
             selection: Selection::default(),
             geometry: Vec::new(),
             quads: Vec::new(),
+            vcells: Vec::new(),
+            vcell_uniforms: Vec::new(),
             quad_groups: Vec::new(),
             lod_blades: LodBlades::default(),
             alpha_floor: uniform.lod[3],
@@ -680,6 +792,15 @@ fn quad_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
     })
 }
 
+fn vcell_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("boulanger vertical slice cells"),
+        size: (capacity * std::mem::size_of::<CellUniform>()) as u64,
+        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
 impl GrassTechnique for Boulanger {
     fn info(&self) -> TechniqueInfo {
         INFO
@@ -694,18 +815,21 @@ impl GrassTechnique for Boulanger {
         let walk = Walk {
             frustum: camera.frustum(),
             eye: camera.eye,
-            cell_distance: self.params.max_geom,
+            // Cells (not macro-cells) wherever geometry or vertical slices may be drawn.
+            cell_distance: self.params.max_geom.max(self.params.max_btf),
             macro_factor: self.params.macro_factor,
         };
         let mut selection = std::mem::take(&mut self.selection);
         self.tree.select(&walk, &mut selection);
         self.geometry.clear();
         self.quads.clear();
+        self.vcells.clear();
         let grid = *self.tree.grid();
         let per_patch = f64::from(self.blades_per_patch);
         let (omega, lod) = (self.params.omega, self.lod);
         let mut geometry_blades = 0u64;
         let mut slice_blades = 0.0f64;
+        let mut vertical_blades = 0.0f64;
         for s in &selection.cells {
             let (i, j) = (s.rect.i0, s.rect.j0);
             if s.near < lod.max_geom {
@@ -769,6 +893,20 @@ impl GrassTechnique for Boulanger {
                 self.quads.push(self.slice_quad(s, 1));
                 let d = 0.5 * (s.near + s.far);
                 slice_blades += f64::from(s.density) * per_patch * f64::from(lod.w_hs(d));
+                // The vertical slices where Eq. 3 can give them a share (Sec. 3.3).
+                if s.near < lod.max_btf {
+                    let centre = grid.cell_min(i, j) + Vec2::splat(0.5 * grid.cell);
+                    let signs = Orientation::of_cell(self.seed, i, j).signs();
+                    self.vcells.push((
+                        CellUniform {
+                            center_signs: [centre.x, centre.y, signs.x, signs.y],
+                            mode: [0.0; 4],
+                        },
+                        s.near,
+                    ));
+                    vertical_blades +=
+                        f64::from(s.density) * per_patch * f64::from(lod.w_vs(d));
+                }
             }
         }
         for s in &selection.macro_cells {
@@ -782,6 +920,9 @@ impl GrassTechnique for Boulanger {
         // (18 % faster here, thanks to early depth rejection) faint near blades hid whole
         // cells drawn after them, which showed as cell-sized blotches.
         self.geometry.sort_by(|a, b| b.near.total_cmp(&a.near));
+        self.vcells.sort_by(|a, b| b.1.total_cmp(&a.1));
+        self.vcell_uniforms.clear();
+        self.vcell_uniforms.extend(self.vcells.iter().map(|c| c.0));
         self.pages = self
             .paging
             .draws(self.geometry.iter().map(|c| c.ranges.as_slice()));
@@ -801,7 +942,7 @@ impl GrassTechnique for Boulanger {
         }
         self.lod_blades = LodBlades {
             geometry: geometry_blades,
-            vertical_slices: 0,
+            vertical_slices: vertical_blades.round() as u64,
             horizontal_slices: slice_blades.round() as u64,
         };
         Ok(())
@@ -833,6 +974,17 @@ impl GrassTechnique for Boulanger {
             self.quad_capacity = self.quads.len().next_power_of_two();
             self.quad_buffer = quad_buffer(device, self.quad_capacity);
         }
+        if self.vcell_uniforms.len() > self.vcell_capacity {
+            self.vcell_capacity = self.vcell_uniforms.len().next_power_of_two();
+            self.vcell_buffer = vcell_buffer(device, self.vcell_capacity);
+        }
+        if !self.vcell_uniforms.is_empty() {
+            gpu.queue.write_buffer(
+                &self.vcell_buffer,
+                0,
+                bytemuck::cast_slice(&self.vcell_uniforms),
+            );
+        }
         if !self.geometry.is_empty() {
             let uniforms: Vec<CellUniform> = self.geometry.iter().map(|c| c.uniform).collect();
             gpu.queue
@@ -857,6 +1009,18 @@ impl GrassTechnique for Boulanger {
                 pass.draw(0..tess * tess * 6, range.clone());
                 draws += 1;
             }
+        }
+        if !self.vcell_uniforms.is_empty() {
+            let mut pass = encoder.render_pass("vertical_slices");
+            pass.set_pipeline(&self.vslice_pipeline);
+            pass.set_bind_group(1, &self.group1, &[]);
+            pass.set_bind_group(2, &self.slice_group, &[]);
+            pass.set_vertex_buffer(0, self.vcell_buffer.slice(..));
+            pass.draw(
+                0..12 * self.params.vertical_slices,
+                0..self.vcell_uniforms.len() as u32,
+            );
+            draws += 1;
         }
         if !self.geometry.is_empty() {
             let mut pass = encoder.render_pass("geometry");
@@ -887,12 +1051,15 @@ impl GrassTechnique for Boulanger {
                 + self.lod_blades.vertical_slices
                 + self.lod_blades.horizontal_slices,
             triangles: self.lod_blades.geometry * u64::from(2 * self.params.segments)
-                + quad_triangles,
+                + quad_triangles
+                + self.vcell_uniforms.len() as u64 * u64::from(4 * self.params.vertical_slices),
             draw_calls: (self.pages.iter().map(|p| p.draws.len()).sum::<usize>()
-                + self.quad_groups.len()) as u64,
+                + self.quad_groups.len()
+                + usize::from(!self.vcell_uniforms.is_empty())) as u64,
             gpu_bytes: self.fixed_bytes
                 + self.cell_capacity as u64 * cells::CELL_BYTES
-                + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64,
+                + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64
+                + (self.vcell_capacity * std::mem::size_of::<CellUniform>()) as u64,
         }
     }
 

@@ -36,7 +36,7 @@ pub struct Params {
     pub min_geom: f32,
     /// No geometry beyond this distance, m.
     pub max_geom: f32,
-    /// Vertical slices at full weight up to this distance, m (drawn in part 2).
+    /// Vertical slices at full weight up to this distance, m.
     pub min_btf: f32,
     /// No vertical slices beyond this distance, m.
     pub max_btf: f32,
@@ -50,6 +50,12 @@ pub struct Params {
     pub alpha_threshold: f32,
     /// Side of the horizontal slice texture, texels.
     pub slice_resolution: u32,
+    /// Vertical slices across each horizontal axis of a patch (Sec. 3.3; the paper's 10).
+    pub vertical_slices: u32,
+    /// Width of a vertical slice's BTF texture, texels (along the patch side).
+    pub vslice_width: u32,
+    /// Height of a vertical slice's BTF texture, texels (the paper's slices are 512 x 64).
+    pub vslice_height: u32,
     /// Height of the horizontal slice above the ground, as a fraction of the tallest blade.
     pub slice_height: f32,
     /// Largest launch angle of a blade's particle from the vertical, radians.
@@ -79,6 +85,9 @@ impl Default for Params {
             transparency: Transparency::Blend,
             alpha_threshold: 0.1,
             slice_resolution: 512,
+            vertical_slices: 10,
+            vslice_width: 256,
+            vslice_height: 64,
             slice_height: 0.2,
             max_tilt: 0.4,
             gravity: 0.6,
@@ -158,6 +167,20 @@ impl TechniqueParams for Params {
                 "a power of two (the mip chain halves it exactly)",
             ));
         }
+        check_int("boulanger.vertical_slices", self.vertical_slices, 1..=32)?;
+        for (name, v) in [
+            ("boulanger.vslice_width", self.vslice_width),
+            ("boulanger.vslice_height", self.vslice_height),
+        ] {
+            check_int(name, v, 8..=2048)?;
+            if !v.is_power_of_two() {
+                return Err(Error::param(
+                    name,
+                    v,
+                    "a power of two (the mip chain halves it exactly)",
+                ));
+            }
+        }
         check("boulanger.slice_height", self.slice_height, 0.0..=1.0)?;
         check("boulanger.max_tilt", self.max_tilt, 0.0..=1.5)?;
         check("boulanger.gravity", self.gravity, 0.0..=1.9)?;
@@ -185,6 +208,9 @@ mod tests {
         bad(&|p| p.max_btf = 5.0, "boulanger.max_btf");
         bad(&|p| p.blades_per_m2 = 9e6, "boulanger.blades_per_m2");
         bad(&|p| p.segments = 0, "boulanger.segments");
+        bad(&|p| p.vertical_slices = 0, "boulanger.vertical_slices");
+        bad(&|p| p.vslice_width = 100, "boulanger.vslice_width");
+        bad(&|p| p.vslice_height = 1 << 20, "boulanger.vslice_height");
         let mut t = toml::Table::new();
         t.insert("transparency".into(), "alpha_to_coverage".into());
         let p: Params = grassbench::params::resolve("boulanger", &t).unwrap();
