@@ -103,7 +103,8 @@ fn draws_a_believable_field_on_football_field_and_meadow() -> anyhow::Result<()>
 }
 
 #[test]
-fn lod_false_colours_put_geometry_near_vertical_slices_mid_and_the_slice_far() -> anyhow::Result<()> {
+fn lod_false_colours_put_geometry_near_vertical_slices_mid_and_the_slice_far() -> anyhow::Result<()>
+{
     // Fig. 12's debug view on the walker view of the pitch at 320x180: the bottom rows
     // (2.5-3.5 m away) are geometry (red), the middle of the image (4-30 m) the vertical slices
     // (blue), the band just under the horizon (beyond max_btf = 30 m) the horizontal slice
@@ -118,8 +119,7 @@ fn lod_false_colours_put_geometry_near_vertical_slices_mid_and_the_slice_far() -
     )?;
     let rows = |y0: u32, n: u32| {
         mean_color(
-            &grassbench::image::imageops::crop_imm(&f.image, 0, y0, TEST_SIZE.width, n)
-                .to_image(),
+            &grassbench::image::imageops::crop_imm(&f.image, 0, y0, TEST_SIZE.width, n).to_image(),
         )
     };
     let near = bottom_rows(&f.image, 8);

@@ -136,25 +136,6 @@ pub fn bake(
         });
     }
     let levels = levels(width, height);
-    let final_texture = |label, layers| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: levels,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        })
-    };
     let multisampled = |label, format| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
@@ -171,19 +152,11 @@ pub fn bake(
             view_formats: &[],
         })
     };
-    let textures = [
-        final_texture("boulanger BTF colour", count),
-        final_texture("boulanger BTF diffuse", count),
-        final_texture("boulanger BTF extra", count),
-    ];
+    let textures = create_textures(device, width, height, count);
     // Each layer is resolved and mip-mapped in a single-layer texture, then copied into its
     // layer: resolving or rendering into a layer of an array texture is not reliable on every
     // driver (on lavapipe every layer's resolve landed in layer 0).
-    let scratch = [
-        final_texture("boulanger BTF colour (layer)", 1),
-        final_texture("boulanger BTF diffuse (layer)", 1),
-        final_texture("boulanger BTF extra (layer)", 1),
-    ];
+    let scratch = create_textures(device, width, height, 1);
     let ms = [
         multisampled("boulanger BTF colour (msaa)", FORMAT),
         multisampled("boulanger BTF diffuse (msaa)", FORMAT),
@@ -223,6 +196,7 @@ pub fn bake(
         }],
     });
 
+    let mips = MipPipeline::new(ctx);
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("boulanger BTF bake"),
     });
@@ -269,7 +243,7 @@ pub fn bake(
             pass.draw(0..inputs.vertices, range.clone());
         }
         drop(pass);
-        build_mips(ctx, &mut encoder, &scratch, levels);
+        mips.build(ctx, &mut encoder, &scratch, levels);
         for (from, to) in scratch.iter().zip(&textures) {
             for level in 0..levels {
                 encoder.copy_texture_to_texture(
@@ -300,19 +274,57 @@ pub fn bake(
     }
     ctx.gpu.queue.submit([encoder.finish()]);
 
+    Ok(wrap(textures, width, height, count))
+}
+
+/// The three textures (colour, diffuse, extra) of `layers` layers with full mip chains.
+pub fn create_textures(
+    device: &wgpu::Device,
+    width: u32,
+    height: u32,
+    layers: u32,
+) -> [wgpu::Texture; 3] {
+    [
+        "boulanger BTF colour",
+        "boulanger BTF diffuse",
+        "boulanger BTF extra",
+    ]
+    .map(|label| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: levels(width, height),
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FORMAT,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        })
+    })
+}
+
+/// The array views of three textures made by [`create_textures`].
+pub fn wrap(textures: [wgpu::Texture; 3], width: u32, height: u32, layers: u32) -> BtfTextures {
     let array_view = |t: &wgpu::Texture| {
         t.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         })
     };
-    Ok(BtfTextures {
+    BtfTextures {
         color: array_view(&textures[0]),
         diffuse: array_view(&textures[1]),
         extra: array_view(&textures[2]),
-        bytes: texture_bytes(width, height, count),
+        bytes: texture_bytes(width, height, layers),
         textures,
-    })
+    }
 }
 
 /// A 2D view of one layer at one mip level.
@@ -327,118 +339,137 @@ fn layer_view(t: &wgpu::Texture, layer: u32, level: u32) -> wgpu::TextureView {
     })
 }
 
-/// Each level the 2x2 box average of the one above (`shaders/mip.wgsl`), of single-layer
-/// textures.
-fn build_mips(
-    ctx: &InitContext<'_>,
-    encoder: &mut wgpu::CommandEncoder,
-    textures: &[wgpu::Texture; 3],
-    levels: u32,
-) {
-    let device = &ctx.gpu.device;
-    let texture_entry = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: true },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    };
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("boulanger mip (group 1)"),
-        entries: &[
-            texture_entry(0),
-            texture_entry(1),
-            texture_entry(3),
-            wgpu::BindGroupLayoutEntry {
-                binding: 2,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
+/// The mip chain's pipeline (`shaders/mip.wgsl`), made once per bake.
+struct MipPipeline {
+    layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl MipPipeline {
+    fn new(ctx: &InitContext<'_>) -> Self {
+        let device = &ctx.gpu.device;
+        let texture_entry = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
             },
-        ],
-    });
-    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("boulanger mip"),
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        ..Default::default()
-    });
-    let module = shaders::module(device, "boulanger mip", MIP_SHADER);
-    let pipeline_layout = ctx
-        .scene_gpu
-        .pipeline_layout(device, "boulanger mip", &[&layout]);
-    let target = Some(wgpu::ColorTargetState::from(FORMAT));
-    let targets = [target.clone(), target.clone(), target];
-    let pipeline = render_pipeline(
-        device,
-        &PipelineSpec {
-            label: "boulanger mip",
-            layout: &pipeline_layout,
-            module: &module,
-            vertex: "vs_mip",
-            fragment: "fs_mip",
-            buffers: &[],
-            primitive: Default::default(),
-            depth: None,
-            multisample: Default::default(),
-            targets: &targets,
-        },
-    );
-    {
-        for level in 1..levels {
-            let src = textures.each_ref().map(|t| layer_view(t, 0, level - 1));
-            let dst = textures.each_ref().map(|t| layer_view(t, 0, level));
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("boulanger mip"),
-                layout: &layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&src[0]),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&src[1]),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::TextureView(&src[2]),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::Sampler(&sampler),
-                    },
-                ],
-            });
-            let attachments: Vec<_> = dst
-                .iter()
-                .map(|view| {
-                    Some(wgpu::RenderPassColorAttachment {
-                        view,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                            store: wgpu::StoreOp::Store,
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("boulanger mip (group 1)"),
+            entries: &[
+                texture_entry(0),
+                texture_entry(1),
+                texture_entry(3),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("boulanger mip"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let module = shaders::module(device, "boulanger mip", MIP_SHADER);
+        let pipeline_layout = ctx
+            .scene_gpu
+            .pipeline_layout(device, "boulanger mip", &[&layout]);
+        let target = Some(wgpu::ColorTargetState::from(FORMAT));
+        let targets = [target.clone(), target.clone(), target];
+        let pipeline = render_pipeline(
+            device,
+            &PipelineSpec {
+                label: "boulanger mip",
+                layout: &pipeline_layout,
+                module: &module,
+                vertex: "vs_mip",
+                fragment: "fs_mip",
+                buffers: &[],
+                primitive: Default::default(),
+                depth: None,
+                multisample: Default::default(),
+                targets: &targets,
+            },
+        );
+        Self {
+            layout,
+            sampler,
+            pipeline,
+        }
+    }
+
+    /// Each level the 2x2 box average of the one above, of single-layer textures.
+    fn build(
+        &self,
+        ctx: &InitContext<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        textures: &[wgpu::Texture; 3],
+        levels: u32,
+    ) {
+        let device = &ctx.gpu.device;
+        let (layout, sampler, pipeline) = (&self.layout, &self.sampler, &self.pipeline);
+        {
+            for level in 1..levels {
+                let src = textures.each_ref().map(|t| layer_view(t, 0, level - 1));
+                let dst = textures.each_ref().map(|t| layer_view(t, 0, level));
+                let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("boulanger mip"),
+                    layout: &layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(&src[0]),
                         },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(&src[1]),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: wgpu::BindingResource::TextureView(&src[2]),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(&sampler),
+                        },
+                    ],
+                });
+                let attachments: Vec<_> = dst
+                    .iter()
+                    .map(|view| {
+                        Some(wgpu::RenderPassColorAttachment {
+                            view,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })
                     })
-                })
-                .collect();
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("boulanger mip"),
-                color_attachments: &attachments,
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &ctx.scene_gpu.bind_group, &[]);
-            pass.set_bind_group(1, &group, &[]);
-            pass.draw(0..3, 0..1);
+                    .collect();
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("boulanger mip"),
+                    color_attachments: &attachments,
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &ctx.scene_gpu.bind_group, &[]);
+                pass.set_bind_group(1, &group, &[]);
+                pass.draw(0..3, 0..1);
+            }
         }
     }
 }

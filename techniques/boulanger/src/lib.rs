@@ -94,6 +94,7 @@
 
 pub mod barycentric;
 pub mod btf;
+pub mod cache;
 pub mod cells;
 pub mod lod;
 pub mod params;
@@ -259,6 +260,8 @@ pub struct Boulanger {
     quad_capacity: usize,
     vcell_buffer: wgpu::Buffer,
     vcell_capacity: usize,
+    btf_outcome: [cache::Outcome; 2],
+    btf_seconds: f64,
     fixed_bytes: u64,
     // Per frame (update → prepare → encode).
     selection: Selection,
@@ -336,18 +339,7 @@ impl Boulanger {
                 ),
             ));
         }
-        let density = params.effective_blades_per_m2(ctx.scene.config.grass.density);
-        let strata = Patch::strata_for(params.patch_size, density);
-        let patch = Patch::new(
-            params.patch_size,
-            strata,
-            BLOCKS,
-            grass,
-            patch::BladeShape {
-                max_tilt: params.max_tilt,
-            },
-            seed,
-        );
+        let patch = build_patch(&params, scene);
         let tallest = grass.height[1];
         let (overhang, reach_up) = (1.5 * tallest, 1.2 * tallest);
         let tree = Quadtree::build(&scene.terrain, grid, overhang, reach_up);
@@ -364,42 +356,7 @@ impl Boulanger {
             usage: wgpu::BufferUsages::STORAGE,
         });
         let a2c = params.transparency == Transparency::AlphaToCoverage;
-        let uniform = ParamsUniform {
-            color_root: Vec3::from(grass.color_root)
-                .extend(grass.color_variation)
-                .to_array(),
-            color_tip: Vec3::from(grass.color_tip)
-                .extend(params.translucency)
-                .to_array(),
-            blade: [
-                params.segments as f32,
-                params.gravity,
-                params.wind_response,
-                params.ao_root,
-            ],
-            lod: [
-                params.min_geom,
-                params.max_geom,
-                params.omega,
-                if a2c {
-                    1.0 / 255.0
-                } else {
-                    params.alpha_threshold
-                },
-            ],
-            tile: [
-                params.patch_size,
-                params.slice_height * tallest,
-                params.slice_resolution as f32,
-                1.3 * tallest + 0.05,
-            ],
-            btf: [
-                params.vertical_slices as f32,
-                params.min_btf,
-                params.max_btf,
-                0.0,
-            ],
-        };
+        let uniform = params_uniform(&params, grass);
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("boulanger params"),
             contents: bytemuck::bytes_of(&uniform),
@@ -627,35 +584,47 @@ impl Boulanger {
             blades: &blades,
             vertices: 2 * params.segments + 2,
         };
+        let started = std::time::Instant::now();
         let blade_count = patch.blades.len() as u32;
-        let (h_cells, h_refs, h_range) = slice::bake_layer(params.patch_size, blade_count);
-        let horizontal = btf::bake(
-            ctx,
-            &bake_inputs,
-            params.slice_resolution,
-            params.slice_resolution,
-            &btf::Layers {
-                cells: &h_cells,
-                refs: &h_refs,
-                ranges: std::slice::from_ref(&h_range),
-            },
-        )?;
-        let layout = vertical::SliceLayout {
-            per_axis: params.vertical_slices,
-            patch_size: params.patch_size,
-        };
-        let (v_refs, v_ranges) = layout.bake_refs(&patch.blades, params.gravity);
-        let verticals = btf::bake(
-            ctx,
-            &bake_inputs,
-            params.vslice_width,
-            params.vslice_height,
-            &btf::Layers {
-                cells: &layout.bake_cells(),
-                refs: &v_refs,
-                ranges: &v_ranges,
-            },
-        )?;
+        let [h_key, v_key] = bake_keys_of(&params, &uniform, &patch);
+        let [h_dims, v_dims] = btf_dims(&params);
+        let folder = cache::folder(&params.btf_cache);
+        let (horizontal, h_outcome) =
+            cache::load_or_bake(ctx.gpu, folder.as_deref(), h_key, h_dims, || {
+                let (cells, refs, range) = slice::bake_layer(params.patch_size, blade_count);
+                btf::bake(
+                    ctx,
+                    &bake_inputs,
+                    h_dims.width,
+                    h_dims.height,
+                    &btf::Layers {
+                        cells: &cells,
+                        refs: &refs,
+                        ranges: std::slice::from_ref(&range),
+                    },
+                )
+            })?;
+        let (verticals, v_outcome) =
+            cache::load_or_bake(ctx.gpu, folder.as_deref(), v_key, v_dims, || {
+                let layout = vertical::SliceLayout {
+                    per_axis: params.vertical_slices,
+                    patch_size: params.patch_size,
+                };
+                let (refs, ranges) = layout.bake_refs(&patch.blades, params.gravity);
+                btf::bake(
+                    ctx,
+                    &bake_inputs,
+                    v_dims.width,
+                    v_dims.height,
+                    &btf::Layers {
+                        cells: &layout.bake_cells(),
+                        refs: &refs,
+                        ranges: &ranges,
+                    },
+                )
+            })?;
+        ctx.gpu.wait_idle("baking the BTFs")?;
+        let btf_seconds = started.elapsed().as_secs_f64();
         let (orientation, orientation_bytes) =
             slice::orientation_map(device, &ctx.gpu.queue, &grid, seed);
         let slice_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -728,6 +697,8 @@ impl Boulanger {
             quad_capacity,
             vcell_buffer,
             vcell_capacity,
+            btf_outcome: [h_outcome, v_outcome],
+            btf_seconds,
             fixed_bytes: blade_bytes
                 + horizontal.bytes
                 + verticals.bytes
@@ -790,6 +761,115 @@ fn quad_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
         usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
+}
+
+/// The patch of a scene (Sec. 3.1).
+fn build_patch(params: &Params, scene: &grassbench::Scene) -> Patch {
+    let grass = &scene.config.grass;
+    let density = params.effective_blades_per_m2(grass.density);
+    let strata = Patch::strata_for(params.patch_size, density);
+    Patch::new(
+        params.patch_size,
+        strata,
+        BLOCKS,
+        grass,
+        patch::BladeShape {
+            max_tilt: params.max_tilt,
+        },
+        scene.config.seed,
+    )
+}
+
+/// The shaders' uniform block.
+fn params_uniform(params: &Params, grass: &grassbench::grass::GrassConfig) -> ParamsUniform {
+    let a2c = params.transparency == Transparency::AlphaToCoverage;
+    let tallest = grass.height[1];
+    ParamsUniform {
+        color_root: Vec3::from(grass.color_root)
+            .extend(grass.color_variation)
+            .to_array(),
+        color_tip: Vec3::from(grass.color_tip)
+            .extend(params.translucency)
+            .to_array(),
+        blade: [
+            params.segments as f32,
+            params.gravity,
+            params.wind_response,
+            params.ao_root,
+        ],
+        lod: [
+            params.min_geom,
+            params.max_geom,
+            params.omega,
+            if a2c {
+                1.0 / 255.0
+            } else {
+                params.alpha_threshold
+            },
+        ],
+        tile: [
+            params.patch_size,
+            params.slice_height * tallest,
+            params.slice_resolution as f32,
+            1.3 * tallest + 0.05,
+        ],
+        btf: [
+            params.vertical_slices as f32,
+            params.min_btf,
+            params.max_btf,
+            0.0,
+        ],
+    }
+}
+
+/// Sizes of the two BTFs: the horizontal slice's one layer, the vertical slices' `4N`.
+fn btf_dims(params: &Params) -> [cache::Dims; 2] {
+    [
+        cache::Dims {
+            width: params.slice_resolution,
+            height: params.slice_resolution,
+            layers: 1,
+        },
+        cache::Dims {
+            width: params.vslice_width,
+            height: params.vslice_height,
+            layers: 4 * params.vertical_slices,
+        },
+    ]
+}
+
+/// Cache keys of the two bakes (horizontal, vertical): the uniform block with what the bake
+/// does not read (LOD distances, alpha threshold, wind response, slice height) zeroed, and the
+/// patch.
+fn bake_keys_of(params: &Params, uniform: &ParamsUniform, patch: &Patch) -> [u64; 2] {
+    let mut u = *uniform;
+    u.lod = [0.0; 4];
+    u.blade[2] = 0.0;
+    u.tile[1] = 0.0;
+    u.btf[1] = 0.0;
+    u.btf[2] = 0.0;
+    let blades = bytemuck::cast_slice(&patch.blades);
+    let [h, v] = btf_dims(params);
+    [
+        cache::bake_key("horizontal", h, bytemuck::bytes_of(&u), blades),
+        cache::bake_key("vertical", v, bytemuck::bytes_of(&u), blades),
+    ]
+}
+
+impl Boulanger {
+    /// The BTF cache keys (horizontal, vertical) `new` would use on `scene` with `overrides`
+    /// (CPU only).
+    pub fn bake_keys(scene: &grassbench::Scene, overrides: &toml::Table) -> Result<[u64; 2]> {
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let patch = build_patch(&params, scene);
+        let uniform = params_uniform(&params, &scene.config.grass);
+        Ok(bake_keys_of(&params, &uniform, &patch))
+    }
+
+    /// How the BTFs were obtained at start-up (horizontal, vertical) and the seconds it took.
+    pub fn btf_outcome(&self) -> (&[cache::Outcome; 2], f64) {
+        (&self.btf_outcome, self.btf_seconds)
+    }
 }
 
 fn vcell_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
@@ -904,8 +984,7 @@ impl GrassTechnique for Boulanger {
                         },
                         s.near,
                     ));
-                    vertical_blades +=
-                        f64::from(s.density) * per_patch * f64::from(lod.w_vs(d));
+                    vertical_blades += f64::from(s.density) * per_patch * f64::from(lod.w_vs(d));
                 }
             }
         }

@@ -248,11 +248,17 @@ mod tests {
                     }
                     let t = dth / density;
                     let o = vertical_opacity(w_g, f, t, 0.0);
-                    assert!(o == 0.0 || geometry_opacity(w_g, t, 0.0) == 0.0, "drawn twice");
+                    assert!(
+                        o == 0.0 || geometry_opacity(w_g, t, 0.0) == 0.0,
+                        "drawn twice"
+                    );
                     v += usize::from(o > 0.5);
                 }
                 let v = v as f32 / n as f32;
-                assert!((v - density * LOD.w_vs(d)).abs() < 1e-3, "d {d} ρ {density}: {v}");
+                assert!(
+                    (v - density * LOD.w_vs(d)).abs() < 1e-3,
+                    "d {d} ρ {density}: {v}"
+                );
             }
         }
     }

@@ -56,6 +56,9 @@ pub struct Params {
     pub vslice_width: u32,
     /// Height of a vertical slice's BTF texture, texels (the paper's slices are 512 x 64).
     pub vslice_height: u32,
+    /// Folder of the BTF disk cache: empty for `$XDG_CACHE_HOME/grassbench/boulanger` (or
+    /// `~/.cache/...`), `off` to bake at every start ([`crate::cache`]).
+    pub btf_cache: String,
     /// Height of the horizontal slice above the ground, as a fraction of the tallest blade.
     pub slice_height: f32,
     /// Largest launch angle of a blade's particle from the vertical, radians.
@@ -88,6 +91,7 @@ impl Default for Params {
             vertical_slices: 10,
             vslice_width: 256,
             vslice_height: 64,
+            btf_cache: String::new(),
             slice_height: 0.2,
             max_tilt: 0.4,
             gravity: 0.6,

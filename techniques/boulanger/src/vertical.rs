@@ -129,9 +129,8 @@ impl SliceLayout {
 /// Centres of the patch and its eight neighbours, rows of z then x (the order of the bake's
 /// cells).
 pub fn neighbours(patch_size: f32) -> impl Iterator<Item = Vec2> {
-    (-1..=1).flat_map(move |dz| {
-        (-1..=1).map(move |dx| Vec2::new(dx as f32, dz as f32) * patch_size)
-    })
+    (-1..=1)
+        .flat_map(move |dz| (-1..=1).map(move |dx| Vec2::new(dx as f32, dz as f32) * patch_size))
 }
 
 /// Horizontal bounding box (min, max of x and z, from the patch centre) of a blade standing
@@ -219,7 +218,11 @@ mod tests {
                     assert!(list.contains(&id), "layer {layer}: blade {b} missing");
                 }
             }
-            assert!(list.len() < 9 * 400 / 3, "layer {layer}: {} blades", list.len());
+            assert!(
+                list.len() < 9 * 400 / 3,
+                "layer {layer}: {} blades",
+                list.len()
+            );
         }
     }
 }
