@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 pub use background::Background;
 pub use gpu::SceneGpu;
-pub use lighting::{LightsConfig, SkyConfig};
+pub use lighting::{LightKey, LightState, LightsConfig, PointLight, SkyConfig};
 
 use crate::camera::{Camera, CameraConfig};
 use crate::grass::{BladeField, GrassConfig};

@@ -257,26 +257,9 @@ fn a_slice_at_its_own_light_and_view_matches_the_geometric_patch() -> anyhow::Re
     Ok(())
 }
 
-#[test]
-fn a_moving_light_changes_the_image_continuously() -> anyhow::Result<()> {
-    // The sun rises in 5° steps from 27° to 62° above the horizon in the plane l_z = 0 (the
-    // border between the Z+ and Z− quadrants), past 45° where the nearest sample switches
-    // from X+ to Y+, over the mid band (vertical slices) and the far field. Appendix A's
-    // interpolation makes the image change by about the same amount at every step; picking
-    // the nearest sample instead would jump at 45°. Measured mean absolute change per step
-    // on lavapipe (320x180, 8-bit levels): 0.49, 0.53, 0.56, 0.58, 0.59, 0.59, 0.57, the
-    // largest 1.04x the median. Bound: the largest step under 2x the median.
-    let overrides = params(&[
-        ("blades_per_m2", 5_000.0.into()),
-        ("btf_cache", "off".into()),
-    ]);
-    let mut images = Vec::new();
-    for k in 0..8 {
-        let elevation = (27.0 + 5.0 * k as f32).to_radians();
-        let sun = [elevation.cos(), elevation.sin(), 0.0];
-        images.push(render_fixed(sun, TEST_SIZE, &overrides)?);
-    }
-    let steps: Vec<f64> = images
+/// Mean absolute change between consecutive images, in 8-bit levels.
+fn steps(images: &[image::RgbaImage]) -> Vec<f64> {
+    images
         .windows(2)
         .map(|w| {
             let (a, b) = (&w[0], &w[1]);
@@ -287,16 +270,172 @@ fn a_moving_light_changes_the_image_continuously() -> anyhow::Result<()> {
                 .sum::<f64>()
                 / a.as_raw().len() as f64
         })
-        .collect();
+        .collect()
+}
+
+/// Frames 0-7 of the fixed view with `lights` edited, in one harness (lights move at run time
+/// through their keyframes; the scene runs at 30 fps), wind calm.
+fn frames_with(
+    edit: &dyn Fn(&mut grassbench::scene::LightsConfig),
+    overrides: &toml::Table,
+) -> anyhow::Result<Vec<image::RgbaImage>> {
+    let base = fixed_view([0.5, 0.7, 0.3])?;
+    let mut config = base.config.clone();
+    edit(&mut config.lights);
+    let gpu = gpu()?;
+    let mut harness = Harness::new(
+        &gpu,
+        Scene::from_config(config, base.base_dir)?,
+        TEST_SIZE,
+        false,
+    )?;
+    let entry = grassbench_cli::registry::find("boulanger")?;
+    let mut t = harness.create(entry, overrides)?;
+    (0..8)
+        .map(|f| render_with(&mut harness, t.as_mut(), f))
+        .collect()
+}
+
+fn key(frame: f32, value: [f32; 3]) -> grassbench::scene::LightKey {
+    grassbench::scene::LightKey {
+        time: frame / 30.0,
+        value,
+    }
+}
+
+#[test]
+fn a_moving_light_changes_the_image_continuously() -> anyhow::Result<()> {
+    // The sun's keyframes take it from 27° to 62° above the horizon over frames 0-7, in the
+    // plane l_z = 0 (the border between the Z+ and Z− quadrants), past 45° where the nearest
+    // sample switches from X+ to Y+; the view is mostly vertical slices. Appendix A's
+    // interpolation makes the image change by about the same amount at every frame; picking
+    // the nearest sample instead would jump at 45°. Measured mean absolute change per frame
+    // on lavapipe (320x180, 8-bit levels): 0.95, 0.98, 1.01, 1.01, 0.99, 0.98, 0.95, the
+    // largest 1.02x the median. Bound: the largest step under 2x the median.
+    let overrides = params(&[("blades_per_m2", 5_000.0.into())]);
+    let (lo, hi) = (27f32.to_radians(), 62f32.to_radians());
+    let images = frames_with(
+        &|l| {
+            l.sun_keys = vec![
+                key(0.0, [lo.cos(), lo.sin(), 0.0]),
+                key(7.0, [hi.cos(), hi.sin(), 0.0]),
+            ]
+        },
+        &overrides,
+    )?;
+    let steps = steps(&images);
     let mut sorted = steps.clone();
     sorted.sort_by(f64::total_cmp);
     let median = sorted[sorted.len() / 2];
     let max = sorted[sorted.len() - 1];
     eprintln!(
-        "measured: change per 5° step {steps:.3?}, max / median {:.2}",
+        "measured: sun, change per frame {steps:.3?}, max / median {:.2}",
         max / median
     );
     assert!(median > 0.0, "the light does not change the image");
     assert!(max < 2.0 * median, "a jump: {steps:?}");
+    Ok(())
+}
+
+#[test]
+fn a_point_light_lights_the_slices_with_attenuation_and_moves_smoothly() -> anyhow::Result<()> {
+    // A point light 0.6 m above the mid band (3 m in front of the eye, vertical slices from
+    // 3.5 m), β = 1, crossing the view from x = -2 to 2 m over frames 0-7. Against the same
+    // frames without it: the grass brightens most in the rows nearest the light (image rows
+    // 110-160) and little on the far field (rows 90-100, 15-40 m away, where 1/(1 + βd²) is
+    // under 1/100); frame to frame it moves without jumps. Measured on lavapipe (sum of the
+    // RGB means, 8-bit levels): near rows +38.0, far rows +6.4; change per frame 1.22-1.49,
+    // the largest 1.2x the median.
+    let overrides = params(&[("blades_per_m2", 5_000.0.into())]);
+    let lit = frames_with(
+        &|l| {
+            l.point = Some(grassbench::scene::PointLight {
+                position: [0.0; 3],
+                color: [3.0, 2.6, 2.0],
+                attenuation: 1.0,
+                keys: vec![key(0.0, [-1.87, 0.6, 5.0]), key(7.0, [2.13, 0.6, 5.0])],
+            })
+        },
+        &overrides,
+    )?;
+    let dark = frames_with(&|_| {}, &overrides)?;
+    let rows = |img: &image::RgbaImage, y0: u32, y1: u32| {
+        grassbench::metrics::mean_color(
+            &image::imageops::crop_imm(img, 0, y0, img.width(), y1 - y0).to_image(),
+        )
+        .iter()
+        .sum::<f64>()
+    };
+    let near = rows(&lit[3], 110, 160) - rows(&dark[3], 110, 160);
+    let far = rows(&lit[3], 90, 100) - rows(&dark[3], 90, 100);
+    let steps = steps(&lit);
+    let mut sorted = steps.clone();
+    sorted.sort_by(f64::total_cmp);
+    let (median, max) = (sorted[sorted.len() / 2], sorted[sorted.len() - 1]);
+    eprintln!(
+        "measured: point light brightens near rows by {near:.1}, far rows by {far:.1}; change per frame {steps:.3?}"
+    );
+    assert!(
+        near > 10.0,
+        "the point light does not light the grass: {near:.1}"
+    );
+    assert!(
+        far < 0.25 * near,
+        "no attenuation: near {near:.1}, far {far:.1}"
+    );
+    assert!(median > 0.0 && max < 2.0 * median, "a jump: {steps:?}");
+    Ok(())
+}
+
+#[test]
+fn popping_across_the_lod_bands_with_and_without_the_seamless_transition() -> anyhow::Result<()> {
+    // A dolly of 0.25 m a frame from the walker's first view of the pitch: every LOD band
+    // (geometry to 3.5 m, vertical slices to 30 m, the horizontal slice beyond) slides
+    // towards the camera, so blades change representation in every frame. Frame-to-frame
+    // change divided by the reference's own (issue 9's target: seamless p95 at most 1.5).
+    // Measured on lavapipe at 320x180, 8 frames, 5 000 blades/m²: seamless (ω = 0.4) peak
+    // 0.92, p95 0.91; hard switch (ω = 0) peak 0.93, p95 0.93. The camera's own motion
+    // dominates the change at this size, so the two differ little; the hard switch must
+    // still not score better.
+    use grassbench::compare::{self, CameraMotion};
+    let gpu = gpu()?;
+    let scene = scene("football_field_human", 1.0)?;
+    let motion = CameraMotion::Dolly(0.25);
+    let reference = grassbench_cli::registry::find("reference")?;
+    let base = compare::frame_differences(
+        &gpu,
+        &scene,
+        reference,
+        &toml::Table::new(),
+        motion,
+        8,
+        TEST_SIZE,
+    )?;
+    let entry = grassbench_cli::registry::find("boulanger")?;
+    let blades = ("blades_per_m2", toml::Value::from(5_000.0));
+    let mut peaks = Vec::new();
+    for (name, omega) in [("seamless (ω = 0.4)", 0.4), ("hard switch (ω = 0)", 0.0)] {
+        let overrides = params(&[blades.clone(), ("omega", omega.into())]);
+        let diffs =
+            compare::frame_differences(&gpu, &scene, entry, &overrides, motion, 8, TEST_SIZE)?;
+        let s = compare::temporal_stability(motion, &diffs, &base);
+        eprintln!(
+            "measured: boulanger {name}: dolly popping peak {:.2} p95 {:.2}",
+            s.peak, s.p95
+        );
+        peaks.push((s.peak, s.p95));
+    }
+    let (seamless, hard) = (peaks[0], peaks[1]);
+    assert!(
+        seamless.1 <= 1.5,
+        "seamless popping p95 {:.2} over 1.5",
+        seamless.1
+    );
+    assert!(
+        hard.0 > seamless.0,
+        "without the transition the peak {:.2} is not above {:.2}",
+        hard.0,
+        seamless.0
+    );
     Ok(())
 }

@@ -164,13 +164,29 @@ fn btf_weights(light: vec3<f32>) -> Weights {
     return w;
 }
 
-// Sec. 3.3's Lambert for a BTF texel: K_d I_a + (sum of alpha_i C_i) I_d, the weights
-// renormalised per pixel (Appendix A), the ambient term darkened by the occlusion like the
-// blades' `shade_leaf`.
-fn btf_light(albedo: vec3<f32>, d_a: vec4<f32>, d_b: f32, w: Weights, ao: f32) -> vec3<f32> {
+// Sum of alpha_i C_i with the weights renormalised per pixel (Appendix A).
+fn btf_diffuse(d_a: vec4<f32>, d_b: f32, w: Weights) -> f32 {
     let sum = max(dot(w.a, vec4(1.0)) + w.b, 1e-6);
-    let diffuse = (dot(w.a, d_a) + w.b * d_b) / sum;
-    return albedo * (globals.ambient.rgb * ao + globals.sun_color.rgb * diffuse * mix(0.5, 1.0, ao));
+    return (dot(w.a, d_a) + w.b * d_b) / sum;
+}
+
+// Sec. 3.3's Lambert for a BTF texel at `world`: K_d I_a + (sum of alpha_i C_i) I_d for the sun
+// and, if the scene has one, for the point light with I_d / (1 + beta d^2), each with its own
+// weights; the ambient term darkened by the occlusion like the blades' `shade_leaf`.
+fn btf_light(albedo: vec3<f32>, d_a: vec4<f32>, d_b: f32, sun: Weights, point: Weights, world: vec3<f32>, ao: f32) -> vec3<f32> {
+    var direct = globals.sun_color.rgb * btf_diffuse(d_a, d_b, sun);
+    if (globals.point_color.w > 0.0) {
+        direct += point_light(world) * btf_diffuse(d_a, d_b, point);
+    }
+    return albedo * (globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao));
+}
+
+// A cell mirrored in x (z) sees the light mirrored: X+ and X- (Z+ and Z-) swap weights.
+fn mirror_weights(w: Weights, signs: vec2<f32>) -> Weights {
+    var m: Weights;
+    m.a = vec4(w.a.x, select(w.a.y, w.a.w, signs.x < 0.0), select(w.a.z, w.b, signs.y < 0.0), select(w.a.w, w.a.y, signs.x < 0.0));
+    m.b = select(w.b, w.a.z, signs.y < 0.0);
+    return m;
 }
 
 // ---- Geometric blades (Sec. 3.2) ----
@@ -385,9 +401,12 @@ struct SliceOut {
     // patchSize · (u, v) of Eq. 6: position in cells from the macro-cell's first cell.
     @location(1) cell_coord: vec2<f32>,
     @location(2) @interpolate(flat) first_cell: vec2<i32>,
-    // Appendix A's light weights (Y+, X+, Z+, X-; Z-) per vertex, for the unmirrored patch.
+    // Appendix A's light weights (Y+, X+, Z+, X-; Z-) per vertex, for the unmirrored patch:
+    // the sun's, then the point light's.
     @location(3) w_a: vec4<f32>,
     @location(4) w_b: f32,
+    @location(5) p_a: vec4<f32>,
+    @location(6) p_b: f32,
 }
 
 @vertex
@@ -408,6 +427,9 @@ fn vs_slice(@builtin(vertex_index) vertex: u32, quad: SliceQuad) -> SliceOut {
     let w = btf_weights(globals.sun_direction.xyz);
     out.w_a = w.a;
     out.w_b = w.b;
+    let p = btf_weights(globals.point_position.xyz - world);
+    out.p_a = p.a;
+    out.p_b = p.b;
     return out;
 }
 
@@ -450,12 +472,13 @@ fn fs_slice(in: SliceOut) -> @location(0) vec4<f32> {
     } else if (globals.frame.z == 2u) {
         albedo = orientation_color(signs);
     }
-    // A mirrored cell sees the light mirrored: X+ and X- (Z+ and Z-) swap weights.
-    var w: Weights;
-    w.a = vec4(in.w_a.x, select(in.w_a.y, in.w_a.w, signs.x < 0.0), 0.0, select(in.w_a.w, in.w_a.y, signs.x < 0.0));
-    w.a.z = select(in.w_a.z, in.w_b, signs.y < 0.0);
-    w.b = select(in.w_b, in.w_a.z, signs.y < 0.0);
-    let lit = btf_light(albedo, diffuse, extra.x, w, ao);
+    var sun: Weights;
+    sun.a = in.w_a;
+    sun.b = in.w_b;
+    var point: Weights;
+    point.a = in.p_a;
+    point.b = in.p_b;
+    let lit = btf_light(albedo, diffuse, extra.x, mirror_weights(sun, signs), mirror_weights(point, signs), in.world, ao);
     return vec4(apply_fog(lit, in.world), alpha);
 }
 
@@ -474,6 +497,8 @@ struct VSliceOut {
     @location(2) @interpolate(flat) layer: u32,
     @location(3) w_a: vec4<f32>,
     @location(4) w_b: f32,
+    @location(5) p_a: vec4<f32>,
+    @location(6) p_b: f32,
 }
 
 // Vertex `v` of a cell: quad `v / 6` (2N of them, across x and across z alternately, each axis
@@ -507,9 +532,13 @@ fn vs_vslice(@builtin(vertex_index) vertex: u32, cell: VCell) -> VSliceOut {
     let front = eye_along >= c;
     out.layer = 2u * (axis * n + i) + select(1u, 0u, front);
     // Appendix A per vertex, in the patch's frame.
-    let w = btf_weights(globals.sun_direction.xyz * vec3(signs.x, 1.0, signs.y));
+    let mirror = vec3(signs.x, 1.0, signs.y);
+    let w = btf_weights(globals.sun_direction.xyz * mirror);
     out.w_a = w.a;
     out.w_b = w.b;
+    let p = btf_weights((globals.point_position.xyz - world) * mirror);
+    out.p_a = p.a;
+    out.p_b = p.b;
     return out;
 }
 
@@ -539,9 +568,12 @@ fn fs_vslice(in: VSliceOut) -> @location(0) vec4<f32> {
     } else if (globals.frame.z == 2u) {
         albedo = vec3(0.3);
     }
-    var w: Weights;
-    w.a = in.w_a;
-    w.b = in.w_b;
-    let lit = btf_light(albedo, diffuse, extra.x, w, extra.z);
+    var sun: Weights;
+    sun.a = in.w_a;
+    sun.b = in.w_b;
+    var point: Weights;
+    point.a = in.p_a;
+    point.b = in.p_b;
+    let lit = btf_light(albedo, diffuse, extra.x, sun, point, in.world, extra.z);
     return vec4(apply_fog(lit, in.world), alpha);
 }

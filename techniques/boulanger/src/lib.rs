@@ -1,11 +1,16 @@
 //! # `boulanger`: geometry near, slices far, density thresholds in between
 //!
 //! Boulanger, Pattanaik and Bouatouch, *Rendering Grass in Real Time with Dynamic Light
-//! Sources* (2006; the transcript is `shared/seeds/001_15b45c4dc11230fe.txt`). Part 1 (issue 8)
-//! implemented here: geometric blades, the tiled and mirrored patch, density management, the LOD
-//! weights with their smooth transition, the quadtree terrain with macro-cells, the horizontal
-//! slice for far grass and both semi-transparency modes. Part 2 (issue 9) adds the vertical BTF
-//! slices; until then the horizontal slice takes the whole far share.
+//! Sources* (2006; the transcript is `shared/seeds/001_15b45c4dc11230fe.txt`). Part 1 (issue 8):
+//! geometric blades, the tiled and mirrored patch, density management, the LOD weights with
+//! their smooth transition, the quadtree terrain with macro-cells, the horizontal slice for far
+//! grass and both semi-transparency modes. Part 2 (issue 9) so far: the vertical slices of the
+//! mid band, the BTF pre-computation of every slice (five light directions x the slice's two
+//! view directions, K_d, alpha, density threshold) with its disk cache, Appendix A's spherical
+//! barycentric light interpolation, and the scene's lights moving at run time (keyframes of the
+//! sun and of a point light with Sec. 3.3's attenuation, in `[lights]`). Not yet: moving the
+//! lights from the UI, the shadows of Sec. 3.5 (projected blade shadows, the shadow-mask
+//! cylinder, the ambient occlusion map) and slices sheared with the wind.
 //!
 //! ## Algorithm
 //! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
@@ -40,18 +45,43 @@
 //!   block of the patch, the blades whose thresholds can pass there, a contiguous range since
 //!   each block is sorted by threshold; [`cells`] turns the ranges of all cells into instanced
 //!   draws, merging those that meet, so a run of cells drawn whole is one draw) and, where
-//!   geometry's weight is under 1, a horizontal slice. Farther
+//!   geometry's weight is under 1, a horizontal slice. Within `max_btf` cells stay single cells
+//!   and get the vertical slices too. Farther
 //!   away a node at least `macro_factor` times its side away is drawn whole as one horizontal
 //!   slice quad, tessellated to follow the ground.
-//! - **Horizontal slice** (Sec. 3.3, [`slice`]). Baked once at start-up with wgpu: an
-//!   orthographic top view of the patch and its 8 neighbours into two `Rgba16Float` textures
-//!   (unlit colour with coverage; diffuse factor, density threshold, occlusion), 4x MSAA
-//!   resolved, with
-//!   a box-filtered mip chain. Drawn over cells and macro-cells by texture repetition with the
+//! - **BTF pre-computation** (Sec. 3.3, Fig. 6, 7, 10, [`btf`], [`cache`]). At start-up every
+//!   slice is rendered from the geometric patch and its eight neighbours by an orthographic
+//!   camera whose near and far planes bound the slice's slab, with the blades' own vertex shader
+//!   in baking mode, 4x MSAA resolved into coverage: per layer (slice x view side) the colour
+//!   without lighting (`K_d`) with coverage (alpha), the two-sided diffuse factor for each of
+//!   the five light directions Y+, X+, Z+, X−, Z− (one pass: only the shading differs), the
+//!   density threshold and the occlusion, in three `Rgba16Float` 2D arrays with box-filtered
+//!   mips. The blades each vertical layer draws are listed on the CPU (those reaching its
+//!   slab). The result is cached on disk under a hash of everything the bake reads
+//!   (`$XDG_CACHE_HOME/grassbench/boulanger`, `btf_cache`); a damaged file is baked again.
+//! - **Vertical slices** (Sec. 3.3, [`vertical`], `vs_vslice`/`fs_vslice`). `vertical_slices`
+//!   (10) quads across x and as many across z per cell, static for any camera, one instanced
+//!   draw for all cells (far to near; within a cell each axis back to front, since they are
+//!   blended unsorted like the blades). The layer is chosen by the side the camera is on, in
+//!   the cell's mirrored frame. They draw the slices' share of each texel's blade like the
+//!   horizontal slice, times the far fade of Eq. 3 ([`lod`]), so the three representations
+//!   share every blade through part 1's weights and per-pixel thresholds (Fig. 12's debug
+//!   view shows them red, blue and green).
+//! - **Lighting** (Sec. 3.3, Appendix A, [`barycentric`]). Lambert with the scene's
+//!   directional sun and, if `[lights.point]` sets one, a point light with attenuation
+//!   `1/(1 + βd²)`; both follow their keyframes (`sun_keys`, `point.keys`) at run time. Slice
+//!   texels are lit `K_d I_a ao + Σ_lights (Σ α_i C_i) I_d`: the five diffuse samples weighted
+//!   by the spherical barycentric coordinates of the direction towards each light in the
+//!   patch's frame (Eq. 8-13, nine arc-cosines per light per vertex; for the point light they
+//!   vary across a slice), renormalised per pixel, the point light's attenuation per pixel. A
+//!   mirrored cell sees the light mirrored (X+ and X− swap, Z+ and Z−). The geometric blades
+//!   use the prelude's two-sided Lambert, which has the point light too.
+//! - **Horizontal slice** (Sec. 3.3, [`slice`]). One BTF layer (below): an orthographic top
+//!   view of the patch and its 8 neighbours. Drawn over cells and macro-cells by texture
+//!   repetition with the
 //!   patch orientation map of Eq. 6-7 so macro-cells keep each cell's mirror; lit per pixel
-//!   with the prelude's two-sided Lambert, whose diffuse factor is baked per texel for the
-//!   scene's sun (averaging normals instead made far grass far too bright; part 2's BTF bakes
-//!   five light directions so the light can move). Per pixel the texel's
+//!   from the BTF's baked, texel-averaged diffuse factors (averaging normals instead made far
+//!   grass far too bright). Per pixel the texel's
 //!   threshold is tested against the local density and geometry's share; where a pixel covers
 //!   many texels (minified more than about 1.4x) the single averaged threshold would be
 //!   meaningless, so the expected fraction `ρ · mean_t(1 − opacity_g)` of the uniformly spread
@@ -63,7 +93,8 @@
 //!   coverage on the 4x MSAA target (needs `--msaa`; refused without it).
 //! - **Wind.** The paper has no wind; here the shared wind pushes each geometric blade's
 //!   particle sideways (`wind_response` per m/s, plus a small per-blade flutter), so near blades
-//!   sway with the same wind as every other technique. The slices are static.
+//!   sway with the same wind as every other technique. The slices are static (issue 9's
+//!   shearing of slice tops with the wind is not done yet).
 //!
 //! ## Cost model
 //! CPU per frame: the quadtree walk, `O(visible nodes)` sphere tests (a few thousand), and one
@@ -71,19 +102,36 @@
 //! blades in cells nearer than `max_geom` whose thresholds can pass (the CPU skips those Eq. 5
 //! gives no opacity there), all other blades cost nothing; plus one textured quad per cell in
 //! the transition and per macro-cell beyond (`tess²` quads each on uneven ground), whose cost is
-//! fill: about one fragment per ground pixel. Memory: 32 bytes per patch blade, the two slice
-//! textures (`2 x 8 x 4/3 x slice_resolution²` bytes, 5.6 MB at 512), one byte per cell for the
-//! orientation map. Nothing grows with the virtual blade count except the orientation map and
+//! fill: about one fragment per ground pixel; plus `4N` triangles per cell of the mid band
+//! (20 quads at `N` = 10, one draw), whose cost is fill again: at a grazing view several slices
+//! cover each pixel (depth complexity up to `2N` per cell crossed), which is why the paper's
+//! low horizontal view is its slowest (Sec. 5). Start-up: the BTF bake, about 6 s on lavapipe
+//! for the paper's 21 904-blade patch, 0.1 s from the disk cache. Memory: 32 bytes per patch
+//! blade; the BTFs, `3 x 8 x 4/3` bytes a texel: the horizontal slice's `slice_resolution²`
+//! (8.4 MB at 512) and the vertical slices' `4N x vslice_width x vslice_height` (21.0 MB at 40
+//! layers of 256 x 64; the paper's 512 x 64 would be 42 MB), under issue 9's 64 MB; one byte
+//! per cell for the orientation map. Nothing grows with the virtual blade count except the orientation map and
 //! the quadtree (about 40 000 nodes on the football field). Brute force for 626 M blades at the
 //! reference's measured ~3.4 µs per blade on this rasteriser would take over half an hour a
 //! frame.
 //!
 //! ## Known artifacts
-//! - Without vertical slices (part 2) grass beyond `max_geom` is a flat textured layer: no
-//!   parallax, and seen at grazing angles it reads as a green carpet, not a field of blades.
-//! - The slice's diffuse term is baked for the scene's sun (scenes keep their sun fixed): a moving
-//!   light needs part 2's BTF. It sees the blades from above, where they look different from
-//!   the side, so the geometry-to-slice transition shows as a change of texture.
+//! - Beyond `max_btf` (30 m) grass is the flat horizontal slice: seen at grazing angles it
+//!   reads as a carpet, and it is lighter than the vertical slices before it (a top view shows
+//!   the lit tips, a side view the darker stems), so the `max_btf` band shows as a change of
+//!   tone on the human-height views.
+//! - Looking along a slice axis, the slices of that axis are seen edge on and only the other
+//!   axis's remain: rows of cells aligned with the view show as darker lines converging to the
+//!   vanishing point. Slices are blended unsorted across cells' axes, so where slices of the
+//!   two axes cross some borders are wrong (like the blades', Sec. 4.2).
+//! - Slices are brighter and softer than the geometry they replace (measured against geometry
+//!   at a sampled light and view: mean FLIP 0.185 at 320x180, `gpu_boulanger_btf`): mip-mapped
+//!   coverage and colour average the dark stems with the tips, and a slab has no parallax
+//!   inside its 5 cm.
+//! - Five light samples are coarse: a light between them is a blend of images, not the lighting
+//!   of the blades in between (the paper's own approximation). Per-vertex weights for the point
+//!   light are exact only where the slice is small against its distance to the light
+//!   (Appendix A).
 //! - Neighbouring cells of different mirrors meet along seams where blades baked from unmirrored
 //!   neighbours do not match; at the slice's distances they are not visible.
 //! - Blending without sorting leaves wrong borders where blades cross (Sec. 4.2, Fig. 21c);
