@@ -145,7 +145,7 @@ impl LightsConfig {
         for (k, key) in self.sun_keys.iter().enumerate() {
             if glam::Vec3::from(key.value).length() < 1e-6 {
                 return Err(crate::Error::param(
-                    &format!("lights.sun_keys[{k}].value"),
+                    format!("lights.sun_keys[{k}].value"),
                     format!("{:?}", key.value),
                     "a non-zero direction",
                 ));
@@ -188,7 +188,7 @@ fn check_keys(name: &str, keys: &[LightKey]) -> Result<()> {
         }
         if k > 0 && key.time <= keys[k - 1].time {
             return Err(crate::Error::param(
-                &format!("{name}[{k}].time"),
+                format!("{name}[{k}].time"),
                 key.time,
                 format!("later than the previous keyframe ({})", keys[k - 1].time),
             ));
