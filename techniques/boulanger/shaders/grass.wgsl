@@ -189,6 +189,14 @@ fn mirror_weights(w: Weights, signs: vec2<f32>) -> Weights {
     return m;
 }
 
+// The wind's sideways push on a blade's particle at `xz` (m/s x wind response, clamped so the
+// particle model stays sane; 0 when animation is off).
+fn wind_push(xz: vec2<f32>) -> vec2<f32> {
+    let push = wind_at(xz).xz * params.blade.z;
+    let p = length(push);
+    return select(push, push * (1.5 / p), p > 1.5);
+}
+
 // ---- Geometric blades (Sec. 3.2) ----
 
 struct BladeOut {
@@ -249,15 +257,10 @@ fn blade_vertex(vertex: u32, instance: u32) -> BladeOut {
             return out;
         }
         // The shared wind pushes the particle sideways, with a little per-blade flutter.
-        let wind = wind_at(root_xz).xz;
-        let speed = length(wind);
+        let speed = length(wind_at(root_xz).xz);
         let phase = hash_f32(index) * 2.0 * PI;
         let flutter = 1.0 + 0.2 * sin(globals.camera_pos.w * (3.0 + speed) + phase);
-        push = wind * params.blade.z * flutter;
-        let p = length(push);
-        if (p > 1.5) {
-            push *= 1.5 / p;
-        }
+        push = wind_push(root_xz) * flutter;
     }
 
     // The particle: launched from the root almost vertically (unit speed, `tilt` from the
@@ -522,8 +525,16 @@ fn vs_vslice(@builtin(vertex_index) vertex: u32, cell: VCell) -> VSliceOut {
     let c = size * ((f32(i) + 0.5) / f32(n) - 0.5);
     let along = size * (g.x - 0.5);
     let local = select(vec2(along, c), vec2(c, along), axis == 0u);
-    let xz = cell.center_signs.xy + local * signs;
-    let world = vec3(xz.x, terrain_height(xz) + g.y * top, xz.y);
+    let base = cell.center_signs.xy + local * signs;
+    // Beyond the paper: the slice's top is sheared with the wind that bends the geometric
+    // blades, by the displacement of a windless-standing blade's tip at that height (the
+    // particle of `blade_vertex` moves 0.5 push scale at its tip, scale = height / peak), so
+    // the slices sway with the blades they replace. Per vertex, so neighbouring cells agree.
+    let push = wind_push(base);
+    let g_acc = params.blade.y;
+    let peak = select(1.0 - 0.5 * g_acc, 1.0 / (2.0 * g_acc), g_acc > 1.0);
+    let xz = base + 0.5 * push * (g.y * top) / max(peak, 1e-3);
+    let world = vec3(xz.x, terrain_height(base) + g.y * top, xz.y);
     var out: VSliceOut;
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;

@@ -8,9 +8,10 @@
 //! mid band, the BTF pre-computation of every slice (five light directions x the slice's two
 //! view directions, K_d, alpha, density threshold) with its disk cache, Appendix A's spherical
 //! barycentric light interpolation, and the scene's lights moving at run time (keyframes of the
-//! sun and of a point light with Sec. 3.3's attenuation, in `[lights]`). Not yet: moving the
-//! lights from the UI, the shadows of Sec. 3.5 (projected blade shadows, the shadow-mask
-//! cylinder, the ambient occlusion map) and slices sheared with the wind.
+//! sun and of a point light with Sec. 3.3's attenuation, in `[lights]`), and the vertical
+//! slices sheared with the wind that bends the blades. Not yet: moving the lights from the UI
+//! and the shadows of Sec. 3.5 (projected blade shadows, the shadow-mask cylinder, the ambient
+//! occlusion map).
 //!
 //! ## Algorithm
 //! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
@@ -93,8 +94,11 @@
 //!   coverage on the 4x MSAA target (needs `--msaa`; refused without it).
 //! - **Wind.** The paper has no wind; here the shared wind pushes each geometric blade's
 //!   particle sideways (`wind_response` per m/s, plus a small per-blade flutter), so near blades
-//!   sway with the same wind as every other technique. The slices are static (issue 9's
-//!   shearing of slice tops with the wind is not done yet).
+//!   sway with the same wind as every other technique, and the vertical slices' tops are
+//!   sheared by the displacement a standing blade's tip would get at their height, per vertex
+//!   from the same wind (`vs_vslice`), so the mid band sways with the blades it replaces (the
+//!   flutter is not there, and the horizontal slice stays flat). `animate = false` turns both
+//!   off: the paper's static grass.
 //!
 //! ## Cost model
 //! CPU per frame: the quadtree walk, `O(visible nodes)` sphere tests (a few thousand), and one
@@ -842,7 +846,11 @@ fn params_uniform(params: &Params, grass: &grassbench::grass::GrassConfig) -> Pa
         blade: [
             params.segments as f32,
             params.gravity,
-            params.wind_response,
+            if params.animate {
+                params.wind_response
+            } else {
+                0.0
+            },
             params.ao_root,
         ],
         lod: [

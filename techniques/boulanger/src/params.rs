@@ -67,6 +67,9 @@ pub struct Params {
     pub gravity: f32,
     /// Wind push on the particle per m/s of wind, relative to gravity's scale.
     pub wind_response: f32,
+    /// Animation (beyond the paper): the shared wind bends the geometric blades and shears
+    /// the vertical slices' tops with them; `false` gives the paper's static grass.
+    pub animate: bool,
     /// Fraction of back-side sunlight passing through a blade.
     pub translucency: f32,
     /// Ambient occlusion at the root (1 at the tip, linear in height: Sec. 3.2).
@@ -96,6 +99,7 @@ impl Default for Params {
             max_tilt: 0.4,
             gravity: 0.6,
             wind_response: 0.12,
+            animate: true,
             translucency: 0.35,
             ao_root: 0.35,
         }
