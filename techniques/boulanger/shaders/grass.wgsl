@@ -13,7 +13,7 @@ struct Params {
     lod: vec4<f32>,
     // x: patch size (m); y: slice height above ground (m); z: slice texture side; w: bake top (m)
     tile: vec4<f32>,
-    // x: vertical slices per axis (N); y: min_btf; z: max_btf; w: unused
+    // x: vertical slices per axis (N); y: min_btf; z: max_btf; w: 1 with the shadow mask
     btf: vec4<f32>,
 }
 
@@ -21,6 +21,8 @@ struct Params {
 @group(1) @binding(1) var blade_texture: texture_2d<f32>;
 @group(1) @binding(2) var clamp_sampler: sampler;
 @group(1) @binding(3) var repeat_sampler: sampler;
+// The shadow mask (Sec. 3.5, src/shadow.rs): coverage of a slab of the patch in alpha.
+@group(1) @binding(4) var shadow_mask: texture_2d_array<f32>;
 
 // One geometry cell's copy of the patch (Sec. 3.1). Instance `i` of a blade draw is blade
 // `i % blade_count` of the cell in slot `i / blade_count` of this page of cells (the page is a
@@ -209,6 +211,8 @@ struct BladeOut {
     @location(5) threshold: f32,
     // Baking only: unit vector towards the slice's orthographic camera.
     @location(6) bake_view: vec3<f32>,
+    // The blade's root (world) and the azimuth of its inclination (mirror applied).
+    @location(7) @interpolate(flat) root: vec4<f32>,
 }
 
 @vertex
@@ -310,7 +314,48 @@ fn blade_vertex(vertex: u32, instance: u32) -> BladeOut {
     // Ambient occlusion: linear in the height of the vertex above the ground (Sec. 3.2).
     out.ao_opacity = vec2(mix(params.blade.w, 1.0, clamp01(local.y / max(height, 1e-4))), opacity);
     out.threshold = dth;
+    out.root = vec4(root_xz.x, ground, root_xz.y, atan2(dir.y, dir.x));
     return out;
+}
+
+// Sec. 3.5's shadow mask: the light reaching point `p` (relative to the blade's root) of a
+// blade inclined towards `azimuth`, from the direction `l`. The ray towards the light leaves
+// the cylinder around the blade (radius: patch side / 2 pi, src/shadow.rs) through its side or
+// its top; below the top, the mask's texel there (bilinear: anti-aliased) is the shadow.
+fn blade_shadow(p: vec3<f32>, azimuth: f32, l: vec3<f32>) -> f32 {
+    if (params.btf.w < 0.5) {
+        return 1.0;
+    }
+    let r = params.tile.x / (2.0 * PI);
+    let top = params.tile.w;
+    let a = dot(l.xz, l.xz);
+    if (a < 1e-6) {
+        return 1.0;
+    }
+    let b = dot(p.xz, l.xz);
+    let c = dot(p.xz, p.xz) - r * r;
+    let t = max((-b + sqrt(max(b * b - a * c, 0.0))) / a, 0.0);
+    let h = p + t * l;
+    if (h.y >= top) {
+        return 1.0;
+    }
+    let u = fract((atan2(h.z, h.x) - azimuth) / (2.0 * PI));
+    let v = 1.0 - clamp(h.y / top, 0.0, 1.0);
+    return 1.0 - textureSampleLevel(shadow_mask, repeat_sampler, vec2(u, v), 0, 0.0).a;
+}
+
+// `shade_leaf` with the shadow mask on the sun's and the point light's light.
+fn shade_blade(albedo: vec3<f32>, normal: vec3<f32>, world: vec3<f32>, root: vec4<f32>, ao: f32, translucency: f32) -> vec3<f32> {
+    let to_eye = normalize(globals.camera_pos.xyz - world);
+    let n = select(-normal, normal, dot(normal, to_eye) >= 0.0);
+    let p = world - root.xyz;
+    let sun = globals.sun_direction.xyz;
+    var direct = globals.sun_color.rgb * leaf_lambert(n, sun, translucency) * blade_shadow(p, root.w, sun);
+    if (globals.point_color.w > 0.0) {
+        let l = normalize(globals.point_position.xyz - world);
+        direct += point_light(world) * leaf_lambert(n, l, translucency) * blade_shadow(p, root.w, l);
+    }
+    return albedo * (globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao));
 }
 
 // The orthographic cameras of the bake (Sec. 3.3, Fig. 6), in the patch's frame (the patch
@@ -325,10 +370,11 @@ fn bake_position(world: vec3<f32>, mode: vec4<f32>) -> vec4<f32> {
     // A vertical slice: the in-plane coordinate (z across x, x across z) and the height to the
     // texture; the near and far planes are the bounds of the slice's slab (its share of the
     // patch, N slices an axis), nearest to the camera's side first.
-    let across_x = mode.y < 1.5;
+    // (3: the shadow mask's slab across x, as thick as the mask's cylinder, src/shadow.rs.)
+    let across_x = mode.y < 1.5 || mode.y > 2.5;
     let along = select(world.x, world.z, across_x);
     let depth_axis = select(world.z, world.x, across_x);
-    let half = 0.5 * size / params.btf.x;
+    let half = select(0.5 * size / params.btf.x, size / (2.0 * PI), mode.y > 2.5);
     let depth = (half - mode.w * (depth_axis - mode.z)) / (2.0 * half);
     return vec4(2.0 * along / size, 2.0 * world.y / top - 1.0, depth, 1.0);
 }
@@ -350,7 +396,7 @@ fn fs_blade(in: BladeOut) -> @location(0) vec4<f32> {
     }
     let albedo = in.albedo * tex.rgb * 2.0;
     // Two-sided Lambert + ambient darkened towards the root (Sec. 3.2).
-    let lit = shade_leaf(albedo, normalize(in.normal), in.world, in.ao_opacity.x, params.color_tip.w);
+    let lit = shade_blade(albedo, normalize(in.normal), in.world, in.root, in.ao_opacity.x, params.color_tip.w);
     return vec4(apply_fog(lit, in.world), alpha);
 }
 
@@ -380,9 +426,10 @@ fn fs_bake(in: BladeOut) -> BakeOut {
     let tr = params.color_tip.w;
     let lights = array(vec3(0.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0), vec3(-1.0, 0.0, 0.0), vec3(0.0, 0.0, -1.0));
     var d: array<f32, 5>;
+    let p = in.world - in.root.xyz;
     for (var k = 0u; k < 5u; k++) {
-        let ndl = dot(n, lights[k]);
-        d[k] = max(ndl, 0.0) + max(-ndl, 0.0) * tr;
+        // Lit through the shadow mask (Sec. 3.5), so the slices carry blade-to-blade shadows.
+        d[k] = leaf_lambert(n, lights[k], tr) * blade_shadow(p, in.root.w, lights[k]);
     }
     out.color = vec4(in.albedo * tex.rgb * 2.0, 1.0);
     out.diffuse = vec4(d[0], d[1], d[2], d[3]);

@@ -67,6 +67,9 @@ pub struct Params {
     pub gravity: f32,
     /// Wind push on the particle per m/s of wind, relative to gravity's scale.
     pub wind_response: f32,
+    /// Blade-to-blade shadows through the shadow mask (Sec. 3.5), on the blades and baked
+    /// into the slices.
+    pub shadow_mask: bool,
     /// Animation (beyond the paper): the shared wind bends the geometric blades and shears
     /// the vertical slices' tops with them; `false` gives the paper's static grass.
     pub animate: bool,
@@ -100,6 +103,7 @@ impl Default for Params {
             gravity: 0.6,
             wind_response: 0.12,
             animate: true,
+            shadow_mask: true,
             translucency: 0.35,
             ao_root: 0.35,
         }
