@@ -23,6 +23,16 @@ struct Params {
 @group(1) @binding(3) var repeat_sampler: sampler;
 // The shadow mask (Sec. 3.5, src/shadow.rs): coverage of a slab of the patch in alpha.
 @group(1) @binding(4) var shadow_mask: texture_2d_array<f32>;
+// Sec. 3.5's ambient occlusion map (src/occlusion.rs): the sky's share left by trees and
+// stones, one value per covering-map sample.
+@group(1) @binding(5) var ao_map: texture_2d<f32>;
+
+// The ambient visibility at `xz` (samples on the terrain's corners, like the other maps).
+fn ambient_visibility(xz: vec2<f32>) -> f32 {
+    let dims = vec2<f32>(textureDimensions(ao_map));
+    let uv = clamp(terrain_uv(xz), vec2(0.0), vec2(1.0));
+    return textureSampleLevel(ao_map, clamp_sampler, (uv * (dims - 1.0) + 0.5) / dims, 0.0).r;
+}
 
 // One geometry cell's copy of the patch (Sec. 3.1). Instance `i` of a blade draw is blade
 // `i % blade_count` of the cell in slot `i / blade_count` of this page of cells (the page is a
@@ -180,7 +190,9 @@ fn btf_light(albedo: vec3<f32>, d_a: vec4<f32>, d_b: f32, sun: Weights, point: W
     if (globals.point_color.w > 0.0) {
         direct += point_light(world) * btf_diffuse(d_a, d_b, point);
     }
-    return albedo * (globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao));
+    // The occlusion map (Sec. 3.5) per pixel, below the texel.
+    let sky = ambient_visibility(world.xz);
+    return albedo * (globals.ambient.rgb * ao * sky + direct * mix(0.5, 1.0, ao));
 }
 
 // A cell mirrored in x (z) sees the light mirrored: X+ and X- (Z+ and Z-) swap weights.
@@ -213,6 +225,8 @@ struct BladeOut {
     @location(6) bake_view: vec3<f32>,
     // The blade's root (world) and the azimuth of its inclination (mirror applied).
     @location(7) @interpolate(flat) root: vec4<f32>,
+    // The ambient visibility at the root (Sec. 3.5); 1 when baking.
+    @location(8) @interpolate(flat) sky: f32,
 }
 
 @vertex
@@ -315,6 +329,10 @@ fn blade_vertex(vertex: u32, instance: u32) -> BladeOut {
     out.ao_opacity = vec2(mix(params.blade.w, 1.0, clamp01(local.y / max(height, 1e-4))), opacity);
     out.threshold = dth;
     out.root = vec4(root_xz.x, ground, root_xz.y, atan2(dir.y, dir.x));
+    out.sky = 1.0;
+    if (!baking) {
+        out.sky = ambient_visibility(root_xz);
+    }
     return out;
 }
 
@@ -345,7 +363,7 @@ fn blade_shadow(p: vec3<f32>, azimuth: f32, l: vec3<f32>) -> f32 {
 }
 
 // `shade_leaf` with the shadow mask on the sun's and the point light's light.
-fn shade_blade(albedo: vec3<f32>, normal: vec3<f32>, world: vec3<f32>, root: vec4<f32>, ao: f32, translucency: f32) -> vec3<f32> {
+fn shade_blade(albedo: vec3<f32>, normal: vec3<f32>, world: vec3<f32>, root: vec4<f32>, ao: f32, sky: f32, translucency: f32) -> vec3<f32> {
     let to_eye = normalize(globals.camera_pos.xyz - world);
     let n = select(-normal, normal, dot(normal, to_eye) >= 0.0);
     let p = world - root.xyz;
@@ -355,7 +373,7 @@ fn shade_blade(albedo: vec3<f32>, normal: vec3<f32>, world: vec3<f32>, root: vec
         let l = normalize(globals.point_position.xyz - world);
         direct += point_light(world) * leaf_lambert(n, l, translucency) * blade_shadow(p, root.w, l);
     }
-    return albedo * (globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao));
+    return albedo * (globals.ambient.rgb * ao * sky + direct * mix(0.5, 1.0, ao));
 }
 
 // The orthographic cameras of the bake (Sec. 3.3, Fig. 6), in the patch's frame (the patch
@@ -396,7 +414,7 @@ fn fs_blade(in: BladeOut) -> @location(0) vec4<f32> {
     }
     let albedo = in.albedo * tex.rgb * 2.0;
     // Two-sided Lambert + ambient darkened towards the root (Sec. 3.2).
-    let lit = shade_blade(albedo, normalize(in.normal), in.world, in.root, in.ao_opacity.x, params.color_tip.w);
+    let lit = shade_blade(albedo, normalize(in.normal), in.world, in.root, in.ao_opacity.x, in.sky, params.color_tip.w);
     return vec4(apply_fog(lit, in.world), alpha);
 }
 

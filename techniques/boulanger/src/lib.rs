@@ -10,9 +10,9 @@
 //! barycentric light interpolation, and the scene's lights moving at run time (keyframes of the
 //! sun and of a point light with Sec. 3.3's attenuation, in `[lights]`), and the vertical
 //! slices sheared with the wind that bends the blades, and Sec. 3.5's shadow-mask cylinder for
-//! blade-to-blade shadows on the blades and baked into the slices. Not yet: moving the lights
-//! from the UI, the blade and slice shadows projected on the ground (stencil) and the ambient
-//! occlusion map for external occluders.
+//! blade-to-blade shadows on the blades and baked into the slices, and its ambient occlusion
+//! map for the covering map's trees and stones. Not yet: moving the lights from the UI and the
+//! blade and slice shadows projected on the ground (stencil).
 //!
 //! ## Algorithm
 //! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
@@ -95,6 +95,11 @@
 //!   its top (lit). The geometric blades use it for the sun and the point light; the BTF bake
 //!   for its five directions, so the slices carry the same shadows at no run-time cost.
 //!   `shadow_mask = false` turns it off. About 12 % less light on the walker's view.
+//! - **Ambient occlusion map** (Sec. 3.5, Fig. 18, [`occlusion`]). At start-up, per
+//!   covering-map sample, the share of the sky hidden by the trees and stones around
+//!   (heights `tree_height`, `stone_height`: the map has none); the blades multiply their
+//!   ambient light by it at their root, the slices per pixel. `external_ao = false` turns it
+//!   off.
 //! - **Semi-transparency** (Sec. 4.2, `transparency`). `blend`: alpha test with a low threshold
 //!   (`alpha_threshold`, 0.1) plus blending, no sorting of blades (geometry cells are drawn far
 //!   to near, which costs nothing on the CPU and keeps Eq. 5's semi-transparent blades from
@@ -157,6 +162,7 @@ pub mod btf;
 pub mod cache;
 pub mod cells;
 pub mod lod;
+pub mod occlusion;
 pub mod params;
 pub mod patch;
 pub mod quadtree;
@@ -359,6 +365,12 @@ impl Boulanger {
             GpuEstimate::buffer((strata * strata).saturating_mul(blade)),
             GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
             GpuEstimate::textures(btf::texture_bytes(shadow::WIDTH, shadow::HEIGHT, 1)),
+            GpuEstimate::textures(if params.external_ao {
+                let c = scene.terrain.covering();
+                (c.width() * c.height()) as u64
+            } else {
+                1
+            }),
             GpuEstimate::textures(btf::texture_bytes(
                 params.vslice_width,
                 params.vslice_height,
@@ -482,8 +494,17 @@ impl Boulanger {
                     },
                     count: None,
                 },
+                float_texture(5),
             ],
         });
+        // Sec. 3.5's ambient occlusion map (one white texel when it is off).
+        let (ao_view, ao_bytes) = ao_texture(
+            device,
+            &ctx.gpu.queue,
+            params.external_ao.then(|| {
+                occlusion::visibility_map(&scene.terrain, params.tree_height, params.stone_height)
+            }),
+        );
         // Group 1 with a shadow mask: the mask's own bake sees a transparent one (no shadow).
         let make_group1 = |mask: &wgpu::TextureView| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -493,6 +514,10 @@ impl Boulanger {
                     wgpu::BindGroupEntry {
                         binding: 4,
                         resource: wgpu::BindingResource::TextureView(mask),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 5,
+                        resource: wgpu::BindingResource::TextureView(&ao_view),
                     },
                     wgpu::BindGroupEntry {
                         binding: 0,
@@ -804,6 +829,7 @@ impl Boulanger {
             btf_seconds,
             fixed_bytes: blade_bytes
                 + mask.bytes
+                + ao_bytes
                 + horizontal.bytes
                 + verticals.bytes
                 + orientation_bytes
@@ -978,6 +1004,46 @@ impl Boulanger {
     pub fn btf_outcome(&self) -> (&[cache::Outcome; 2], f64) {
         (&self.btf_outcome, self.btf_seconds)
     }
+}
+
+/// The ambient visibility map as an `R8Unorm` texture (a white texel without one) and its
+/// bytes.
+fn ao_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    map: Option<grassbench::terrain::Grid<f32>>,
+) -> (wgpu::TextureView, u64) {
+    let (w, h, data) = match map {
+        Some(m) => (
+            m.width() as u32,
+            m.height() as u32,
+            m.data()
+                .iter()
+                .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+                .collect(),
+        ),
+        None => (1, 1, vec![255u8]),
+    };
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("boulanger ambient occlusion map"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &data,
+    );
+    (texture.create_view(&Default::default()), data.len() as u64)
 }
 
 fn vcell_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {

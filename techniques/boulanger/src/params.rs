@@ -70,6 +70,12 @@ pub struct Params {
     /// Blade-to-blade shadows through the shadow mask (Sec. 3.5), on the blades and baked
     /// into the slices.
     pub shadow_mask: bool,
+    /// Ambient occlusion of the grass by the covering map's trees and stones (Sec. 3.5).
+    pub external_ao: bool,
+    /// Height given to the covering map's trees, m (for the occlusion map).
+    pub tree_height: f32,
+    /// Height given to the covering map's stones, m.
+    pub stone_height: f32,
     /// Animation (beyond the paper): the shared wind bends the geometric blades and shears
     /// the vertical slices' tops with them; `false` gives the paper's static grass.
     pub animate: bool,
@@ -104,6 +110,9 @@ impl Default for Params {
             wind_response: 0.12,
             animate: true,
             shadow_mask: true,
+            external_ao: true,
+            tree_height: 6.0,
+            stone_height: 0.5,
             translucency: 0.35,
             ao_root: 0.35,
         }
@@ -194,6 +203,8 @@ impl TechniqueParams for Params {
             }
         }
         check("boulanger.slice_height", self.slice_height, 0.0..=1.0)?;
+        check("boulanger.tree_height", self.tree_height, 0.0..=100.0)?;
+        check("boulanger.stone_height", self.stone_height, 0.0..=100.0)?;
         check("boulanger.max_tilt", self.max_tilt, 0.0..=1.5)?;
         check("boulanger.gravity", self.gravity, 0.0..=1.9)?;
         check("boulanger.wind_response", self.wind_response, 0.0..=2.0)?;
