@@ -4,15 +4,18 @@
 //! Sources* (2006; the transcript is `shared/seeds/001_15b45c4dc11230fe.txt`). Part 1 (issue 8):
 //! geometric blades, the tiled and mirrored patch, density management, the LOD weights with
 //! their smooth transition, the quadtree terrain with macro-cells, the horizontal slice for far
-//! grass and both semi-transparency modes. Part 2 (issue 9) so far: the vertical slices of the
-//! mid band, the BTF pre-computation of every slice (five light directions x the slice's two
-//! view directions, K_d, alpha, density threshold) with its disk cache, Appendix A's spherical
-//! barycentric light interpolation, and the scene's lights moving at run time (keyframes of the
-//! sun and of a point light with Sec. 3.3's attenuation, in `[lights]`), and the vertical
-//! slices sheared with the wind that bends the blades, and Sec. 3.5's shadow-mask cylinder for
-//! blade-to-blade shadows on the blades and baked into the slices, and its ambient occlusion
-//! map for the covering map's trees and stones. Not yet: moving the lights from the UI and the
-//! blade and slice shadows projected on the ground (stencil).
+//! grass and both semi-transparency modes. Part 2 (issue 9) so far:
+//! - the vertical slices of the mid band and the BTF pre-computation of every slice (five light
+//!   directions x the slice's two view directions, K_d, alpha, density threshold), with its
+//!   disk cache;
+//! - Appendix A's spherical barycentric light interpolation; the scene's lights moving at run
+//!   time (keyframes of the sun and of a point light with Sec. 3.3's attenuation, `[lights]`);
+//! - Sec. 3.5's shadow-mask cylinder (blade-to-blade shadows on the blades, baked into the
+//!   slices) and ambient occlusion map (the covering map's trees and stones);
+//! - the vertical slices sheared with the wind that bends the blades (beyond the paper).
+//!
+//! Not yet: moving the lights from the UI, and the blade and slice shadows projected on the
+//! ground (Sec. 3.5's stencil pass).
 //!
 //! ## Algorithm
 //! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
@@ -31,8 +34,9 @@
 //!   vertically (up to `max_tilt` from the vertical) under `gravity`; its positions at
 //!   `segments + 1` evenly spaced times are the reference points, scaled so the standing blade
 //!   peaks at its height. A procedural blade texture ([`texture`]) shapes the strip with its
-//!   alpha and modulates its colour. Two-sided Lambert + ambient (the prelude's `shade_leaf`),
-//!   per-blade colour variation, ambient occlusion linear in the vertex height, the scene's fog.
+//!   alpha and modulates its colour. Two-sided Lambert + ambient (the prelude's `shade_leaf`
+//!   with the shadow mask and the occlusion map, `shade_blade`), per-blade colour variation,
+//!   ambient occlusion linear in the vertex height, the scene's fog.
 //! - **Density** (Sec. 3.4). The shared density map, bilinear; a blade exists where its
 //!   threshold is under the local density, tested per blade in the vertex shader and per texel
 //!   for the slice. The covering map removes blades where it says no grass.
@@ -77,7 +81,7 @@
 //!   patch's frame (Eq. 8-13, nine arc-cosines per light per vertex; for the point light they
 //!   vary across a slice), renormalised per pixel, the point light's attenuation per pixel. A
 //!   mirrored cell sees the light mirrored (X+ and X− swap, Z+ and Z−). The geometric blades
-//!   use the prelude's two-sided Lambert, which has the point light too.
+//!   use the two-sided Lambert of the prelude, which has the point light too.
 //! - **Horizontal slice** (Sec. 3.3, [`slice`]). One BTF layer (below): an orthographic top
 //!   view of the patch and its 8 neighbours. Drawn over cells and macro-cells by texture
 //!   repetition with the
@@ -122,13 +126,17 @@
 //! fill: about one fragment per ground pixel; plus `4N` triangles per cell of the mid band
 //! (20 quads at `N` = 10, one draw), whose cost is fill again: at a grazing view several slices
 //! cover each pixel (depth complexity up to `2N` per cell crossed), which is why the paper's
-//! low horizontal view is its slowest (Sec. 5). Start-up: the BTF bake, about 6 s on lavapipe
-//! for the paper's 21 904-blade patch, 0.1 s from the disk cache. Memory: 32 bytes per patch
+//! low horizontal view is its slowest (Sec. 5). Start-up: the BTF bake, bound by fill (4x MSAA,
+//! three targets, hundreds of blade fragments per texel of a side view), 4-8 s of wall time
+//! on lavapipe for the paper's 21 904-blade patch depending on what else runs on the two
+//! cores, 0.1 s from the disk cache. Memory: 32 bytes per patch
 //! blade; the BTFs, `3 x 8 x 4/3` bytes a texel: the horizontal slice's `slice_resolution²`
 //! (8.4 MB at 512) and the vertical slices' `4N x vslice_width x vslice_height` (21.0 MB at 40
 //! layers of 256 x 64; the paper's 512 x 64 would be 42 MB), under issue 9's 64 MB; one byte
-//! per cell for the orientation map. Nothing grows with the virtual blade count except the orientation map and
-//! the quadtree (about 40 000 nodes on the football field). Brute force for 626 M blades at the
+//! per cell for the orientation map and for the occlusion map; the shadow mask, 128 x 64 (262
+//! KB with its mips). Per blade fragment the shadow mask costs a ray-cylinder intersection, an
+//! `atan2` and a texture lookup per light. Nothing grows with the virtual blade count except
+//! the orientation map and the quadtree (about 40 000 nodes on the football field). Brute force for 626 M blades at the
 //! reference's measured ~3.4 µs per blade on this rasteriser would take over half an hour a
 //! frame.
 //!
@@ -142,13 +150,18 @@
 //!   vanishing point. Slices are blended unsorted across cells' axes, so where slices of the
 //!   two axes cross some borders are wrong (like the blades', Sec. 4.2).
 //! - Slices are brighter and softer than the geometry they replace (measured against geometry
-//!   at a sampled light and view: mean FLIP 0.185 at 320x180, `gpu_boulanger_btf`): mip-mapped
+//!   at a sampled light and view: mean FLIP 0.181 at 320x180, `gpu_boulanger_btf`): mip-mapped
 //!   coverage and colour average the dark stems with the tips, and a slab has no parallax
 //!   inside its 5 cm.
 //! - Five light samples are coarse: a light between them is a blend of images, not the lighting
 //!   of the blades in between (the paper's own approximation). Per-vertex weights for the point
 //!   light are exact only where the slice is small against its distance to the light
 //!   (Appendix A).
+//! - One shadow mask for every blade (Sec. 3.5's own approximation): shadows are plausible, not
+//!   cast by the actual neighbours, and a light straight above casts none (its ray leaves the
+//!   cylinder through the top).
+//! - The occlusion map sums its occluders' solid angles, so clumps of trees darken more than
+//!   an exact visibility test would ([`occlusion`]).
 //! - Neighbouring cells of different mirrors meet along seams where blades baked from unmirrored
 //!   neighbours do not match; at the slice's distances they are not visible.
 //! - Blending without sorting leaves wrong borders where blades cross (Sec. 4.2, Fig. 21c);
@@ -713,13 +726,13 @@ impl Boulanger {
             vertices: 2 * params.segments + 2,
         };
         let started = std::time::Instant::now();
-        let blade_count = patch.blades.len() as u32;
         let [h_key, v_key] = bake_keys_of(&params, &uniform, &patch);
         let [h_dims, v_dims] = btf_dims(&params);
         let folder = cache::folder(&params.btf_cache);
         let (horizontal, h_outcome) =
             cache::load_or_bake(ctx.gpu, folder.as_deref(), h_key, h_dims, || {
-                let (cells, refs, range) = slice::bake_layer(params.patch_size, blade_count);
+                let (cells, refs, range) =
+                    slice::bake_layer(params.patch_size, &patch.blades, params.gravity);
                 btf::bake(
                     ctx,
                     &bake_inputs,

@@ -52,7 +52,10 @@ pub struct Params {
     pub slice_resolution: u32,
     /// Vertical slices across each horizontal axis of a patch (Sec. 3.3; the paper's 10).
     pub vertical_slices: u32,
-    /// Width of a vertical slice's BTF texture, texels (along the patch side).
+    /// Width of a vertical slice's BTF texture, texels (along the patch side). The paper's
+    /// 512 would take the start-up bake far past 10 s on lavapipe, where it is bound by fill;
+    /// 128 halves the vertical part of the bake but ties `compare`'s popping with and without
+    /// transitions on the meadow, so 256 (2 mm texels on a 0.5 m patch).
     pub vslice_width: u32,
     /// Height of a vertical slice's BTF texture, texels (the paper's slices are 512 x 64).
     pub vslice_height: u32,

@@ -13,8 +13,9 @@ use grassbench::wgpu::util::DeviceExt as _;
 
 use crate::CellUniform;
 use crate::patch::Orientation;
+use crate::patch::PatchBlade;
 use crate::quadtree::CellGrid;
-use crate::vertical::neighbours;
+use crate::vertical::{blade_extent, neighbours};
 
 /// GPU memory of the horizontal slice's BTF of side `resolution` with its mip chain.
 pub fn texture_bytes(resolution: u32) -> u64 {
@@ -22,15 +23,32 @@ pub fn texture_bytes(resolution: u32) -> u64 {
 }
 
 /// The horizontal slice's one layer for [`crate::btf::bake`]: nine cells with the top-view
-/// camera (`mode.y = 0`) and every blade of each, `blade_count` blades a patch.
-pub fn bake_layer(patch_size: f32, blade_count: u32) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
+/// camera (`mode.y = 0`) and, of their blades, those reaching over the centre patch (the
+/// view's bounds): about 1.5 patches' worth instead of nine, which matters since the bake is
+/// bound by vertex work on lavapipe.
+pub fn bake_layer(
+    patch_size: f32,
+    blades: &[PatchBlade],
+    gravity: f32,
+) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
     let cells: Vec<CellUniform> = neighbours(patch_size)
         .map(|c| CellUniform {
             center_signs: [c.x, c.y, 1.0, 1.0],
             mode: [1.0, 0.0, 0.0, 0.0],
         })
         .collect();
-    let refs: Vec<u32> = (0..9 * blade_count).collect();
+    let count = blades.len() as u32;
+    let side = 0.5 * patch_size;
+    let extents: Vec<_> = blades.iter().map(|b| blade_extent(b, gravity)).collect();
+    let mut refs = Vec::new();
+    for (k, offset) in neighbours(patch_size).enumerate() {
+        for (b, (lo, hi)) in extents.iter().enumerate() {
+            let (lo, hi) = (*lo + offset, *hi + offset);
+            if hi.x >= -side && lo.x <= side && hi.y >= -side && lo.y <= side {
+                refs.push(k as u32 * count + b as u32);
+            }
+        }
+    }
     let range = 0..refs.len() as u32;
     (cells, refs, range)
 }

@@ -99,9 +99,12 @@ impl SliceLayout {
         let side = 0.5 * self.patch_size;
         let mut refs = Vec::new();
         let mut ranges = Vec::new();
-        for (layer, (axis, i, _)) in self.each_layer().enumerate() {
+        for (layer, (axis, i, front)) in self.each_layer().enumerate() {
             let start = refs.len() as u32;
             let c = self.coordinate(i);
+            // (depth key, ref): nearest to the layer's camera first, so the depth test rejects
+            // the blades behind before they are shaded.
+            let mut keyed: Vec<(f32, u32)> = Vec::new();
             for (k, offset) in neighbours(self.patch_size).enumerate() {
                 let cell = (layer * 9 + k) as u32;
                 for (b, (lo, hi)) in extents.iter().enumerate() {
@@ -116,10 +119,13 @@ impl SliceLayout {
                         && along.1 >= -side
                         && along.0 <= side
                     {
-                        refs.push(cell * count + b as u32);
+                        let mid = 0.5 * (across.0 + across.1);
+                        keyed.push((if front { -mid } else { mid }, cell * count + b as u32));
                     }
                 }
             }
+            keyed.sort_by(|a, b| a.0.total_cmp(&b.0));
+            refs.extend(keyed.into_iter().map(|(_, r)| r));
             ranges.push(start..refs.len() as u32);
         }
         (refs, ranges)
