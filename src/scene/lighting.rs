@@ -244,6 +244,11 @@ mod tests {
             }),
             ..Default::default()
         };
-        assert!(p.validate().unwrap_err().to_string().contains("lights.point.attenuation"));
+        assert!(
+            p.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("lights.point.attenuation")
+        );
     }
 }
