@@ -53,7 +53,12 @@ impl FrameInputs<'_> {
         let t = &self.scene.terrain;
         let v4 = |v: [f32; 3], w: f32| [v[0], v[1], v[2], w];
         let (lo, hi) = t.height_range();
-        let sun = glam::Vec3::from(l.sun_direction).normalize_or(glam::Vec3::Y);
+        let state = l.at(self.time);
+        let sun = state.sun_direction;
+        let (point_position, point_color) = match state.point {
+            Some((p, c, beta)) => (p.extend(beta).to_array(), c.extend(1.0).to_array()),
+            None => ([0.0; 4], [0.0; 4]),
+        };
         FrameGlobals {
             view_proj: view_proj.to_cols_array_2d(),
             inv_view_proj: view_proj.inverse().to_cols_array_2d(),
@@ -83,6 +88,8 @@ impl FrameInputs<'_> {
             object: self
                 .object()
                 .map_or([0.0; 4], |(c, r)| c.extend(r).to_array()),
+            point_position,
+            point_color,
         }
     }
 }
@@ -125,4 +132,8 @@ pub struct FrameGlobals {
     pub terrain_range: [f32; 4],
     /// The scene's moving object: centre and radius (radius 0: none).
     pub object: [f32; 4],
+    /// The point light's position; w = its attenuation β.
+    pub point_position: [f32; 4],
+    /// The point light's intensity; w = 1 when there is one, 0 otherwise.
+    pub point_color: [f32; 4],
 }

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 
 pub use background::Background;
 pub use gpu::SceneGpu;
-pub use lighting::{LightsConfig, SkyConfig};
+pub use lighting::{LightKey, LightState, LightsConfig, PointLight, SkyConfig};
 pub use object::{ObjectConfig, track, validate_track};
 
 use crate::camera::{Camera, CameraConfig};

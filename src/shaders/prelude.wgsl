@@ -31,6 +31,10 @@ struct Globals {
     terrain_range: vec4<f32>,
     // The scene's moving object: xyz centre, w radius (0: none)
     object: vec4<f32>,
+    // xyz: the point light's position (m); w: its attenuation beta (1/m^2)
+    point_position: vec4<f32>,
+    // rgb: the point light's intensity; w: 1 when there is a point light, else 0
+    point_color: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -120,7 +124,24 @@ fn shade_leaf(albedo: vec3<f32>, normal: vec3<f32>, world_pos: vec3<f32>, ao: f3
     let l = globals.sun_direction.xyz;
     let front = max(dot(n, l), 0.0);
     let back = max(dot(-n, l), 0.0) * translucency;
-    return albedo * (globals.ambient.rgb * ao + globals.sun_color.rgb * (front + back) * mix(0.5, 1.0, ao));
+    var direct = globals.sun_color.rgb * (front + back);
+    if (globals.point_color.w > 0.0) {
+        direct += point_light(world_pos) * leaf_lambert(n, normalize(globals.point_position.xyz - world_pos), translucency);
+    }
+    return albedo * (globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao));
+}
+
+// Two-sided Lambert factor of a leaf whose normal `n` faces the viewer, for the unit vector
+// `l` towards a light.
+fn leaf_lambert(n: vec3<f32>, l: vec3<f32>, translucency: f32) -> f32 {
+    return max(dot(n, l), 0.0) + max(dot(-n, l), 0.0) * translucency;
+}
+
+// The point light's irradiance at `p`: I_d / (1 + beta d^2) (Boulanger Sec. 3.3); zero when the
+// scene has none.
+fn point_light(p: vec3<f32>) -> vec3<f32> {
+    let d = distance(globals.point_position.xyz, p);
+    return globals.point_color.rgb * globals.point_color.w / (1.0 + globals.point_position.w * d * d);
 }
 
 // Sky colour in a view direction: horizon to zenith gradient with a sun glow.

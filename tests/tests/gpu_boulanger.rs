@@ -103,9 +103,13 @@ fn draws_a_believable_field_on_football_field_and_meadow() -> anyhow::Result<()>
 }
 
 #[test]
-fn lod_false_colours_put_geometry_near_and_the_slice_far() -> anyhow::Result<()> {
-    // Fig. 12's debug view on the walker view of the pitch: bottom rows (2.5-3.5 m away) are
-    // geometry (red), the middle of the image (tens of metres) the horizontal slice (green).
+fn lod_false_colours_put_geometry_near_vertical_slices_mid_and_the_slice_far() -> anyhow::Result<()>
+{
+    // Fig. 12's debug view on the walker view of the pitch at 320x180: the bottom rows
+    // (2.5-3.5 m away) are geometry (red), the middle of the image (4-30 m) the vertical slices
+    // (blue), the band just under the horizon (beyond max_btf = 30 m) the horizontal slice
+    // (green). Row means measured on lavapipe: rows 172-179 (65, 72, 143) with red blades over
+    // blue, rows 100-119 (40, 66, 159), rows 62-67 (64, 158, 72).
     let f = render(
         "football_field_human",
         3,
@@ -113,31 +117,45 @@ fn lod_false_colours_put_geometry_near_and_the_slice_far() -> anyhow::Result<()>
         &overrides(TEST_BLADES_PER_M2),
         1,
     )?;
+    let rows = |y0: u32, n: u32| {
+        mean_color(
+            &grassbench::image::imageops::crop_imm(&f.image, 0, y0, TEST_SIZE.width, n).to_image(),
+        )
+    };
     let near = bottom_rows(&f.image, 8);
-    assert!(near[0] > near[1] && near[0] > near[2], "near: {near:?}");
-    let mid = mean_color(
-        &grassbench::image::imageops::crop_imm(&f.image, 0, 100, TEST_SIZE.width, 20).to_image(),
+    assert!(near[0] > 55.0, "near: no geometry (red): {near:?}");
+    let mid = rows(100, 20);
+    assert!(mid[2] > mid[0] && mid[2] > mid[1], "mid: {mid:?}");
+    let far = rows(62, 6);
+    assert!(far[1] > far[0] && far[1] > far[2], "far: {far:?}");
+    assert!(f.lod.geometry > 0 && f.lod.vertical_slices > 0 && f.lod.horizontal_slices > 0);
+    assert!(
+        f.lod.horizontal_slices > f.lod.vertical_slices,
+        "the horizontal slice holds the far field: {:?}",
+        f.lod
     );
-    assert!(mid[1] > mid[0] && mid[1] > mid[2], "far: {mid:?}");
-    assert!(f.lod.geometry > 0 && f.lod.horizontal_slices > 0);
     Ok(())
 }
 
 #[test]
 fn flip_against_the_reference_at_full_and_reduced_scale() -> anyhow::Result<()> {
-    // Measured on lavapipe at 320x180 (mean FLIP, full / 1/4 scale):
+    // Measured on lavapipe at 320x180 (mean FLIP, full / 1/4 scale), with issue 9's vertical
+    // BTF slices and shadow mask (part 1's horizontal slice alone in brackets):
     // - at the paper's density (87 800 blades/m² on the pitch; 5 000 on the meadow to keep the
-    //   test small): football_field f3 0.323 / 0.356, meadow f30 0.509 / 0.540. A dense lawn
-    //   against the reference's sparse blades with ground between them: the colours differ, so
+    //   test small): football_field f3 0.259 / 0.286 (0.323 / 0.356), meadow f30 0.323 /
+    //   0.328 (0.509 / 0.540: the vertical slices stand up where the flat slice lay, and the
+    //   shadow mask darkens the dense lawn towards the reference's). A dense lawn against the
+    //   reference's sparse blades with ground between them: the colours differ, so
     //   downsampling does not help.
     // - at the scene's own density (40 and 90 blades/m², like for like): football_field
-    //   0.015 / 0.014, meadow 0.203 / 0.190 (the meadow's near blades are geometry there, its
-    //   far ones a flat slice where the reference has tall blades).
+    //   0.015 / 0.014, meadow 0.216 / 0.205 (0.203 / 0.190: at 90 blades/m² a patch holds 22
+    //   blades, and slices of so few blades, mip-mapped, are fainter than the reference's
+    //   blades).
     // Bounds: the measurement plus 0.03-0.05, to catch regressions, not to reward changes.
     let gpu = gpu()?;
     for (name, frame, density, full_max, quarter_max) in [
-        ("football_field", 3, 87_800.0, 0.37, 0.40),
-        ("meadow", 30, TEST_BLADES_PER_M2, 0.56, 0.59),
+        ("football_field", 3, 87_800.0, 0.30, 0.33),
+        ("meadow", 30, TEST_BLADES_PER_M2, 0.36, 0.37),
         ("football_field", 3, 40.0, 0.04, 0.04),
         ("meadow", 30, 90.0, 0.25, 0.24),
     ] {

@@ -138,7 +138,7 @@ fn shader_consts_in_crates_match_files() {
         file("techniques/boulanger/shaders/grass.wgsl")
     );
     assert_eq!(
-        grassbench_boulanger::slice::MIP_SHADER,
+        grassbench_boulanger::btf::MIP_SHADER,
         file("techniques/boulanger/shaders/mip.wgsl")
     );
     assert_eq!(

@@ -1,7 +1,8 @@
-// Boulanger, Pattanaik & Bouatouch 2006: geometric blades (Sec. 3.2), the start-up bake of the
-// horizontal slice (Sec. 3.3), and the horizontal slice drawn over cells and macro-cells with
-// the patch orientation map (Sec. 4.1, Eq. 6-7). See `techniques/boulanger/src/lib.rs`.
-// Composed after the prelude (group 0).
+// Boulanger, Pattanaik & Bouatouch 2006: geometric blades (Sec. 3.2), the start-up BTF bake of
+// the vertical and horizontal slices (Sec. 3.3, Fig. 6-7, 10), the vertical slices of the mid
+// band, the horizontal slice drawn over cells and macro-cells with the patch orientation map
+// (Sec. 4.1, Eq. 6-7), and the BTF's light interpolation (Appendix A, Eq. 8-13). See
+// `techniques/boulanger/src/lib.rs`. Composed after the prelude (group 0).
 
 struct Params {
     color_root: vec4<f32>,  // rgb; w: colour variation
@@ -12,14 +13,26 @@ struct Params {
     lod: vec4<f32>,
     // x: patch size (m); y: slice height above ground (m); z: slice texture side; w: bake top (m)
     tile: vec4<f32>,
-    // xyz: unit vector towards the scene's sun, for the slice bake; w: unused
-    sun: vec4<f32>,
+    // x: vertical slices per axis (N); y: min_btf; z: max_btf; w: 1 with the shadow mask
+    btf: vec4<f32>,
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
 @group(1) @binding(1) var blade_texture: texture_2d<f32>;
 @group(1) @binding(2) var clamp_sampler: sampler;
 @group(1) @binding(3) var repeat_sampler: sampler;
+// The shadow mask (Sec. 3.5, src/shadow.rs): coverage of a slab of the patch in alpha.
+@group(1) @binding(4) var shadow_mask: texture_2d_array<f32>;
+// Sec. 3.5's ambient occlusion map (src/occlusion.rs): the sky's share left by trees and
+// stones, one value per covering-map sample.
+@group(1) @binding(5) var ao_map: texture_2d<f32>;
+
+// The ambient visibility at `xz` (samples on the terrain's corners, like the other maps).
+fn ambient_visibility(xz: vec2<f32>) -> f32 {
+    let dims = vec2<f32>(textureDimensions(ao_map));
+    let uv = clamp(terrain_uv(xz), vec2(0.0), vec2(1.0));
+    return textureSampleLevel(ao_map, clamp_sampler, (uv * (dims - 1.0) + 0.5) / dims, 0.0).r;
+}
 
 // One geometry cell's copy of the patch (Sec. 3.1). Instance `i` of a blade draw is blade
 // `i % blade_count` of the cell in slot `i / blade_count` of this page of cells (the page is a
@@ -27,7 +40,10 @@ struct Params {
 struct Cell {
     // xy: world (x, z) of the patch centre; zw: mirror signs (-1 or 1) for x and z (Sec. 3.1)
     center_signs: vec4<f32>,
-    // x: 1 when baking the slice (no terrain, wind, density or LOD); yzw: unused
+    // x: 1 when baking a slice (no terrain, wind, density or LOD); when baking, y: projection
+    // (0 top view of the horizontal slice, 1 slice across x, 2 slice across z), z: the slice's
+    // coordinate along its axis (m, from the patch centre), w: side of the orthographic camera
+    // (+1 on the + side of the axis, -1 on the other)
     mode: vec4<f32>,
 }
 @group(2) @binding(0) var<storage, read> cells: array<Cell>;
@@ -39,10 +55,24 @@ struct Blade {
 }
 @group(2) @binding(4) var<storage, read> patch_blades: array<Blade>;
 
-// The horizontal slice (slice pipeline only).
-@group(2) @binding(1) var slice_color: texture_2d<f32>;   // albedo x coverage, coverage
-@group(2) @binding(2) var slice_aux: texture_2d<f32>;     // (diffuse, 0, dth, ao) x coverage
+// The BTFs (slice pipelines only), three arrays of layers, every channel premultiplied by
+// coverage: colour = (K_d, coverage) (Fig. 7's ambient row and alpha), diffuse = the two-sided
+// diffuse factor for the lights Y+, X+, Z+, X- (Fig. 7's five rows), extra = (the diffuse factor
+// for Z-, density threshold (Fig. 10), ambient occlusion, 0). The horizontal slice is one layer;
+// vertical slice `i` across axis `a` (0 x, 1 z) seen from the + side is layer 2 (a N + i), from
+// the - side the next.
+@group(2) @binding(1) var slice_color: texture_2d_array<f32>;
+@group(2) @binding(2) var slice_diffuse: texture_2d_array<f32>;
 @group(2) @binding(3) var orientation_map: texture_2d<u32>;
+@group(2) @binding(5) var slice_extra: texture_2d_array<f32>;
+@group(2) @binding(6) var vslice_color: texture_2d_array<f32>;
+@group(2) @binding(7) var vslice_diffuse: texture_2d_array<f32>;
+@group(2) @binding(8) var vslice_extra: texture_2d_array<f32>;
+
+// The bake's blades (bake pipeline only): instance `k` draws the blade `bake_refs[k]` of the
+// blade pipeline's numbering (cell x blade count + blade), so each slice draws only the blades
+// that reach its slab.
+@group(3) @binding(0) var<storage, read> bake_refs: array<u32>;
 
 // ---- Level of detail (twins of src/lod.rs) ----
 
@@ -69,6 +99,118 @@ fn on_grass(xz: vec2<f32>) -> bool {
     return all(uv >= vec2(0.0)) && all(uv <= vec2(1.0)) && terrain_covering(xz) == COVER_GRASS;
 }
 
+// The far fade of the vertical slices: the second factor of Eq. 3.
+fn vertical_fade(d: f32) -> f32 {
+    return clamp01((d - params.btf.z) / (params.btf.y - params.btf.z));
+}
+
+// Eq. 5 for the far fade of the vertical slices: the blades with the lowest normalised
+// thresholds stay longest (weight 1 keeps every blade, 0 none; see src/lod.rs).
+fn fade_opacity(f: f32, t: f32, omega: f32) -> f32 {
+    if (omega <= 0.0) {
+        return select(0.0, 1.0, t <= f);
+    }
+    return clamp01((f * (1.0 + 2.0 * omega) - t) / (2.0 * omega));
+}
+
+// The share of a slice texel with threshold `dth` (Sec. 3.4, Fig. 11): the blade exists under
+// the local density, the slices draw what geometry does not (times the vertical slices' far
+// fade `f`, 1 for the horizontal slice). Where a pixel covers many texels (`texels` per pixel)
+// the one averaged threshold means nothing: the expected fraction of the uniformly spread
+// thresholds is drawn instead.
+fn slice_share(dth: f32, density: f32, w_g: f32, f: f32, texels: f32) -> f32 {
+    let omega = params.lod.z;
+    var fine = 0.0;
+    if (dth < density) {
+        let t = dth / density;
+        fine = (1.0 - geometry_opacity(w_g, t, omega)) * fade_opacity(f, t, omega);
+    }
+    var mean = 0.0;
+    for (var k = 0u; k < 8u; k++) {
+        let t = (f32(k) + 0.5) / 8.0;
+        mean += (1.0 - geometry_opacity(w_g, t, omega)) * fade_opacity(f, t, omega);
+    }
+    let expected = density * mean / 8.0;
+    let far = clamp(log2(max(texels, 1e-6)) - 0.5, 0.0, 1.0);
+    return mix(fine, expected, far);
+}
+
+// ---- BTF light interpolation (Appendix A; twin of src/barycentric.rs) ----
+
+// The five weights, Y+, X+, Z+, X- in `a` and Z- in `b`.
+struct Weights {
+    a: vec4<f32>,
+    b: f32,
+}
+
+// Eq. 10-13: area of the spherical triangle L P Q, P and Q orthogonal axes, lp = l.P, lq = l.Q.
+fn right_triangle_area(lp: f32, lq: f32) -> f32 {
+    let sin_p = sqrt(max(1.0 - lp * lp, 0.0));
+    let sin_q = sqrt(max(1.0 - lq * lq, 0.0));
+    if (sin_p < 1e-6 || sin_q < 1e-6) {
+        return 0.0;
+    }
+    let at_p = acos(clamp(lq / sin_p, -1.0, 1.0));
+    let at_q = acos(clamp(lp / sin_q, -1.0, 1.0));
+    let at_l = acos(clamp(-lp * lq / (sin_p * sin_q), -1.0, 1.0));
+    return max(at_p + at_q + at_l - PI, 0.0);
+}
+
+// Eq. 8-9: the weights of the sampled directions for the light direction `light` (in the
+// patch's own frame); a light below the horizon is taken at the horizon.
+fn btf_weights(light: vec3<f32>) -> Weights {
+    var l = vec3(light.x, max(light.y, 0.0), light.z);
+    let len = length(l);
+    l = select(vec3(0.0, 1.0, 0.0), l / len, len > 1e-6);
+    let ax = abs(l.x);
+    let az = abs(l.z);
+    let quarter = 0.5 * PI;
+    let wa = right_triangle_area(l.y, az) / quarter;
+    let wb = right_triangle_area(az, ax) / quarter;
+    let wc = right_triangle_area(ax, l.y) / quarter;
+    var w: Weights;
+    let px = select(0.0, 1.0, l.x >= 0.0);
+    let pz = select(0.0, 1.0, l.z >= 0.0);
+    w.a = vec4(wb, wa * px, wc * pz, wa * (1.0 - px));
+    w.b = wc * (1.0 - pz);
+    return w;
+}
+
+// Sum of alpha_i C_i with the weights renormalised per pixel (Appendix A).
+fn btf_diffuse(d_a: vec4<f32>, d_b: f32, w: Weights) -> f32 {
+    let sum = max(dot(w.a, vec4(1.0)) + w.b, 1e-6);
+    return (dot(w.a, d_a) + w.b * d_b) / sum;
+}
+
+// Sec. 3.3's Lambert for a BTF texel at `world`: K_d I_a + (sum of alpha_i C_i) I_d for the sun
+// and, if the scene has one, for the point light with I_d / (1 + beta d^2), each with its own
+// weights; the ambient term darkened by the occlusion like the blades' `shade_leaf`.
+fn btf_light(albedo: vec3<f32>, d_a: vec4<f32>, d_b: f32, sun: Weights, point: Weights, world: vec3<f32>, ao: f32) -> vec3<f32> {
+    var direct = globals.sun_color.rgb * btf_diffuse(d_a, d_b, sun);
+    if (globals.point_color.w > 0.0) {
+        direct += point_light(world) * btf_diffuse(d_a, d_b, point);
+    }
+    // The occlusion map (Sec. 3.5) per pixel, below the texel.
+    let sky = ambient_visibility(world.xz);
+    return albedo * (globals.ambient.rgb * ao * sky + direct * mix(0.5, 1.0, ao));
+}
+
+// A cell mirrored in x (z) sees the light mirrored: X+ and X- (Z+ and Z-) swap weights.
+fn mirror_weights(w: Weights, signs: vec2<f32>) -> Weights {
+    var m: Weights;
+    m.a = vec4(w.a.x, select(w.a.y, w.a.w, signs.x < 0.0), select(w.a.z, w.b, signs.y < 0.0), select(w.a.w, w.a.y, signs.x < 0.0));
+    m.b = select(w.b, w.a.z, signs.y < 0.0);
+    return m;
+}
+
+// The wind's sideways push on a blade's particle at `xz` (m/s x wind response, clamped so the
+// particle model stays sane; 0 when animation is off).
+fn wind_push(xz: vec2<f32>) -> vec2<f32> {
+    let push = wind_at(xz).xz * params.blade.z;
+    let p = length(push);
+    return select(push, push * (1.5 / p), p > 1.5);
+}
+
 // ---- Geometric blades (Sec. 3.2) ----
 
 struct BladeOut {
@@ -79,10 +221,26 @@ struct BladeOut {
     @location(3) uv: vec2<f32>,
     @location(4) ao_opacity: vec2<f32>,
     @location(5) threshold: f32,
+    // Baking only: unit vector towards the slice's orthographic camera.
+    @location(6) bake_view: vec3<f32>,
+    // The blade's root (world) and the azimuth of its inclination (mirror applied).
+    @location(7) @interpolate(flat) root: vec4<f32>,
+    // The ambient visibility at the root (Sec. 3.5); 1 when baking.
+    @location(8) @interpolate(flat) sky: f32,
 }
 
 @vertex
 fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> BladeOut {
+    return blade_vertex(vertex, instance);
+}
+
+// The BTF bake: the blades listed for this slice only.
+@vertex
+fn vs_bake(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> BladeOut {
+    return blade_vertex(vertex, bake_refs[instance]);
+}
+
+fn blade_vertex(vertex: u32, instance: u32) -> BladeOut {
     var out: BladeOut;
     let count = arrayLength(&patch_blades);
     let index = instance % count;
@@ -117,15 +275,10 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
             return out;
         }
         // The shared wind pushes the particle sideways, with a little per-blade flutter.
-        let wind = wind_at(root_xz).xz;
-        let speed = length(wind);
+        let speed = length(wind_at(root_xz).xz);
         let phase = hash_f32(index) * 2.0 * PI;
         let flutter = 1.0 + 0.2 * sin(globals.camera_pos.w * (3.0 + speed) + phase);
-        push = wind * params.blade.z * flutter;
-        let p = length(push);
-        if (p > 1.5) {
-            push *= 1.5 / p;
-        }
+        push = wind_push(root_xz) * flutter;
     }
 
     // The particle: launched from the root almost vertically (unit speed, `tilt` from the
@@ -159,13 +312,11 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     }
 
     if (baking) {
-        // Orthographic top view of the patch: x and z to the texture, the highest point wins.
-        let top = params.tile.w;
-        out.position = vec4(
-            2.0 * world.x / params.tile.x,
-            -2.0 * world.z / params.tile.x,
-            (top - world.y) / (top + 0.1),
-            1.0,
+        out.position = bake_position(world, cell.mode);
+        out.bake_view = select(
+            select(vec3(0.0, 0.0, cell.mode.w), vec3(cell.mode.w, 0.0, 0.0), cell.mode.y < 1.5),
+            vec3(0.0, 1.0, 0.0),
+            cell.mode.y < 0.5,
         );
     } else {
         out.position = globals.view_proj * vec4(world, 1.0);
@@ -177,7 +328,73 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     // Ambient occlusion: linear in the height of the vertex above the ground (Sec. 3.2).
     out.ao_opacity = vec2(mix(params.blade.w, 1.0, clamp01(local.y / max(height, 1e-4))), opacity);
     out.threshold = dth;
+    out.root = vec4(root_xz.x, ground, root_xz.y, atan2(dir.y, dir.x));
+    out.sky = 1.0;
+    if (!baking) {
+        out.sky = ambient_visibility(root_xz);
+    }
     return out;
+}
+
+// Sec. 3.5's shadow mask: the light reaching point `p` (relative to the blade's root) of a
+// blade inclined towards `azimuth`, from the direction `l`. The ray towards the light leaves
+// the cylinder around the blade (radius: patch side / 2 pi, src/shadow.rs) through its side or
+// its top; below the top, the mask's texel there (bilinear: anti-aliased) is the shadow.
+fn blade_shadow(p: vec3<f32>, azimuth: f32, l: vec3<f32>) -> f32 {
+    if (params.btf.w < 0.5) {
+        return 1.0;
+    }
+    let r = params.tile.x / (2.0 * PI);
+    let top = params.tile.w;
+    let a = dot(l.xz, l.xz);
+    if (a < 1e-6) {
+        return 1.0;
+    }
+    let b = dot(p.xz, l.xz);
+    let c = dot(p.xz, p.xz) - r * r;
+    let t = max((-b + sqrt(max(b * b - a * c, 0.0))) / a, 0.0);
+    let h = p + t * l;
+    if (h.y >= top) {
+        return 1.0;
+    }
+    let u = fract((atan2(h.z, h.x) - azimuth) / (2.0 * PI));
+    let v = 1.0 - clamp(h.y / top, 0.0, 1.0);
+    return 1.0 - textureSampleLevel(shadow_mask, repeat_sampler, vec2(u, v), 0, 0.0).a;
+}
+
+// `shade_leaf` with the shadow mask on the sun's and the point light's light.
+fn shade_blade(albedo: vec3<f32>, normal: vec3<f32>, world: vec3<f32>, root: vec4<f32>, ao: f32, sky: f32, translucency: f32) -> vec3<f32> {
+    let to_eye = normalize(globals.camera_pos.xyz - world);
+    let n = select(-normal, normal, dot(normal, to_eye) >= 0.0);
+    let p = world - root.xyz;
+    let sun = globals.sun_direction.xyz;
+    var direct = globals.sun_color.rgb * leaf_lambert(n, sun, translucency) * blade_shadow(p, root.w, sun);
+    if (globals.point_color.w > 0.0) {
+        let l = normalize(globals.point_position.xyz - world);
+        direct += point_light(world) * leaf_lambert(n, l, translucency) * blade_shadow(p, root.w, l);
+    }
+    return albedo * (globals.ambient.rgb * ao * sky + direct * mix(0.5, 1.0, ao));
+}
+
+// The orthographic cameras of the bake (Sec. 3.3, Fig. 6), in the patch's frame (the patch
+// centre at the origin).
+fn bake_position(world: vec3<f32>, mode: vec4<f32>) -> vec4<f32> {
+    let size = params.tile.x;
+    let top = params.tile.w;
+    if (mode.y < 0.5) {
+        // The horizontal slice: a top view, x and z to the texture, the highest point wins.
+        return vec4(2.0 * world.x / size, -2.0 * world.z / size, (top - world.y) / (top + 0.1), 1.0);
+    }
+    // A vertical slice: the in-plane coordinate (z across x, x across z) and the height to the
+    // texture; the near and far planes are the bounds of the slice's slab (its share of the
+    // patch, N slices an axis), nearest to the camera's side first.
+    // (3: the shadow mask's slab across x, as thick as the mask's cylinder, src/shadow.rs.)
+    let across_x = mode.y < 1.5 || mode.y > 2.5;
+    let along = select(world.x, world.z, across_x);
+    let depth_axis = select(world.z, world.x, across_x);
+    let half = select(0.5 * size / params.btf.x, size / (2.0 * PI), mode.y > 2.5);
+    let depth = (half - mode.w * (depth_axis - mode.z)) / (2.0 * half);
+    return vec4(2.0 * along / size, 2.0 * world.y / top - 1.0, depth, 1.0);
 }
 
 // Debug view 2: one colour per mirrored version of the patch.
@@ -197,21 +414,21 @@ fn fs_blade(in: BladeOut) -> @location(0) vec4<f32> {
     }
     let albedo = in.albedo * tex.rgb * 2.0;
     // Two-sided Lambert + ambient darkened towards the root (Sec. 3.2).
-    let lit = shade_leaf(albedo, normalize(in.normal), in.world, in.ao_opacity.x, params.color_tip.w);
+    let lit = shade_blade(albedo, normalize(in.normal), in.world, in.root, in.ao_opacity.x, in.sky, params.color_tip.w);
     return vec4(apply_fog(lit, in.world), alpha);
 }
 
 struct BakeOut {
     @location(0) color: vec4<f32>,
-    @location(1) aux: vec4<f32>,
+    @location(1) diffuse: vec4<f32>,
+    @location(2) extra: vec4<f32>,
 }
 
-// The bake of the horizontal slice (Sec. 3.3): colour without lighting (the ambient row of
-// Fig. 7), the two-sided diffuse factor of the blade seen from above for the scene's sun (one
-// row of Fig. 7's diffuse part; part 2 bakes the five light directions), its density threshold
-// (Fig. 10) and its occlusion. MSAA resolve turns the binary coverage into alpha with soft
-// borders, every channel premultiplied by it; averaging the diffuse factor (not the normal)
-// keeps far grass as dark as its blades.
+// The BTF bake (Sec. 3.3, Fig. 7 and 10): the colour without lighting (K_d, the ambient row),
+// the two-sided diffuse factor of the blade seen by the slice's camera for each of the five
+// light directions (the rows of Fig. 7), its density threshold (Fig. 10) and its occlusion.
+// MSAA resolve turns the binary coverage into alpha with soft borders (Fig. 7's alpha), every
+// channel premultiplied by it.
 @fragment
 fn fs_bake(in: BladeOut) -> BakeOut {
     let tex = textureSample(blade_texture, clamp_sampler, in.uv);
@@ -219,15 +436,22 @@ fn fs_bake(in: BladeOut) -> BakeOut {
         discard;
     }
     var out: BakeOut;
-    // The same two-sided Lambert as the prelude's `shade_leaf`, for a viewer above the patch.
+    // The same two-sided Lambert as the prelude's `shade_leaf`, for the slice's viewer.
     var n = normalize(in.normal);
-    if (n.y < 0.0) {
+    if (dot(n, in.bake_view) < 0.0) {
         n = -n;
     }
-    let ndl = dot(n, params.sun.xyz);
-    let diffuse = max(ndl, 0.0) + max(-ndl, 0.0) * params.color_tip.w;
+    let tr = params.color_tip.w;
+    let lights = array(vec3(0.0, 1.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0), vec3(-1.0, 0.0, 0.0), vec3(0.0, 0.0, -1.0));
+    var d: array<f32, 5>;
+    let p = in.world - in.root.xyz;
+    for (var k = 0u; k < 5u; k++) {
+        // Lit through the shadow mask (Sec. 3.5), so the slices carry blade-to-blade shadows.
+        d[k] = leaf_lambert(n, lights[k], tr) * blade_shadow(p, in.root.w, lights[k]);
+    }
     out.color = vec4(in.albedo * tex.rgb * 2.0, 1.0);
-    out.aux = vec4(diffuse, 0.0, in.threshold, in.ao_opacity.x);
+    out.diffuse = vec4(d[0], d[1], d[2], d[3]);
+    out.extra = vec4(d[4], in.threshold, in.ao_opacity.x, 0.0);
     return out;
 }
 
@@ -245,6 +469,12 @@ struct SliceOut {
     // patchSize · (u, v) of Eq. 6: position in cells from the macro-cell's first cell.
     @location(1) cell_coord: vec2<f32>,
     @location(2) @interpolate(flat) first_cell: vec2<i32>,
+    // Appendix A's light weights (Y+, X+, Z+, X-; Z-) per vertex, for the unmirrored patch:
+    // the sun's, then the point light's.
+    @location(3) w_a: vec4<f32>,
+    @location(4) w_b: f32,
+    @location(5) p_a: vec4<f32>,
+    @location(6) p_b: f32,
 }
 
 @vertex
@@ -262,6 +492,12 @@ fn vs_slice(@builtin(vertex_index) vertex: u32, quad: SliceQuad) -> SliceOut {
     out.world = world;
     out.cell_coord = g * quad.cells.zw;
     out.first_cell = vec2<i32>(quad.cells.xy);
+    let w = btf_weights(globals.sun_direction.xyz);
+    out.w_a = w.a;
+    out.w_b = w.b;
+    let p = btf_weights(globals.point_position.xyz - world);
+    out.p_a = p.a;
+    out.p_b = p.b;
     return out;
 }
 
@@ -278,38 +514,22 @@ fn fs_slice(in: SliceOut) -> @location(0) vec4<f32> {
     // Gradients of the unwrapped coordinates, so the mip level does not jump at cell borders.
     let gx = dpdx(local) * signs;
     let gy = dpdy(local) * signs;
-    let color = textureSampleGrad(slice_color, repeat_sampler, uv, gx, gy);
-    let aux = textureSampleGrad(slice_aux, repeat_sampler, uv, gx, gy);
+    let color = textureSampleGrad(slice_color, repeat_sampler, uv, 0, gx, gy);
     let coverage = color.a;
     if (coverage < 1e-3) {
         discard;
     }
+    let diffuse = textureSampleGrad(slice_diffuse, repeat_sampler, uv, 0, gx, gy) / coverage;
+    let extra = textureSampleGrad(slice_extra, repeat_sampler, uv, 0, gx, gy) / coverage;
     let albedo_in = color.rgb / coverage;
-    let diffuse = aux.x / coverage;
-    let dth = aux.z / coverage;
-    let ao = aux.w / coverage;
+    let dth = extra.y;
+    let ao = extra.z;
 
     let xz = in.world.xz;
     let ground = vec3(xz.x, in.world.y - params.tile.y, xz.y);
     let w_g = weight_geometry(distance(globals.camera_pos.xyz, ground));
-    let density = terrain_density(xz);
-    let omega = params.lod.z;
-    // Per texel (Sec. 3.4, Fig. 11): the texel's blade exists if its threshold is under the
-    // local density, and the slice draws what geometry does not.
-    var fine = 0.0;
-    if (dth < density) {
-        fine = 1.0 - geometry_opacity(w_g, dth / density, omega);
-    }
-    // A pixel far away covers many blades, their thresholds spread uniformly (the patch is
-    // built so): draw the expected fraction instead of testing one averaged threshold.
-    var mean = 0.0;
-    for (var k = 0u; k < 8u; k++) {
-        mean += 1.0 - geometry_opacity(w_g, (f32(k) + 0.5) / 8.0, omega);
-    }
-    let expected = density * mean / 8.0;
     let texels = max(length(gx), length(gy)) * params.tile.z;
-    let far = clamp(log2(max(texels, 1e-6)) - 0.5, 0.0, 1.0);
-    let share = mix(fine, expected, far) * f32(on_grass(xz));
+    let share = slice_share(dth, terrain_density(xz), w_g, 1.0, texels) * f32(on_grass(xz));
     let alpha = coverage * share;
     if (alpha < max(params.lod.w, 1e-3)) {
         discard;
@@ -320,8 +540,116 @@ fn fs_slice(in: SliceOut) -> @location(0) vec4<f32> {
     } else if (globals.frame.z == 2u) {
         albedo = orientation_color(signs);
     }
-    // `shade_leaf` with the baked, texel-averaged diffuse factor in place of one normal's.
-    let light = globals.ambient.rgb * ao + globals.sun_color.rgb * diffuse * mix(0.5, 1.0, ao);
-    let lit = albedo * light;
+    var sun: Weights;
+    sun.a = in.w_a;
+    sun.b = in.w_b;
+    var point: Weights;
+    point.a = in.p_a;
+    point.b = in.p_b;
+    let lit = btf_light(albedo, diffuse, extra.x, mirror_weights(sun, signs), mirror_weights(point, signs), in.world, ao);
+    return vec4(apply_fog(lit, in.world), alpha);
+}
+
+// ---- Vertical slices (Sec. 3.3): N across x and N across z in each cell of the mid band ----
+
+// One cell with vertical slices (instance step): the cell's `Cell` as vertex attributes.
+struct VCell {
+    @location(0) center_signs: vec4<f32>,
+    @location(1) mode: vec4<f32>,
+}
+
+struct VSliceOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) @interpolate(flat) layer: u32,
+    @location(3) w_a: vec4<f32>,
+    @location(4) w_b: f32,
+    @location(5) p_a: vec4<f32>,
+    @location(6) p_b: f32,
+}
+
+// Vertex `v` of a cell: quad `v / 6` (2N of them, across x and across z alternately, each axis
+// drawn back to front for the eye, since the slices are blended unsorted like the blades).
+@vertex
+fn vs_vslice(@builtin(vertex_index) vertex: u32, cell: VCell) -> VSliceOut {
+    let n = u32(params.btf.x);
+    let size = params.tile.x;
+    let top = params.tile.w;
+    let k = vertex / 6u;
+    let corner = vertex % 6u;
+    var offsets = array(vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.0, 1.0), vec2(1.0, 0.0), vec2(1.0, 1.0), vec2(0.0, 1.0));
+    let g = offsets[corner];
+    let signs = cell.center_signs.zw;
+    // The eye in the patch's own frame (the mirror is its own inverse).
+    let eye = (globals.camera_pos.xz - cell.center_signs.xy) * signs;
+    let axis = k % 2u;  // 0: across x, 1: across z
+    let j = k / 2u;
+    let eye_along = select(eye.y, eye.x, axis == 0u);
+    let i = select(n - 1u - j, j, eye_along >= 0.0);
+    let c = size * ((f32(i) + 0.5) / f32(n) - 0.5);
+    let along = size * (g.x - 0.5);
+    let local = select(vec2(along, c), vec2(c, along), axis == 0u);
+    let base = cell.center_signs.xy + local * signs;
+    // Beyond the paper: the slice's top is sheared with the wind that bends the geometric
+    // blades, by the displacement of a windless-standing blade's tip at that height (the
+    // particle of `blade_vertex` moves 0.5 push scale at its tip, scale = height / peak), so
+    // the slices sway with the blades they replace. Per vertex, so neighbouring cells agree.
+    let push = wind_push(base);
+    let g_acc = params.blade.y;
+    let peak = select(1.0 - 0.5 * g_acc, 1.0 / (2.0 * g_acc), g_acc > 1.0);
+    let xz = base + 0.5 * push * (g.y * top) / max(peak, 1e-3);
+    let world = vec3(xz.x, terrain_height(base) + g.y * top, xz.y);
+    var out: VSliceOut;
+    out.position = globals.view_proj * vec4(world, 1.0);
+    out.world = world;
+    out.uv = vec2(g.x, 1.0 - g.y);
+    // Front (camera on the + side of the slice, Fig. 7's left column) or back.
+    let front = eye_along >= c;
+    out.layer = 2u * (axis * n + i) + select(1u, 0u, front);
+    // Appendix A per vertex, in the patch's frame.
+    let mirror = vec3(signs.x, 1.0, signs.y);
+    let w = btf_weights(globals.sun_direction.xyz * mirror);
+    out.w_a = w.a;
+    out.w_b = w.b;
+    let p = btf_weights((globals.point_position.xyz - world) * mirror);
+    out.p_a = p.a;
+    out.p_b = p.b;
+    return out;
+}
+
+@fragment
+fn fs_vslice(in: VSliceOut) -> @location(0) vec4<f32> {
+    let color = textureSample(vslice_color, clamp_sampler, in.uv, in.layer);
+    let coverage = color.a;
+    if (coverage < 1e-3) {
+        discard;
+    }
+    let diffuse = textureSample(vslice_diffuse, clamp_sampler, in.uv, in.layer) / coverage;
+    let extra = textureSample(vslice_extra, clamp_sampler, in.uv, in.layer) / coverage;
+    let xz = in.world.xz;
+    let d = distance(globals.camera_pos.xyz, vec3(xz.x, terrain_height(xz), xz.y));
+    let dims = vec2<f32>(textureDimensions(vslice_color));
+    let texels = max(length(dpdx(in.uv) * dims), length(dpdy(in.uv) * dims));
+    // Per pixel (Sec. 3.4, Fig. 11): the texel's threshold against the density below it.
+    let share = slice_share(extra.y, terrain_density(xz), weight_geometry(d), vertical_fade(d), texels)
+        * f32(on_grass(xz));
+    let alpha = coverage * share;
+    if (alpha < max(params.lod.w, 1e-3)) {
+        discard;
+    }
+    var albedo = color.rgb / coverage;
+    if (globals.frame.z == 1u) {
+        albedo = vec3(0.03, 0.08, 0.55); // Fig. 12: vertical slices in blue
+    } else if (globals.frame.z == 2u) {
+        albedo = vec3(0.3);
+    }
+    var sun: Weights;
+    sun.a = in.w_a;
+    sun.b = in.w_b;
+    var point: Weights;
+    point.a = in.p_a;
+    point.b = in.p_b;
+    let lit = btf_light(albedo, diffuse, extra.x, sun, point, in.world, extra.z);
     return vec4(apply_fog(lit, in.world), alpha);
 }

@@ -1,9 +1,10 @@
-// Mip chain of the horizontal slice (Boulanger Sec. 3.3: trilinear filtering of far grass):
-// each level is the 2x2 box average of the one above, of premultiplied channels, so coverage,
-// colour, normal, threshold and occlusion stay consistent. Composed after the prelude.
+// Mip chain of the BTF layers (Boulanger Sec. 3.3: trilinear filtering of far grass): each
+// level is the 2x2 box average of the one above, of premultiplied channels, so coverage,
+// colour, diffuse factors, threshold and occlusion stay consistent. Composed after the prelude.
 
 @group(1) @binding(0) var src_color: texture_2d<f32>;
-@group(1) @binding(1) var src_aux: texture_2d<f32>;
+@group(1) @binding(1) var src_diffuse: texture_2d<f32>;
+@group(1) @binding(3) var src_extra: texture_2d<f32>;
 @group(1) @binding(2) var src_sampler: sampler;
 
 struct MipVertex {
@@ -23,7 +24,8 @@ fn vs_mip(@builtin(vertex_index) vertex: u32) -> MipVertex {
 
 struct MipOut {
     @location(0) color: vec4<f32>,
-    @location(1) aux: vec4<f32>,
+    @location(1) diffuse: vec4<f32>,
+    @location(2) extra: vec4<f32>,
 }
 
 @fragment
@@ -31,6 +33,7 @@ fn fs_mip(in: MipVertex) -> MipOut {
     // The centre of a target texel is the corner of four source texels: bilinear = box filter.
     var out: MipOut;
     out.color = textureSampleLevel(src_color, src_sampler, in.uv, 0.0);
-    out.aux = textureSampleLevel(src_aux, src_sampler, in.uv, 0.0);
+    out.diffuse = textureSampleLevel(src_diffuse, src_sampler, in.uv, 0.0);
+    out.extra = textureSampleLevel(src_extra, src_sampler, in.uv, 0.0);
     return out;
 }

@@ -1,11 +1,21 @@
 //! # `boulanger`: geometry near, slices far, density thresholds in between
 //!
 //! Boulanger, Pattanaik and Bouatouch, *Rendering Grass in Real Time with Dynamic Light
-//! Sources* (2006; the transcript is `shared/seeds/001_15b45c4dc11230fe.txt`). Part 1 (issue 8)
-//! implemented here: geometric blades, the tiled and mirrored patch, density management, the LOD
-//! weights with their smooth transition, the quadtree terrain with macro-cells, the horizontal
-//! slice for far grass and both semi-transparency modes. Part 2 (issue 9) adds the vertical BTF
-//! slices; until then the horizontal slice takes the whole far share.
+//! Sources* (2006; the transcript is `shared/seeds/001_15b45c4dc11230fe.txt`). Part 1 (issue 8):
+//! geometric blades, the tiled and mirrored patch, density management, the LOD weights with
+//! their smooth transition, the quadtree terrain with macro-cells, the horizontal slice for far
+//! grass and both semi-transparency modes. Part 2 (issue 9) so far:
+//! - the vertical slices of the mid band and the BTF pre-computation of every slice (five light
+//!   directions x the slice's two view directions, K_d, alpha, density threshold), with its
+//!   disk cache;
+//! - Appendix A's spherical barycentric light interpolation; the scene's lights moving at run
+//!   time (keyframes of the sun and of a point light with Sec. 3.3's attenuation, `[lights]`);
+//! - Sec. 3.5's shadow-mask cylinder (blade-to-blade shadows on the blades, baked into the
+//!   slices) and ambient occlusion map (the covering map's trees and stones);
+//! - the vertical slices sheared with the wind that bends the blades (beyond the paper).
+//!
+//! Not yet: moving the lights from the UI, and the blade and slice shadows projected on the
+//! ground (Sec. 3.5's stencil pass).
 //!
 //! ## Algorithm
 //! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
@@ -24,8 +34,9 @@
 //!   vertically (up to `max_tilt` from the vertical) under `gravity`; its positions at
 //!   `segments + 1` evenly spaced times are the reference points, scaled so the standing blade
 //!   peaks at its height. A procedural blade texture ([`texture`]) shapes the strip with its
-//!   alpha and modulates its colour. Two-sided Lambert + ambient (the prelude's `shade_leaf`),
-//!   per-blade colour variation, ambient occlusion linear in the vertex height, the scene's fog.
+//!   alpha and modulates its colour. Two-sided Lambert + ambient (the prelude's `shade_leaf`
+//!   with the shadow mask and the occlusion map, `shade_blade`), per-blade colour variation,
+//!   ambient occlusion linear in the vertex height, the scene's fog.
 //! - **Density** (Sec. 3.4). The shared density map, bilinear; a blade exists where its
 //!   threshold is under the local density, tested per blade in the vertex shader and per texel
 //!   for the slice. The covering map removes blades where it says no grass.
@@ -40,22 +51,59 @@
 //!   block of the patch, the blades whose thresholds can pass there, a contiguous range since
 //!   each block is sorted by threshold; [`cells`] turns the ranges of all cells into instanced
 //!   draws, merging those that meet, so a run of cells drawn whole is one draw) and, where
-//!   geometry's weight is under 1, a horizontal slice. Farther
+//!   geometry's weight is under 1, a horizontal slice. Within `max_btf` cells stay single cells
+//!   and get the vertical slices too. Farther
 //!   away a node at least `macro_factor` times its side away is drawn whole as one horizontal
 //!   slice quad, tessellated to follow the ground.
-//! - **Horizontal slice** (Sec. 3.3, [`slice`]). Baked once at start-up with wgpu: an
-//!   orthographic top view of the patch and its 8 neighbours into two `Rgba16Float` textures
-//!   (unlit colour with coverage; diffuse factor, density threshold, occlusion), 4x MSAA
-//!   resolved, with
-//!   a box-filtered mip chain. Drawn over cells and macro-cells by texture repetition with the
+//! - **BTF pre-computation** (Sec. 3.3, Fig. 6, 7, 10, [`btf`], [`cache`]). At start-up every
+//!   slice is rendered from the geometric patch and its eight neighbours by an orthographic
+//!   camera whose near and far planes bound the slice's slab, with the blades' own vertex shader
+//!   in baking mode, 4x MSAA resolved into coverage: per layer (slice x view side) the colour
+//!   without lighting (`K_d`) with coverage (alpha), the two-sided diffuse factor for each of
+//!   the five light directions Y+, X+, Z+, X−, Z− (one pass: only the shading differs), the
+//!   density threshold and the occlusion, in three `Rgba16Float` 2D arrays with box-filtered
+//!   mips. The blades each vertical layer draws are listed on the CPU (those reaching its
+//!   slab). The result is cached on disk under a hash of everything the bake reads
+//!   (`$XDG_CACHE_HOME/grassbench/boulanger`, `btf_cache`); a damaged file is baked again.
+//! - **Vertical slices** (Sec. 3.3, [`vertical`], `vs_vslice`/`fs_vslice`). `vertical_slices`
+//!   (10) quads across x and as many across z per cell, static for any camera, one instanced
+//!   draw for all cells (far to near; within a cell each axis back to front, since they are
+//!   blended unsorted like the blades). The layer is chosen by the side the camera is on, in
+//!   the cell's mirrored frame. They draw the slices' share of each texel's blade like the
+//!   horizontal slice, times the far fade of Eq. 3 ([`lod`]), so the three representations
+//!   share every blade through part 1's weights and per-pixel thresholds (Fig. 12's debug
+//!   view shows them red, blue and green).
+//! - **Lighting** (Sec. 3.3, Appendix A, [`barycentric`]). Lambert with the scene's
+//!   directional sun and, if `[lights.point]` sets one, a point light with attenuation
+//!   `1/(1 + βd²)`; both follow their keyframes (`sun_keys`, `point.keys`) at run time. Slice
+//!   texels are lit `K_d I_a ao + Σ_lights (Σ α_i C_i) I_d`: the five diffuse samples weighted
+//!   by the spherical barycentric coordinates of the direction towards each light in the
+//!   patch's frame (Eq. 8-13, nine arc-cosines per light per vertex; for the point light they
+//!   vary across a slice), renormalised per pixel, the point light's attenuation per pixel. A
+//!   mirrored cell sees the light mirrored (X+ and X− swap, Z+ and Z−). The geometric blades
+//!   use the two-sided Lambert of the prelude, which has the point light too.
+//! - **Horizontal slice** (Sec. 3.3, [`slice`]). One BTF layer (below): an orthographic top
+//!   view of the patch and its 8 neighbours. Drawn over cells and macro-cells by texture
+//!   repetition with the
 //!   patch orientation map of Eq. 6-7 so macro-cells keep each cell's mirror; lit per pixel
-//!   with the prelude's two-sided Lambert, whose diffuse factor is baked per texel for the
-//!   scene's sun (averaging normals instead made far grass far too bright; part 2's BTF bakes
-//!   five light directions so the light can move). Per pixel the texel's
+//!   from the BTF's baked, texel-averaged diffuse factors (averaging normals instead made far
+//!   grass far too bright). Per pixel the texel's
 //!   threshold is tested against the local density and geometry's share; where a pixel covers
 //!   many texels (minified more than about 1.4x) the single averaged threshold would be
 //!   meaningless, so the expected fraction `ρ · mean_t(1 − opacity_g)` of the uniformly spread
 //!   thresholds is drawn instead.
+//! - **Shadow mask** (Sec. 3.5, Fig. 17, [`shadow`]). The coverage of a slab of the patch as
+//!   thick as a cylinder of circumference `patch_size`, baked first, is the shadow image
+//!   wrapped around every blade with its origin at the blade's inclination; per fragment the
+//!   ray towards each light leaves the cylinder through its side (mask lookup, bilinear) or
+//!   its top (lit). The geometric blades use it for the sun and the point light; the BTF bake
+//!   for its five directions, so the slices carry the same shadows at no run-time cost.
+//!   `shadow_mask = false` turns it off. About 12 % less light on the walker's view.
+//! - **Ambient occlusion map** (Sec. 3.5, Fig. 18, [`occlusion`]). At start-up, per
+//!   covering-map sample, the share of the sky hidden by the trees and stones around
+//!   (heights `tree_height`, `stone_height`: the map has none); the blades multiply their
+//!   ambient light by it at their root, the slices per pixel. `external_ao = false` turns it
+//!   off.
 //! - **Semi-transparency** (Sec. 4.2, `transparency`). `blend`: alpha test with a low threshold
 //!   (`alpha_threshold`, 0.1) plus blending, no sorting of blades (geometry cells are drawn far
 //!   to near, which costs nothing on the CPU and keeps Eq. 5's semi-transparent blades from
@@ -63,7 +111,11 @@
 //!   coverage on the 4x MSAA target (needs `--msaa`; refused without it).
 //! - **Wind.** The paper has no wind; here the shared wind pushes each geometric blade's
 //!   particle sideways (`wind_response` per m/s, plus a small per-blade flutter), so near blades
-//!   sway with the same wind as every other technique. The slices are static.
+//!   sway with the same wind as every other technique, and the vertical slices' tops are
+//!   sheared by the displacement a standing blade's tip would get at their height, per vertex
+//!   from the same wind (`vs_vslice`), so the mid band sways with the blades it replaces (the
+//!   flutter is not there, and the horizontal slice stays flat). `animate = false` turns both
+//!   off: the paper's static grass.
 //!
 //! ## Cost model
 //! CPU per frame: the quadtree walk, `O(visible nodes)` sphere tests (a few thousand), and one
@@ -71,19 +123,45 @@
 //! blades in cells nearer than `max_geom` whose thresholds can pass (the CPU skips those Eq. 5
 //! gives no opacity there), all other blades cost nothing; plus one textured quad per cell in
 //! the transition and per macro-cell beyond (`tess²` quads each on uneven ground), whose cost is
-//! fill: about one fragment per ground pixel. Memory: 32 bytes per patch blade, the two slice
-//! textures (`2 x 8 x 4/3 x slice_resolution²` bytes, 5.6 MB at 512), one byte per cell for the
-//! orientation map. Nothing grows with the virtual blade count except the orientation map and
-//! the quadtree (about 40 000 nodes on the football field). Brute force for 626 M blades at the
+//! fill: about one fragment per ground pixel; plus `4N` triangles per cell of the mid band
+//! (20 quads at `N` = 10, one draw), whose cost is fill again: at a grazing view several slices
+//! cover each pixel (depth complexity up to `2N` per cell crossed), which is why the paper's
+//! low horizontal view is its slowest (Sec. 5). Start-up: the BTF bake, bound by fill (4x MSAA,
+//! three targets, hundreds of blade fragments per texel of a side view), 4-8 s of wall time
+//! on lavapipe for the paper's 21 904-blade patch depending on what else runs on the two
+//! cores, 0.1 s from the disk cache. Memory: 32 bytes per patch
+//! blade; the BTFs, `3 x 8 x 4/3` bytes a texel: the horizontal slice's `slice_resolution²`
+//! (8.4 MB at 512) and the vertical slices' `4N x vslice_width x vslice_height` (21.0 MB at 40
+//! layers of 256 x 64; the paper's 512 x 64 would be 42 MB), under issue 9's 64 MB; one byte
+//! per cell for the orientation map and for the occlusion map; the shadow mask, 128 x 64 (262
+//! KB with its mips). Per blade fragment the shadow mask costs a ray-cylinder intersection, an
+//! `atan2` and a texture lookup per light. Nothing grows with the virtual blade count except
+//! the orientation map and the quadtree (about 40 000 nodes on the football field). Brute force for 626 M blades at the
 //! reference's measured ~3.4 µs per blade on this rasteriser would take over half an hour a
 //! frame.
 //!
 //! ## Known artifacts
-//! - Without vertical slices (part 2) grass beyond `max_geom` is a flat textured layer: no
-//!   parallax, and seen at grazing angles it reads as a green carpet, not a field of blades.
-//! - The slice's diffuse term is baked for the scene's sun (scenes keep their sun fixed): a moving
-//!   light needs part 2's BTF. It sees the blades from above, where they look different from
-//!   the side, so the geometry-to-slice transition shows as a change of texture.
+//! - Beyond `max_btf` (30 m) grass is the flat horizontal slice: seen at grazing angles it
+//!   reads as a carpet, and it is lighter than the vertical slices before it (a top view shows
+//!   the lit tips, a side view the darker stems), so the `max_btf` band shows as a change of
+//!   tone on the human-height views.
+//! - Looking along a slice axis, the slices of that axis are seen edge on and only the other
+//!   axis's remain: rows of cells aligned with the view show as darker lines converging to the
+//!   vanishing point. Slices are blended unsorted across cells' axes, so where slices of the
+//!   two axes cross some borders are wrong (like the blades', Sec. 4.2).
+//! - Slices are brighter and softer than the geometry they replace (measured against geometry
+//!   at a sampled light and view: mean FLIP 0.181 at 320x180, `gpu_boulanger_btf`): mip-mapped
+//!   coverage and colour average the dark stems with the tips, and a slab has no parallax
+//!   inside its 5 cm.
+//! - Five light samples are coarse: a light between them is a blend of images, not the lighting
+//!   of the blades in between (the paper's own approximation). Per-vertex weights for the point
+//!   light are exact only where the slice is small against its distance to the light
+//!   (Appendix A).
+//! - One shadow mask for every blade (Sec. 3.5's own approximation): shadows are plausible, not
+//!   cast by the actual neighbours, and a light straight above casts none (its ray leaves the
+//!   cylinder through the top).
+//! - The occlusion map sums its occluders' solid angles, so clumps of trees darken more than
+//!   an exact visibility test would ([`occlusion`]).
 //! - Neighbouring cells of different mirrors meet along seams where blades baked from unmirrored
 //!   neighbours do not match; at the slice's distances they are not visible.
 //! - Blending without sorting leaves wrong borders where blades cross (Sec. 4.2, Fig. 21c);
@@ -92,13 +170,19 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod barycentric;
+pub mod btf;
+pub mod cache;
 pub mod cells;
 pub mod lod;
+pub mod occlusion;
 pub mod params;
 pub mod patch;
 pub mod quadtree;
+pub mod shadow;
 pub mod slice;
 pub mod texture;
+pub mod vertical;
 
 use glam::{Vec2, Vec3};
 use grassbench::camera::Aabb;
@@ -125,7 +209,7 @@ const INFO: TechniqueInfo = TechniqueInfo {
     paper: "Boulanger, Pattanaik, Bouatouch 2006: Rendering Grass in Real Time with Dynamic Light Sources",
     gpu_state: false,
     debug_views: &[
-        "LOD false colours (Fig. 12): geometry red, horizontal slice green (vertical slices blue in part 2)",
+        "LOD false colours (Fig. 12): geometry red, vertical slices blue, horizontal slice green",
         "patch orientation: one colour per mirrored version",
     ],
 };
@@ -167,8 +251,8 @@ pub struct ParamsUniform {
     pub lod: [f32; 4],
     /// Patch size, slice height (m), slice texture side, bake top (m).
     pub tile: [f32; 4],
-    /// Unit vector towards the scene's sun (for the slice bake); w unused.
-    pub sun: [f32; 4],
+    /// Vertical slices per axis, min_btf, max_btf; w = 1 with the shadow mask (Sec. 3.5).
+    pub btf: [f32; 4],
 }
 
 /// Mirror of the shader's `Cell` (one per geometry cell in a storage buffer, [`cells`]).
@@ -177,8 +261,18 @@ pub struct ParamsUniform {
 pub struct CellUniform {
     /// World (x, z) of the patch centre, mirror signs for x and z.
     pub center_signs: [f32; 4],
-    /// x = 1 when baking; yzw unused.
+    /// x = 1 when baking; then y = projection (0 top, 1 across x, 2 across z), z = the
+    /// slice's coordinate on its axis (m from the patch centre), w = side of the camera (±1).
     pub mode: [f32; 4],
+}
+
+impl CellUniform {
+    /// As instance attributes (the vertical slices' vertex buffer).
+    const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Self>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
+    };
 }
 
 /// One horizontal slice quad (instance of the slice pipeline).
@@ -205,7 +299,8 @@ impl SliceQuad {
 /// finer grain than the cell, since a cell may hold 20 000 blades).
 pub const BLOCKS: u32 = 4;
 
-/// Slice quads the buffer holds at first (it grows by powers of two).
+/// Slice quads (and cells with vertical slices) the buffers hold at first (they grow by powers
+/// of two).
 const INITIAL_QUADS: usize = 256;
 
 /// Tessellations of slice quads (quads per side), one draw each.
@@ -230,6 +325,7 @@ pub struct Boulanger {
     patch: Patch,
     blade_pipeline: wgpu::RenderPipeline,
     slice_pipeline: wgpu::RenderPipeline,
+    vslice_pipeline: wgpu::RenderPipeline,
     group1: wgpu::BindGroup,
     cell_layout: wgpu::BindGroupLayout,
     cell_group: wgpu::BindGroup,
@@ -242,11 +338,18 @@ pub struct Boulanger {
     blades: wgpu::Buffer,
     quad_buffer: wgpu::Buffer,
     quad_capacity: usize,
+    vcell_buffer: wgpu::Buffer,
+    vcell_capacity: usize,
+    btf_outcome: [cache::Outcome; 2],
+    btf_seconds: f64,
     fixed_bytes: u64,
     // Per frame (update → prepare → encode).
     selection: Selection,
     geometry: Vec<GeometryCell>,
     quads: Vec<SliceQuad>,
+    /// Cells with vertical slices this frame, far to near, with their nearest distance.
+    vcells: Vec<(CellUniform, f32)>,
+    vcell_uniforms: Vec<CellUniform>,
     quad_groups: Vec<(u32, std::ops::Range<u32>)>,
     lod_blades: LodBlades,
     /// Opacity under which a blade is alpha-tested away whatever its texture (the shader's
@@ -258,8 +361,9 @@ pub struct Boulanger {
 }
 
 impl Boulanger {
-    /// GPU memory `new` will allocate: the patch, the slice textures, the orientation map
-    /// (one byte per cell), the blade texture and the per-frame buffers at their first size.
+    /// GPU memory `new` will allocate: the patch, the horizontal and vertical BTF arrays, the
+    /// orientation map (one byte per cell), the blade texture and the per-frame buffers at
+    /// their first size.
     pub fn estimate(
         scene: &grassbench::Scene,
         overrides: &toml::Table,
@@ -273,6 +377,19 @@ impl Boulanger {
         Ok([
             GpuEstimate::buffer((strata * strata).saturating_mul(blade)),
             GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
+            GpuEstimate::textures(btf::texture_bytes(shadow::WIDTH, shadow::HEIGHT, 1)),
+            GpuEstimate::textures(if params.external_ao {
+                let c = scene.terrain.covering();
+                (c.width() * c.height()) as u64
+            } else {
+                1
+            }),
+            GpuEstimate::textures(btf::texture_bytes(
+                params.vslice_width,
+                params.vslice_height,
+                4 * params.vertical_slices,
+            )),
+            GpuEstimate::buffer((INITIAL_QUADS * std::mem::size_of::<CellUniform>()) as u64),
             GpuEstimate::textures(u64::from(grid.nx) * u64::from(grid.nz)),
             GpuEstimate::textures(texture::BYTES_BOUND),
             GpuEstimate::buffer(std::mem::size_of::<ParamsUniform>() as u64),
@@ -309,18 +426,7 @@ impl Boulanger {
                 ),
             ));
         }
-        let density = params.effective_blades_per_m2(ctx.scene.config.grass.density);
-        let strata = Patch::strata_for(params.patch_size, density);
-        let patch = Patch::new(
-            params.patch_size,
-            strata,
-            BLOCKS,
-            grass,
-            patch::BladeShape {
-                max_tilt: params.max_tilt,
-            },
-            seed,
-        );
+        let patch = build_patch(&params, scene);
         let tallest = grass.height[1];
         let (overhang, reach_up) = (1.5 * tallest, 1.2 * tallest);
         let tree = Quadtree::build(&scene.terrain, grid, overhang, reach_up);
@@ -337,40 +443,7 @@ impl Boulanger {
             usage: wgpu::BufferUsages::STORAGE,
         });
         let a2c = params.transparency == Transparency::AlphaToCoverage;
-        let uniform = ParamsUniform {
-            color_root: Vec3::from(grass.color_root)
-                .extend(grass.color_variation)
-                .to_array(),
-            color_tip: Vec3::from(grass.color_tip)
-                .extend(params.translucency)
-                .to_array(),
-            blade: [
-                params.segments as f32,
-                params.gravity,
-                params.wind_response,
-                params.ao_root,
-            ],
-            lod: [
-                params.min_geom,
-                params.max_geom,
-                params.omega,
-                if a2c {
-                    1.0 / 255.0
-                } else {
-                    params.alpha_threshold
-                },
-            ],
-            tile: [
-                params.patch_size,
-                params.slice_height * tallest,
-                params.slice_resolution as f32,
-                1.3 * tallest + 0.05,
-            ],
-            sun: Vec3::from(scene.config.lights.sun_direction)
-                .normalize_or(Vec3::Y)
-                .extend(0.0)
-                .to_array(),
-        };
+        let uniform = params_uniform(&params, grass);
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("boulanger params"),
             contents: bytemuck::bytes_of(&uniform),
@@ -424,36 +497,82 @@ impl Boulanger {
                 float_texture(1),
                 sampler_entry(2),
                 sampler_entry(3),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: vf,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                float_texture(5),
             ],
         });
-        let group1 = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("boulanger (group 1)"),
-            layout: &group1_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: uniform_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&blade_texture),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::Sampler(&clamp_sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&repeat_sampler),
-                },
-            ],
-        });
+        // Sec. 3.5's ambient occlusion map (one white texel when it is off).
+        let (ao_view, ao_bytes) = ao_texture(
+            device,
+            &ctx.gpu.queue,
+            params.external_ao.then(|| {
+                occlusion::visibility_map(&scene.terrain, params.tree_height, params.stone_height)
+            }),
+        );
+        // Group 1 with a shadow mask: the mask's own bake sees a transparent one (no shadow).
+        let make_group1 = |mask: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("boulanger (group 1)"),
+                layout: &group1_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(mask),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 5,
+                        resource: wgpu::BindingResource::TextureView(&ao_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: uniform_buffer.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&blade_texture),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::Sampler(&clamp_sampler),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::Sampler(&repeat_sampler),
+                    },
+                ],
+            })
+        };
+        let no_mask = btf::create_textures(device, 1, 1, 1);
+        let no_mask_group1 = make_group1(&btf::wrap(no_mask, 1, 1, 1).color);
         let cell_layout = cells::layout(device);
+        let array_texture = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: vf,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        };
         let slice_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("boulanger slice (group 2)"),
+            label: Some("boulanger slices (group 2)"),
             entries: &[
-                float_texture(1),
-                float_texture(2),
+                array_texture(1),
+                array_texture(2),
+                array_texture(5),
+                array_texture(6),
+                array_texture(7),
+                array_texture(8),
                 wgpu::BindGroupLayoutEntry {
                     binding: 3,
                     visibility: vf,
@@ -533,8 +652,31 @@ impl Boulanger {
                 )
             },
         );
-        let bake_target = Some(wgpu::ColorTargetState::from(slice::FORMAT));
-        let bake_targets = [bake_target.clone(), bake_target];
+        let vslice_pipeline = render_pipeline(
+            device,
+            &PipelineSpec {
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                ..spec(
+                    "boulanger vertical slices",
+                    &slice_pipeline_layout,
+                    "vs_vslice",
+                    "fs_vslice",
+                    &[Some(CellUniform::LAYOUT)],
+                )
+            },
+        );
+        // The BTF bake (Sec. 3.3): the blade shader in baking mode, three targets, 4x MSAA.
+        let refs_layout = btf::refs_layout(device);
+        let bake_layout = ctx.scene_gpu.pipeline_layout(
+            device,
+            "boulanger BTF bake",
+            &[&group1_layout, &cell_layout, &refs_layout],
+        );
+        let bake_target = Some(wgpu::ColorTargetState::from(btf::FORMAT));
+        let bake_targets = [bake_target.clone(), bake_target.clone(), bake_target];
         let bake_pipeline = render_pipeline(
             device,
             &PipelineSpec {
@@ -545,28 +687,85 @@ impl Boulanger {
                 },
                 targets: &bake_targets,
                 ..spec(
-                    "boulanger slice bake",
-                    &blade_layout,
-                    "vs_blade",
+                    "boulanger BTF bake",
+                    &bake_layout,
+                    "vs_bake",
                     "fs_bake",
                     &[],
                 )
             },
         );
-        let vertices = 2 * params.segments + 2;
-        let baked = slice::bake(
+        // The shadow mask first (Sec. 3.5): the blades and the BTF bake are lit through it.
+        let (mask_cells, mask_refs, mask_range) =
+            shadow::bake_layer(params.patch_size, &patch.blades, params.gravity);
+        let mask = btf::bake(
             ctx,
-            &slice::BakeInputs {
+            &btf::BakeInputs {
                 pipeline: &bake_pipeline,
-                group1: &group1,
+                group1: &no_mask_group1,
                 cell_layout: &cell_layout,
+                refs_layout: &refs_layout,
                 blades: &blades,
-                blade_count: patch.blades.len() as u32,
-                vertices,
-                patch_size: params.patch_size,
-                resolution: params.slice_resolution,
+                vertices: 2 * params.segments + 2,
+            },
+            shadow::WIDTH,
+            shadow::HEIGHT,
+            &btf::Layers {
+                cells: &mask_cells,
+                refs: &mask_refs,
+                ranges: std::slice::from_ref(&mask_range),
             },
         )?;
+        let group1 = make_group1(&mask.color);
+        let bake_inputs = btf::BakeInputs {
+            pipeline: &bake_pipeline,
+            group1: &group1,
+            cell_layout: &cell_layout,
+            refs_layout: &refs_layout,
+            blades: &blades,
+            vertices: 2 * params.segments + 2,
+        };
+        let started = std::time::Instant::now();
+        let [h_key, v_key] = bake_keys_of(&params, &uniform, &patch);
+        let [h_dims, v_dims] = btf_dims(&params);
+        let folder = cache::folder(&params.btf_cache);
+        let (horizontal, h_outcome) =
+            cache::load_or_bake(ctx.gpu, folder.as_deref(), h_key, h_dims, || {
+                let (cells, refs, range) =
+                    slice::bake_layer(params.patch_size, &patch.blades, params.gravity);
+                btf::bake(
+                    ctx,
+                    &bake_inputs,
+                    h_dims.width,
+                    h_dims.height,
+                    &btf::Layers {
+                        cells: &cells,
+                        refs: &refs,
+                        ranges: std::slice::from_ref(&range),
+                    },
+                )
+            })?;
+        let (verticals, v_outcome) =
+            cache::load_or_bake(ctx.gpu, folder.as_deref(), v_key, v_dims, || {
+                let layout = vertical::SliceLayout {
+                    per_axis: params.vertical_slices,
+                    patch_size: params.patch_size,
+                };
+                let (refs, ranges) = layout.bake_refs(&patch.blades, params.gravity);
+                btf::bake(
+                    ctx,
+                    &bake_inputs,
+                    v_dims.width,
+                    v_dims.height,
+                    &btf::Layers {
+                        cells: &layout.bake_cells(),
+                        refs: &refs,
+                        ranges: &ranges,
+                    },
+                )
+            })?;
+        ctx.gpu.wait_idle("baking the BTFs")?;
+        let btf_seconds = started.elapsed().as_secs_f64();
         let (orientation, orientation_bytes) =
             slice::orientation_map(device, &ctx.gpu.queue, &grid, seed);
         let slice_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -575,11 +774,27 @@ impl Boulanger {
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&baked.color),
+                    resource: wgpu::BindingResource::TextureView(&horizontal.color),
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&baked.aux),
+                    resource: wgpu::BindingResource::TextureView(&horizontal.diffuse),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&horizontal.extra),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: wgpu::BindingResource::TextureView(&verticals.color),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 7,
+                    resource: wgpu::BindingResource::TextureView(&verticals.diffuse),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&verticals.extra),
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
@@ -599,6 +814,8 @@ impl Boulanger {
         );
         let quad_capacity = INITIAL_QUADS;
         let quad_buffer = quad_buffer(device, quad_capacity);
+        let vcell_capacity = INITIAL_QUADS;
+        let vcell_buffer = vcell_buffer(device, vcell_capacity);
         Ok(Self {
             lod,
             blades_per_patch: patch.blades.len() as u32,
@@ -607,6 +824,7 @@ impl Boulanger {
             patch,
             blade_pipeline,
             slice_pipeline,
+            vslice_pipeline,
             group1,
             cell_layout,
             cell_group,
@@ -618,8 +836,15 @@ impl Boulanger {
             blades,
             quad_buffer,
             quad_capacity,
+            vcell_buffer,
+            vcell_capacity,
+            btf_outcome: [h_outcome, v_outcome],
+            btf_seconds,
             fixed_bytes: blade_bytes
-                + baked.bytes
+                + mask.bytes
+                + ao_bytes
+                + horizontal.bytes
+                + verticals.bytes
                 + orientation_bytes
                 + blade_texture_bytes
                 + std::mem::size_of::<ParamsUniform>() as u64,
@@ -627,6 +852,8 @@ impl Boulanger {
             selection: Selection::default(),
             geometry: Vec::new(),
             quads: Vec::new(),
+            vcells: Vec::new(),
+            vcell_uniforms: Vec::new(),
             quad_groups: Vec::new(),
             lod_blades: LodBlades::default(),
             alpha_floor: uniform.lod[3],
@@ -679,6 +906,168 @@ fn quad_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
     })
 }
 
+/// The patch of a scene (Sec. 3.1).
+fn build_patch(params: &Params, scene: &grassbench::Scene) -> Patch {
+    let grass = &scene.config.grass;
+    let density = params.effective_blades_per_m2(grass.density);
+    let strata = Patch::strata_for(params.patch_size, density);
+    Patch::new(
+        params.patch_size,
+        strata,
+        BLOCKS,
+        grass,
+        patch::BladeShape {
+            max_tilt: params.max_tilt,
+        },
+        scene.config.seed,
+    )
+}
+
+/// The shaders' uniform block.
+fn params_uniform(params: &Params, grass: &grassbench::grass::GrassConfig) -> ParamsUniform {
+    let a2c = params.transparency == Transparency::AlphaToCoverage;
+    let tallest = grass.height[1];
+    ParamsUniform {
+        color_root: Vec3::from(grass.color_root)
+            .extend(grass.color_variation)
+            .to_array(),
+        color_tip: Vec3::from(grass.color_tip)
+            .extend(params.translucency)
+            .to_array(),
+        blade: [
+            params.segments as f32,
+            params.gravity,
+            if params.animate {
+                params.wind_response
+            } else {
+                0.0
+            },
+            params.ao_root,
+        ],
+        lod: [
+            params.min_geom,
+            params.max_geom,
+            params.omega,
+            if a2c {
+                1.0 / 255.0
+            } else {
+                params.alpha_threshold
+            },
+        ],
+        tile: [
+            params.patch_size,
+            params.slice_height * tallest,
+            params.slice_resolution as f32,
+            1.3 * tallest + 0.05,
+        ],
+        btf: [
+            params.vertical_slices as f32,
+            params.min_btf,
+            params.max_btf,
+            f32::from(u8::from(params.shadow_mask)),
+        ],
+    }
+}
+
+/// Sizes of the two BTFs: the horizontal slice's one layer, the vertical slices' `4N`.
+fn btf_dims(params: &Params) -> [cache::Dims; 2] {
+    [
+        cache::Dims {
+            width: params.slice_resolution,
+            height: params.slice_resolution,
+            layers: 1,
+        },
+        cache::Dims {
+            width: params.vslice_width,
+            height: params.vslice_height,
+            layers: 4 * params.vertical_slices,
+        },
+    ]
+}
+
+/// Cache keys of the two bakes (horizontal, vertical): the uniform block with what the bake
+/// does not read (LOD distances, alpha threshold, wind response, slice height) zeroed, and the
+/// patch.
+fn bake_keys_of(params: &Params, uniform: &ParamsUniform, patch: &Patch) -> [u64; 2] {
+    let mut u = *uniform;
+    u.lod = [0.0; 4];
+    u.blade[2] = 0.0;
+    u.tile[1] = 0.0;
+    u.btf[1] = 0.0;
+    u.btf[2] = 0.0;
+    let blades = bytemuck::cast_slice(&patch.blades);
+    let [h, v] = btf_dims(params);
+    [
+        cache::bake_key("horizontal", h, bytemuck::bytes_of(&u), blades),
+        cache::bake_key("vertical", v, bytemuck::bytes_of(&u), blades),
+    ]
+}
+
+impl Boulanger {
+    /// The BTF cache keys (horizontal, vertical) `new` would use on `scene` with `overrides`
+    /// (CPU only).
+    pub fn bake_keys(scene: &grassbench::Scene, overrides: &toml::Table) -> Result<[u64; 2]> {
+        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let patch = build_patch(&params, scene);
+        let uniform = params_uniform(&params, &scene.config.grass);
+        Ok(bake_keys_of(&params, &uniform, &patch))
+    }
+
+    /// How the BTFs were obtained at start-up (horizontal, vertical) and the seconds it took.
+    pub fn btf_outcome(&self) -> (&[cache::Outcome; 2], f64) {
+        (&self.btf_outcome, self.btf_seconds)
+    }
+}
+
+/// The ambient visibility map as an `R8Unorm` texture (a white texel without one) and its
+/// bytes.
+fn ao_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    map: Option<grassbench::terrain::Grid<f32>>,
+) -> (wgpu::TextureView, u64) {
+    let (w, h, data) = match map {
+        Some(m) => (
+            m.width() as u32,
+            m.height() as u32,
+            m.data()
+                .iter()
+                .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+                .collect(),
+        ),
+        None => (1, 1, vec![255u8]),
+    };
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("boulanger ambient occlusion map"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &data,
+    );
+    (texture.create_view(&Default::default()), data.len() as u64)
+}
+
+fn vcell_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("boulanger vertical slice cells"),
+        size: (capacity * std::mem::size_of::<CellUniform>()) as u64,
+        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
 impl GrassTechnique for Boulanger {
     fn info(&self) -> TechniqueInfo {
         INFO
@@ -693,18 +1082,21 @@ impl GrassTechnique for Boulanger {
         let walk = Walk {
             frustum: camera.frustum(),
             eye: camera.eye,
-            cell_distance: self.params.max_geom,
+            // Cells (not macro-cells) wherever geometry or vertical slices may be drawn.
+            cell_distance: self.params.max_geom.max(self.params.max_btf),
             macro_factor: self.params.macro_factor,
         };
         let mut selection = std::mem::take(&mut self.selection);
         self.tree.select(&walk, &mut selection);
         self.geometry.clear();
         self.quads.clear();
+        self.vcells.clear();
         let grid = *self.tree.grid();
         let per_patch = f64::from(self.blades_per_patch);
         let (omega, lod) = (self.params.omega, self.lod);
         let mut geometry_blades = 0u64;
         let mut slice_blades = 0.0f64;
+        let mut vertical_blades = 0.0f64;
         for s in &selection.cells {
             let (i, j) = (s.rect.i0, s.rect.j0);
             if s.near < lod.max_geom {
@@ -768,6 +1160,19 @@ impl GrassTechnique for Boulanger {
                 self.quads.push(self.slice_quad(s, 1));
                 let d = 0.5 * (s.near + s.far);
                 slice_blades += f64::from(s.density) * per_patch * f64::from(lod.w_hs(d));
+                // The vertical slices where Eq. 3 can give them a share (Sec. 3.3).
+                if s.near < lod.max_btf {
+                    let centre = grid.cell_min(i, j) + Vec2::splat(0.5 * grid.cell);
+                    let signs = Orientation::of_cell(self.seed, i, j).signs();
+                    self.vcells.push((
+                        CellUniform {
+                            center_signs: [centre.x, centre.y, signs.x, signs.y],
+                            mode: [0.0; 4],
+                        },
+                        s.near,
+                    ));
+                    vertical_blades += f64::from(s.density) * per_patch * f64::from(lod.w_vs(d));
+                }
             }
         }
         for s in &selection.macro_cells {
@@ -781,6 +1186,9 @@ impl GrassTechnique for Boulanger {
         // (18 % faster here, thanks to early depth rejection) faint near blades hid whole
         // cells drawn after them, which showed as cell-sized blotches.
         self.geometry.sort_by(|a, b| b.near.total_cmp(&a.near));
+        self.vcells.sort_by(|a, b| b.1.total_cmp(&a.1));
+        self.vcell_uniforms.clear();
+        self.vcell_uniforms.extend(self.vcells.iter().map(|c| c.0));
         self.pages = self
             .paging
             .draws(self.geometry.iter().map(|c| c.ranges.as_slice()));
@@ -800,7 +1208,7 @@ impl GrassTechnique for Boulanger {
         }
         self.lod_blades = LodBlades {
             geometry: geometry_blades,
-            vertical_slices: 0,
+            vertical_slices: vertical_blades.round() as u64,
             horizontal_slices: slice_blades.round() as u64,
         };
         Ok(())
@@ -832,6 +1240,17 @@ impl GrassTechnique for Boulanger {
             self.quad_capacity = self.quads.len().next_power_of_two();
             self.quad_buffer = quad_buffer(device, self.quad_capacity);
         }
+        if self.vcell_uniforms.len() > self.vcell_capacity {
+            self.vcell_capacity = self.vcell_uniforms.len().next_power_of_two();
+            self.vcell_buffer = vcell_buffer(device, self.vcell_capacity);
+        }
+        if !self.vcell_uniforms.is_empty() {
+            gpu.queue.write_buffer(
+                &self.vcell_buffer,
+                0,
+                bytemuck::cast_slice(&self.vcell_uniforms),
+            );
+        }
         if !self.geometry.is_empty() {
             let uniforms: Vec<CellUniform> = self.geometry.iter().map(|c| c.uniform).collect();
             gpu.queue
@@ -856,6 +1275,18 @@ impl GrassTechnique for Boulanger {
                 pass.draw(0..tess * tess * 6, range.clone());
                 draws += 1;
             }
+        }
+        if !self.vcell_uniforms.is_empty() {
+            let mut pass = encoder.render_pass("vertical_slices");
+            pass.set_pipeline(&self.vslice_pipeline);
+            pass.set_bind_group(1, &self.group1, &[]);
+            pass.set_bind_group(2, &self.slice_group, &[]);
+            pass.set_vertex_buffer(0, self.vcell_buffer.slice(..));
+            pass.draw(
+                0..12 * self.params.vertical_slices,
+                0..self.vcell_uniforms.len() as u32,
+            );
+            draws += 1;
         }
         if !self.geometry.is_empty() {
             let mut pass = encoder.render_pass("geometry");
@@ -886,12 +1317,15 @@ impl GrassTechnique for Boulanger {
                 + self.lod_blades.vertical_slices
                 + self.lod_blades.horizontal_slices,
             triangles: self.lod_blades.geometry * u64::from(2 * self.params.segments)
-                + quad_triangles,
+                + quad_triangles
+                + self.vcell_uniforms.len() as u64 * u64::from(4 * self.params.vertical_slices),
             draw_calls: (self.pages.iter().map(|p| p.draws.len()).sum::<usize>()
-                + self.quad_groups.len()) as u64,
+                + self.quad_groups.len()
+                + usize::from(!self.vcell_uniforms.is_empty())) as u64,
             gpu_bytes: self.fixed_bytes
                 + self.cell_capacity as u64 * cells::CELL_BYTES
-                + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64,
+                + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64
+                + (self.vcell_capacity * std::mem::size_of::<CellUniform>()) as u64,
         }
     }
 

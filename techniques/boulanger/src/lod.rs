@@ -1,7 +1,7 @@
 //! Level-of-detail weights and the share of each blade between geometry and slices
 //! (Boulanger Sec. 3.4, Eq. 1-5).
 //!
-//! Every function here has a WGSL twin in `shaders/lod.wgsl`; the two are kept line for line
+//! Every function here has a WGSL twin in `shaders/grass.wgsl`; the two are kept line for line
 //! alike so the property tests below speak for the GPU too.
 //!
 //! ## Which method draws a blade
@@ -23,6 +23,16 @@
 //! `ω` lies in between. The slices take `1 − opacity_g`, so the opacities of a blade's two
 //! representations always sum to 1 and no blade is lost or doubled in a transition. `ω = 0`
 //! gives the hard test of Fig. 14(a).
+//!
+//! ## Vertical slices (Eq. 3)
+//! The vertical slices and the horizontal slice together are the volume representation of the
+//! mid band (Sec. 3.3): both draw the slices' share `1 − opacity_g`. Beyond `min_btf` the
+//! vertical slices fade out with the second factor of Eq. 3, `f(d)`, by the same smooth test on
+//! the normalised threshold, `t` against `f` this time so the blades with the lowest thresholds
+//! stay longest: a vertical slice texel has opacity `(1 − opacity_g)·fade(f, t)`. With the hard
+//! test the fraction of blades in the vertical slices is `ρ·min(w_hs, f) = ρ·w_vs` (Eq. 3's
+//! product equals the minimum because `max_geom ≤ min_btf`: one factor is always 1), and the
+//! horizontal slice keeps `ρ·w_hs` (Eq. 4).
 
 /// Eq. 1: `clamp(x, 0, 1)`; NaN maps to 0.
 pub fn clamp01(x: f32) -> f32 {
@@ -60,6 +70,11 @@ impl LodDistances {
             * clamp01((d - self.max_btf) / (self.min_btf - self.max_btf))
     }
 
+    /// The second factor of Eq. 3: 1 up to `min_btf`, 0 from `max_btf`.
+    pub fn vertical_fade(&self, d: f32) -> f32 {
+        clamp01((d - self.max_btf) / (self.min_btf - self.max_btf))
+    }
+
     /// Eq. 4: weight of the horizontal slice at distance `d`.
     pub fn w_hs(&self, d: f32) -> f32 {
         clamp01((d - self.min_geom) / (self.max_geom - self.min_geom))
@@ -75,6 +90,22 @@ pub fn geometry_opacity(w_g: f32, t: f32, omega: f32) -> f32 {
         return if key <= w_g { 1.0 } else { 0.0 };
     }
     clamp01((w_g * (1.0 + 2.0 * omega) - key) / (2.0 * omega))
+}
+
+/// Eq. 5 for the vertical slices' far fade: the opacity of a blade of normalised threshold `t`
+/// at fade weight `f` (Eq. 3's second factor, [`LodDistances::vertical_fade`]), stretched like
+/// [`geometry_opacity`] so weight 1 keeps every blade and 0 none.
+pub fn fade_opacity(f: f32, t: f32, omega: f32) -> f32 {
+    if omega <= 0.0 {
+        return if t <= f { 1.0 } else { 0.0 };
+    }
+    clamp01((f * (1.0 + 2.0 * omega) - t) / (2.0 * omega))
+}
+
+/// Opacity of a blade of normalised threshold `t` in the vertical slices: the slices' share
+/// of it times the far fade (module docs).
+pub fn vertical_opacity(w_g: f32, f: f32, t: f32, omega: f32) -> f32 {
+    (1.0 - geometry_opacity(w_g, t, omega)) * fade_opacity(f, t, omega)
 }
 
 /// How much of one blade each method draws.
@@ -198,6 +229,54 @@ mod tests {
                 let o = geometry_opacity(w, t, omega);
                 prop_assert!(if a > 0.0 { o < a } else { o == 0.0 }, "{o} vs {a}");
             }
+        }
+    }
+
+    /// With the hard test the vertical slices draw the fraction `ρ·w_vs` of the blades (Eq. 3),
+    /// never a blade geometry draws, and nothing beyond `max_btf`.
+    #[test]
+    fn vertical_slices_draw_eq_3s_share() {
+        let n = 100_000;
+        for d in [1.0, 2.5, 3.5, 4.2, 8.0, 12.0, 15.0, 21.0, 29.0, 31.0] {
+            for density in [1.0, 0.6] {
+                let (w_g, f) = (LOD.w_g(d), LOD.vertical_fade(d));
+                let mut v = 0usize;
+                for k in 0..n {
+                    let dth = (k as f32 + 0.5) / n as f32;
+                    if dth >= density {
+                        continue;
+                    }
+                    let t = dth / density;
+                    let o = vertical_opacity(w_g, f, t, 0.0);
+                    assert!(
+                        o == 0.0 || geometry_opacity(w_g, t, 0.0) == 0.0,
+                        "drawn twice"
+                    );
+                    v += usize::from(o > 0.5);
+                }
+                let v = v as f32 / n as f32;
+                assert!(
+                    (v - density * LOD.w_vs(d)).abs() < 1e-3,
+                    "d {d} ρ {density}: {v}"
+                );
+            }
+        }
+    }
+
+    proptest! {
+        /// The smooth vertical opacity stays in [0, 1], never exceeds the slices' share, and
+        /// is continuous in the distance.
+        #[test]
+        fn vertical_opacity_is_bounded_and_continuous(
+            d in 0.0f32..60.0, t in 0.0f32..1.0, omega in 0.01f32..1.0,
+        ) {
+            let o = |d: f32| vertical_opacity(LOD.w_g(d), LOD.vertical_fade(d), t, omega);
+            let g = geometry_opacity(LOD.w_g(d), t, omega);
+            prop_assert!((0.0..=1.0).contains(&o(d)) && o(d) <= 1.0 - g + 1e-6);
+            let h = 1e-3;
+            let slope = (1.0 + 2.0 * omega) / (2.0 * omega)
+                * (1.0 / (LOD.max_geom - LOD.min_geom) + 1.0 / (LOD.max_btf - LOD.min_btf));
+            prop_assert!((o(d) - o(d + h)).abs() <= slope * h * 1.01 + 1e-5);
         }
     }
 

@@ -36,7 +36,7 @@ pub struct Params {
     pub min_geom: f32,
     /// No geometry beyond this distance, m.
     pub max_geom: f32,
-    /// Vertical slices at full weight up to this distance, m (drawn in part 2).
+    /// Vertical slices at full weight up to this distance, m.
     pub min_btf: f32,
     /// No vertical slices beyond this distance, m.
     pub max_btf: f32,
@@ -50,6 +50,18 @@ pub struct Params {
     pub alpha_threshold: f32,
     /// Side of the horizontal slice texture, texels.
     pub slice_resolution: u32,
+    /// Vertical slices across each horizontal axis of a patch (Sec. 3.3; the paper's 10).
+    pub vertical_slices: u32,
+    /// Width of a vertical slice's BTF texture, texels (along the patch side). The paper's
+    /// 512 would take the start-up bake far past 10 s on lavapipe, where it is bound by fill;
+    /// 128 halves the vertical part of the bake but ties `compare`'s popping with and without
+    /// transitions on the meadow, so 256 (2 mm texels on a 0.5 m patch).
+    pub vslice_width: u32,
+    /// Height of a vertical slice's BTF texture, texels (the paper's slices are 512 x 64).
+    pub vslice_height: u32,
+    /// Folder of the BTF disk cache: empty for `$XDG_CACHE_HOME/grassbench/boulanger` (or
+    /// `~/.cache/...`), `off` to bake at every start ([`crate::cache`]).
+    pub btf_cache: String,
     /// Height of the horizontal slice above the ground, as a fraction of the tallest blade.
     pub slice_height: f32,
     /// Largest launch angle of a blade's particle from the vertical, radians.
@@ -58,6 +70,18 @@ pub struct Params {
     pub gravity: f32,
     /// Wind push on the particle per m/s of wind, relative to gravity's scale.
     pub wind_response: f32,
+    /// Blade-to-blade shadows through the shadow mask (Sec. 3.5), on the blades and baked
+    /// into the slices.
+    pub shadow_mask: bool,
+    /// Ambient occlusion of the grass by the covering map's trees and stones (Sec. 3.5).
+    pub external_ao: bool,
+    /// Height given to the covering map's trees, m (for the occlusion map).
+    pub tree_height: f32,
+    /// Height given to the covering map's stones, m.
+    pub stone_height: f32,
+    /// Animation (beyond the paper): the shared wind bends the geometric blades and shears
+    /// the vertical slices' tops with them; `false` gives the paper's static grass.
+    pub animate: bool,
     /// Fraction of back-side sunlight passing through a blade.
     pub translucency: f32,
     /// Ambient occlusion at the root (1 at the tip, linear in height: Sec. 3.2).
@@ -79,10 +103,19 @@ impl Default for Params {
             transparency: Transparency::Blend,
             alpha_threshold: 0.1,
             slice_resolution: 512,
+            vertical_slices: 10,
+            vslice_width: 256,
+            vslice_height: 64,
+            btf_cache: String::new(),
             slice_height: 0.2,
             max_tilt: 0.4,
             gravity: 0.6,
             wind_response: 0.12,
+            animate: true,
+            shadow_mask: true,
+            external_ao: true,
+            tree_height: 6.0,
+            stone_height: 0.5,
             translucency: 0.35,
             ao_root: 0.35,
         }
@@ -158,7 +191,23 @@ impl TechniqueParams for Params {
                 "a power of two (the mip chain halves it exactly)",
             ));
         }
+        check_int("boulanger.vertical_slices", self.vertical_slices, 1..=32)?;
+        for (name, v) in [
+            ("boulanger.vslice_width", self.vslice_width),
+            ("boulanger.vslice_height", self.vslice_height),
+        ] {
+            check_int(name, v, 8..=2048)?;
+            if !v.is_power_of_two() {
+                return Err(Error::param(
+                    name,
+                    v,
+                    "a power of two (the mip chain halves it exactly)",
+                ));
+            }
+        }
         check("boulanger.slice_height", self.slice_height, 0.0..=1.0)?;
+        check("boulanger.tree_height", self.tree_height, 0.0..=100.0)?;
+        check("boulanger.stone_height", self.stone_height, 0.0..=100.0)?;
         check("boulanger.max_tilt", self.max_tilt, 0.0..=1.5)?;
         check("boulanger.gravity", self.gravity, 0.0..=1.9)?;
         check("boulanger.wind_response", self.wind_response, 0.0..=2.0)?;
@@ -185,6 +234,9 @@ mod tests {
         bad(&|p| p.max_btf = 5.0, "boulanger.max_btf");
         bad(&|p| p.blades_per_m2 = 9e6, "boulanger.blades_per_m2");
         bad(&|p| p.segments = 0, "boulanger.segments");
+        bad(&|p| p.vertical_slices = 0, "boulanger.vertical_slices");
+        bad(&|p| p.vslice_width = 100, "boulanger.vslice_width");
+        bad(&|p| p.vslice_height = 1 << 20, "boulanger.vslice_height");
         let mut t = toml::Table::new();
         t.insert("transparency".into(), "alpha_to_coverage".into());
         let p: Params = grassbench::params::resolve("boulanger", &t).unwrap();
