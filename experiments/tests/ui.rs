@@ -62,6 +62,8 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
         .args(["--frames", "2", "--screenshot", shot.to_str().unwrap()])
         // As a click with the spawn tool on the middle of pane 1 would (Perbet Sec. 3.3).
         .args(["--spawn", "whirlwind"])
+        // As the sun sliders would (lights move at run time, issue 9).
+        .args(["--sun", "-60,25"])
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -86,6 +88,13 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
         .map(|a| a.iter().filter_map(|p| p.get("kind")?.as_str()).collect())
         .unwrap_or_default();
     assert_eq!(kinds.last(), Some(&"whirlwind"), "{wind:?}");
+    // The panes' scenes have the sun where `--sun` put it.
+    let sun = layout.sun.expect("the layout records the sun");
+    let want = grassbench_cli::ui::sun_direction([-60.0, 25.0]);
+    assert!(
+        sun.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-5),
+        "{sun:?} against {want:?}"
+    );
     // The pane images the UI displayed, as rendered (the window shows them rescaled).
     let panes: Vec<image::RgbaImage> = (1..=4)
         .map(|k| {

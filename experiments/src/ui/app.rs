@@ -87,7 +87,7 @@ impl App {
             wind,
             wind_error: None,
             spawn: SpawnKind::Off,
-            spawn_pending: args.spawn.is_some(),
+            spawn_pending: args.spawn.is_some() || args.sun.is_some(),
             diff: DiffView::default(),
             auto_preview: script.is_none(),
             script,
@@ -320,6 +320,26 @@ impl App {
             });
         });
 
+        // Lights.
+        ui.collapsing("sun", |ui| {
+            let d = grassbench::glam::Vec3::from(self.scene.config.lights.sun_direction)
+                .normalize_or(grassbench::glam::Vec3::Y);
+            let mut azimuth = d.z.atan2(d.x).to_degrees();
+            let mut elevation = d.y.clamp(-1.0, 1.0).asin().to_degrees();
+            let mut changed = ui
+                .add(egui::Slider::new(&mut azimuth, -180.0..=180.0).text("azimuth °"))
+                .changed();
+            changed |= ui
+                .add(egui::Slider::new(&mut elevation, 2.0..=90.0).text("elevation °"))
+                .changed();
+            if !self.scene.config.lights.sun_keys.is_empty() {
+                ui.label("the scene moves the sun on keyframes; a slider takes over");
+            }
+            if changed {
+                self.set_sun(super::sun_direction([azimuth, elevation]));
+            }
+        });
+
         // Difference view.
         ui.collapsing("difference view", |ui| {
             ui.checkbox(&mut self.diff.enabled, "show difference of two panes");
@@ -436,6 +456,23 @@ impl App {
                 self.apply_wind();
             }
             Err(e) => self.wind_error = Some(format!("{e:#}")),
+        }
+    }
+
+    /// Points the sun along `direction` (towards the sun) in every pane, replacing the scene's
+    /// sun keyframes: techniques that light per frame (boulanger's BTF slices, every shader's
+    /// Lambert term) follow at once.
+    fn set_sun(&mut self, direction: [f32; 3]) {
+        for lights in std::iter::once(&mut self.scene.config.lights).chain(
+            self.panes
+                .iter_mut()
+                .map(|p| &mut p.harness.scene.config.lights),
+        ) {
+            lights.sun_direction = direction;
+            lights.sun_keys.clear();
+        }
+        for p in &mut self.panes {
+            p.invalidate();
         }
     }
 
@@ -560,6 +597,9 @@ impl App {
             self.spawn_pending = false;
             if let Some(kind) = self.args.spawn {
                 spawns.push((0, Vec2::ZERO, kind));
+            }
+            if let Some(sun) = self.args.sun {
+                self.set_sun(super::sun_direction(sun));
             }
         }
         for (k, at, kind) in spawns {
@@ -803,6 +843,10 @@ impl App {
                     .collect(),
                 frame: self.frame_index(),
                 wind: self.wind.clone(),
+                sun: self
+                    .panes
+                    .first()
+                    .map(|p| p.harness.scene.config.lights.sun_direction),
             };
             std::fs::write(Layout::path_for(&path), toml::to_string(&layout)?)?;
             for (k, pane) in self.panes.iter().enumerate() {

@@ -66,6 +66,32 @@ pub struct UiArgs {
     /// ground under the centre of pane 1, as a click with the panel's spawn tool would.
     #[arg(long, value_enum)]
     pub spawn: Option<SpawnKind>,
+    /// Scripted mode: after the first frame, put the sun at `AZIMUTH,ELEVATION` (degrees), as
+    /// the panel's sun sliders would.
+    #[arg(long, value_parser = parse_sun, allow_hyphen_values = true)]
+    pub sun: Option<[f32; 2]>,
+}
+
+/// `AZIMUTH,ELEVATION` in degrees, elevation in [2, 90].
+fn parse_sun(text: &str) -> Result<[f32; 2], String> {
+    let parts: Vec<f32> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{text}: {e}; expected AZIMUTH,ELEVATION in degrees, e.g. 30,20"))?;
+    match parts[..] {
+        [a, e] if a.is_finite() && (2.0..=90.0).contains(&e) => Ok([a, e]),
+        _ => Err(format!(
+            "{text}: expected AZIMUTH,ELEVATION in degrees with the elevation in [2, 90], e.g. 30,20"
+        )),
+    }
+}
+
+/// The unit vector towards a sun at `azimuth` and `elevation` (degrees; azimuth from +x
+/// towards +z).
+pub fn sun_direction([azimuth, elevation]: [f32; 2]) -> [f32; 3] {
+    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
+    [a.cos() * e.cos(), e.sin(), a.sin() * e.cos()]
 }
 
 /// Opens the window and runs until it is closed (or the script ends).

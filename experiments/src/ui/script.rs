@@ -17,6 +17,10 @@ pub struct Layout {
     /// The wind settings in use (with any primitives placed by clicks or `--spawn`).
     #[serde(default)]
     pub wind: toml::Table,
+    /// The direction towards the sun in the first pane's scene (moved by the sliders or
+    /// `--sun`).
+    #[serde(default)]
+    pub sun: Option<[f32; 3]>,
 }
 
 impl Layout {
