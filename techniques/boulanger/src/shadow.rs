@@ -17,7 +17,8 @@ use std::ops::Range;
 
 use crate::CellUniform;
 use crate::patch::PatchBlade;
-use crate::vertical::{blade_extent, neighbours};
+use crate::vertical::box_layer;
+use glam::Vec2;
 
 /// Mask texels around the cylinder.
 pub const WIDTH: u32 = 128;
@@ -37,26 +38,14 @@ pub fn bake_layer(
     blades: &[PatchBlade],
     gravity: f32,
 ) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
-    let cells: Vec<CellUniform> = neighbours(patch_size)
-        .map(|c| CellUniform {
-            center_signs: [c.x, c.y, 1.0, 1.0],
-            mode: [1.0, 3.0, 0.0, 1.0],
-        })
-        .collect();
     let (r, side) = (radius(patch_size), 0.5 * patch_size);
-    let count = blades.len() as u32;
-    let mut refs = Vec::new();
-    for (k, offset) in neighbours(patch_size).enumerate() {
-        for (b, blade) in blades.iter().enumerate() {
-            let (lo, hi) = blade_extent(blade, gravity);
-            let (lo, hi) = (lo + offset, hi + offset);
-            if hi.x >= -r && lo.x <= r && hi.y >= -side && lo.y <= side {
-                refs.push(k as u32 * count + b as u32);
-            }
-        }
-    }
-    let range = 0..refs.len() as u32;
-    (cells, refs, range)
+    box_layer(
+        patch_size,
+        blades,
+        gravity,
+        [1.0, 3.0, 0.0, 1.0],
+        Vec2::new(r, side),
+    )
 }
 
 #[cfg(test)]

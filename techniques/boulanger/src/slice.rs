@@ -15,7 +15,8 @@ use crate::CellUniform;
 use crate::patch::Orientation;
 use crate::patch::PatchBlade;
 use crate::quadtree::CellGrid;
-use crate::vertical::{blade_extent, neighbours};
+use crate::vertical::box_layer;
+use glam::Vec2;
 
 /// GPU memory of the horizontal slice's BTF of side `resolution` with its mip chain.
 pub fn texture_bytes(resolution: u32) -> u64 {
@@ -31,26 +32,14 @@ pub fn bake_layer(
     blades: &[PatchBlade],
     gravity: f32,
 ) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
-    let cells: Vec<CellUniform> = neighbours(patch_size)
-        .map(|c| CellUniform {
-            center_signs: [c.x, c.y, 1.0, 1.0],
-            mode: [1.0, 0.0, 0.0, 0.0],
-        })
-        .collect();
-    let count = blades.len() as u32;
     let side = 0.5 * patch_size;
-    let extents: Vec<_> = blades.iter().map(|b| blade_extent(b, gravity)).collect();
-    let mut refs = Vec::new();
-    for (k, offset) in neighbours(patch_size).enumerate() {
-        for (b, (lo, hi)) in extents.iter().enumerate() {
-            let (lo, hi) = (*lo + offset, *hi + offset);
-            if hi.x >= -side && lo.x <= side && hi.y >= -side && lo.y <= side {
-                refs.push(k as u32 * count + b as u32);
-            }
-        }
-    }
-    let range = 0..refs.len() as u32;
-    (cells, refs, range)
+    box_layer(
+        patch_size,
+        blades,
+        gravity,
+        [1.0, 0.0, 0.0, 0.0],
+        Vec2::splat(side),
+    )
 }
 
 /// The patch orientation map (Sec. 4.1, Fig. 20a): one `R8Uint` texel per cell, bit 0 = mirror

@@ -139,6 +139,39 @@ pub fn neighbours(patch_size: f32) -> impl Iterator<Item = Vec2> {
         .flat_map(move |dz| (-1..=1).map(move |dx| Vec2::new(dx as f32, dz as f32) * patch_size))
 }
 
+/// One bake layer seeing an axis-aligned box around the patch centre (`half`: half sizes in x
+/// and z): the nine cells carrying the layer's camera `mode`, and the blades of those cells
+/// whose horizontal extent ([`blade_extent`]) meets the box, as `cell x blade count + blade`
+/// (the blade pipeline's instance numbering) with their range (the whole list). The shadow
+/// mask's slab and the horizontal slice's top view are such layers.
+pub fn box_layer(
+    patch_size: f32,
+    blades: &[PatchBlade],
+    gravity: f32,
+    mode: [f32; 4],
+    half: Vec2,
+) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
+    let cells: Vec<CellUniform> = neighbours(patch_size)
+        .map(|c| CellUniform {
+            center_signs: [c.x, c.y, 1.0, 1.0],
+            mode,
+        })
+        .collect();
+    let count = blades.len() as u32;
+    let extents: Vec<(Vec2, Vec2)> = blades.iter().map(|b| blade_extent(b, gravity)).collect();
+    let mut refs = Vec::new();
+    for (k, offset) in neighbours(patch_size).enumerate() {
+        for (b, (lo, hi)) in extents.iter().enumerate() {
+            let (lo, hi) = (*lo + offset, *hi + offset);
+            if hi.x >= -half.x && lo.x <= half.x && hi.y >= -half.y && lo.y <= half.y {
+                refs.push(k as u32 * count + b as u32);
+            }
+        }
+    }
+    let range = 0..refs.len() as u32;
+    (cells, refs, range)
+}
+
 /// Horizontal bounding box (min, max of x and z, from the patch centre) of a blade standing
 /// without wind, as `shaders/grass.wgsl` builds it: its particle moves horizontally only with
 /// its launch velocity, from the root to `root + dir · sin(tilt) · scale`, and the strip is
