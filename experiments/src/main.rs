@@ -24,7 +24,7 @@ enum Command {
     Render(RenderArgs),
     /// Measure techniques on scenes: frames.csv, runs.csv, images, meta.toml, README.md.
     Run(RunArgs),
-    /// Run a sweep file: results/<sweep>/{runs,frames,params}.csv, meta.toml; resumable.
+    /// Run a sweep file: `results/<sweep>/{runs,frames,params}.csv`, meta.toml; resumable.
     Sweep(SweepArgs),
     /// Join the outputs of sweep shards.
     Merge(MergeArgs),

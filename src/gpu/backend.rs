@@ -30,7 +30,7 @@ impl BackendChoice {
     /// All names accepted on the command line.
     pub const NAMES: &'static str = "auto, vulkan, gl, metal, dx12";
 
-    /// The choice in [`BACKEND_ENV`], or `Auto` when unset.
+    /// The choice in the `GRASSBENCH_BACKEND` environment variable, or `Auto` when unset.
     pub fn from_env() -> Result<Self, Error> {
         match std::env::var(BACKEND_ENV) {
             Ok(s) if !s.trim().is_empty() => s.parse(),

@@ -56,7 +56,7 @@ impl TerrainGpu {
     }
 
     /// Uploads `terrain`. The ground mesh has about one vertex per metre (at most
-    /// [`MAX_GROUND_SIDE`] a side) so per-vertex effects (Bakay's wind vectors) have detail
+    /// `MAX_GROUND_SIDE` a side) so per-vertex effects (Bakay's wind vectors) have detail
     /// even on a flat terrain whose heightmap has 2x2 samples.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, terrain: &Terrain) -> Self {
         let (heights, hb) = upload(

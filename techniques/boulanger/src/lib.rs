@@ -82,7 +82,7 @@
 //!   vary across a slice), renormalised per pixel, the point light's attenuation per pixel. A
 //!   mirrored cell sees the light mirrored (X+ and X− swap, Z+ and Z−). The geometric blades
 //!   use the two-sided Lambert of the prelude, which has the point light too.
-//! - **Horizontal slice** (Sec. 3.3, [`slice`]). One BTF layer (below): an orthographic top
+//! - **Horizontal slice** (Sec. 3.3, [`slice`](mod@slice)). One BTF layer (below): an orthographic top
 //!   view of the patch and its 8 neighbours. Drawn over cells and macro-cells by texture
 //!   repetition with the
 //!   patch orientation map of Eq. 6-7 so macro-cells keep each cell's mirror; lit per pixel
