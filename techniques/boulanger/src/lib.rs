@@ -768,38 +768,21 @@ impl Boulanger {
         let btf_seconds = started.elapsed().as_secs_f64();
         let (orientation, orientation_bytes) =
             slice::orientation_map(device, &ctx.gpu.queue, &grid, seed);
+        let view = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
         let slice_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("boulanger slice (group 2)"),
             layout: &slice_layout,
             entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&horizontal.color),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&horizontal.diffuse),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: wgpu::BindingResource::TextureView(&horizontal.extra),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 6,
-                    resource: wgpu::BindingResource::TextureView(&verticals.color),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 7,
-                    resource: wgpu::BindingResource::TextureView(&verticals.diffuse),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 8,
-                    resource: wgpu::BindingResource::TextureView(&verticals.extra),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&orientation),
-                },
+                view(1, &horizontal.color),
+                view(2, &horizontal.diffuse),
+                view(5, &horizontal.extra),
+                view(6, &verticals.color),
+                view(7, &verticals.diffuse),
+                view(8, &verticals.extra),
+                view(3, &orientation),
             ],
         });
         let blade_bytes = std::mem::size_of_val(patch.blades.as_slice()) as u64;

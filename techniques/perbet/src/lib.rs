@@ -269,6 +269,8 @@ pub struct Perbet {
     /// Strip orientation per patch (0: planes of constant z), kept while it is good enough.
     orientation: Vec<u8>,
     visible: Vec<bool>,
+    /// Visible patches by distance, far first (reused every frame).
+    order: Vec<(f32, usize)>,
     lists: Lists,
     entries: Vec<Entry>,
     blade_receivers: Vec<[f32; 4]>,
@@ -406,6 +408,7 @@ impl Perbet {
             lod,
             orientation: vec![0; n_patches],
             visible: vec![false; n_patches],
+            order: Vec::new(),
             lists: Lists::default(),
             entries: Vec::new(),
             blade_receivers: Vec::new(),
@@ -518,11 +521,14 @@ impl GrassTechnique for Perbet {
             visible.get(i).copied().unwrap_or(false)
         });
 
-        // Far to near (Sec. 2.2).
-        let mut order: Vec<(f32, usize)> = (0..self.tiling.len())
-            .filter(|i| self.visible[*i])
-            .map(|i| (self.tiling.centre(i).distance_squared(eye), i))
-            .collect();
+        // Far to near (Sec. 2.2); the list's memory is kept from frame to frame.
+        let mut order = std::mem::take(&mut self.order);
+        order.clear();
+        order.extend(
+            (0..self.tiling.len())
+                .filter(|i| self.visible[*i])
+                .map(|i| (self.tiling.centre(i).distance_squared(eye), i)),
+        );
         order.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         self.culled = (self.tiling.len() - order.len()) as u64;
         self.transitions = 0;
@@ -554,6 +560,7 @@ impl GrassTechnique for Perbet {
                 frame::representation(state, self.params.transition_steps, self.params.fade),
             );
         }
+        self.order = order;
         let [strips_base, flat_base] = self.lists.concatenate(&mut self.entries);
         self.uniform.bases = [strips_base, flat_base, 0, 0];
         self.draws.geometry = self.lists.geometry.len() as u32;

@@ -299,8 +299,8 @@ mod tests {
     use grassbench::terrain::Terrain;
     use grassbench::wind::{Breeze, BreezeConfig};
 
-    #[test]
-    fn the_split_over_threads_does_not_change_the_result() {
+    /// 4 x 4 grids of 24 x 24 blades with 10 % flowers on flat ground, and their parameters.
+    fn prairie() -> (Params, Vec<crate::prairie::Planted>) {
         let terrain = Terrain::flat(Vec2::new(40.0, 40.0));
         let params = Params {
             grids: 4,
@@ -309,6 +309,12 @@ mod tests {
             ..Params::default()
         };
         let planted = plant(&params, &GrassConfig::default(), &terrain, 5).1;
+        (params, planted)
+    }
+
+    #[test]
+    fn the_split_over_threads_does_not_change_the_result() {
+        let (params, planted) = prairie();
         assert!(planted.len() > 3 * MIN_CHUNK, "too few blades to split");
         let wind = Breeze::new(BreezeConfig::default(), 5);
         let run = |threads| {
@@ -329,14 +335,7 @@ mod tests {
 
     #[test]
     fn step_ranges_moves_only_its_ranges_and_like_a_full_step() {
-        let terrain = Terrain::flat(Vec2::new(40.0, 40.0));
-        let params = Params {
-            grids: 4,
-            blades_per_side: 24,
-            flower_fraction: 0.1,
-            ..Params::default()
-        };
-        let planted = plant(&params, &GrassConfig::default(), &terrain, 5).1;
+        let (params, planted) = prairie();
         let wind = Breeze::new(BreezeConfig::default(), 5);
         let mut full = Animation::new(&planted, params.flower_mass);
         let mut part = full.clone();
