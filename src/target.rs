@@ -12,8 +12,10 @@ use crate::{Error, GpuContext, Result};
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Format of [`RenderTarget::display_view`]: the colour bytes without sRGB decoding.
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-/// Depth format of every target.
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Depth-stencil format of every target. Depth24PlusStencil8 is the one stencil format every
+/// backend must support (WebGPU's guarantee); techniques use the stencil for per-frame masks
+/// (Boulanger's projected ground shadows, Sec. 3.5), cleared with the depth each frame.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24PlusStencil8;
 /// Largest side accepted, in pixels (wgpu's default `max_texture_dimension_2d`).
 pub const MAX_SIDE: u32 = 8192;
 
@@ -203,7 +205,8 @@ impl RenderTarget {
         }
     }
 
-    /// Depth attachment for a pass: loads, or clears to 1.0 (far).
+    /// Depth-stencil attachment for a pass: loads both, or clears depth to 1.0 (far) and the
+    /// stencil to 0.
     pub fn depth_attachment(&self, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
         wgpu::RenderPassDepthStencilAttachment {
             view: &self.depth_view,
@@ -215,7 +218,14 @@ impl RenderTarget {
                 },
                 store: wgpu::StoreOp::Store,
             }),
-            stencil_ops: None,
+            stencil_ops: Some(wgpu::Operations {
+                load: if clear {
+                    wgpu::LoadOp::Clear(0)
+                } else {
+                    wgpu::LoadOp::Load
+                },
+                store: wgpu::StoreOp::Store,
+            }),
         }
     }
 

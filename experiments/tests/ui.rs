@@ -64,6 +64,8 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
         .args(["--spawn", "whirlwind"])
         // As the sun sliders would (lights move at run time, issue 9).
         .args(["--sun", "-60,25"])
+        // As the point-light controls would (boulanger Sec. 3.3's light, every shader's).
+        .args(["--point-light", "4,3,-2"])
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -95,6 +97,7 @@ fn scripted_ui_shows_a_scene_in_every_pane() {
         sun.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-5),
         "{sun:?} against {want:?}"
     );
+    assert_eq!(layout.point_light, Some([4.0, 3.0, -2.0]));
     // The pane images the UI displayed, as rendered (the window shows them rescaled).
     let panes: Vec<image::RgbaImage> = (1..=4)
         .map(|k| {

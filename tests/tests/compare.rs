@@ -80,18 +80,22 @@ fn thresholds(id: &str) -> Thresholds {
             popping_p95: 2.2,
             ..Default::default()
         },
-        // boulanger (issue 9: vertical BTF slices, shadow mask, occlusion map, sheared slices):
-        // LOD FLIP 0.105 / 0.017 / 0.074 (part 1: 0.114 / 0.017 / 0.075); FLIP 1/16 0.087 /
-        // 0.006 / 0.025, coverage per tile 0.161 / 0.008 / 0.055 (at these scenes' own sparse
-        // densities a patch holds a handful of blades, so the slices change little; the flyover
-        // sees the field from above, where only the horizontal slice shows, and its silhouette
-        // error, 0.19 / 0.28 / 0.82, stays the largest of all); popping 0.45 (dolly), 0.42
-        // (pan), part 1 0.42 / 0.34.
+        // boulanger (issue 9: vertical BTF slices, shadow mask, occlusion map, sheared slices,
+        // ground shadows): LOD FLIP 0.115 / 0.021 / 0.106 (before the ground shadows 0.105 /
+        // 0.017 / 0.074: the finest variant's ground is shadowed by blades, the default's mostly
+        // by slices); FLIP 1/16 0.071 / 0.005 / 0.046, coverage per tile 0.199 / 0.008 / 0.141
+        // (without ground shadows 0.087 / 0.006 / 0.025 and 0.161 / 0.008 / 0.055: the shadows
+        // darken ground the reference leaves lit, which the coverage classifier partly counts
+        // as grass; at these scenes' own sparse densities a patch holds a handful of blades, so
+        // the slices change little; the flyover sees the field from above, where only the
+        // horizontal slice shows); popping 0.59 (dolly), 0.52 (pan), before the ground shadows
+        // 0.45 / 0.42, part 1 0.42 / 0.34 (the pan changes no level of detail yet rose as
+        // much: shadowed ground has more contrast, so the same motion changes more pixels).
         "boulanger" => Thresholds {
             lod_flip: 0.14,
             cross_flip_sixteenth: 0.11,
-            cross_coverage: 0.19,
-            popping_p95: 0.6,
+            cross_coverage: 0.25,
+            popping_p95: 0.75,
             ..Default::default()
         },
         // bakay: LOD FLIP 0.157 / 0.024 / 0.091 (16 shells on the custom mip chain against its

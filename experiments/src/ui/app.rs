@@ -87,7 +87,7 @@ impl App {
             wind,
             wind_error: None,
             spawn: SpawnKind::Off,
-            spawn_pending: args.spawn.is_some() || args.sun.is_some(),
+            spawn_pending: args.spawn.is_some() || args.sun.is_some() || args.point_light.is_some(),
             diff: DiffView::default(),
             auto_preview: script.is_none(),
             script,
@@ -321,24 +321,80 @@ impl App {
         });
 
         // Lights.
-        ui.collapsing("sun", |ui| {
-            let d = grassbench::glam::Vec3::from(self.scene.config.lights.sun_direction)
-                .normalize_or(grassbench::glam::Vec3::Y);
-            let mut azimuth = d.z.atan2(d.x).to_degrees();
-            let mut elevation = d.y.clamp(-1.0, 1.0).asin().to_degrees();
-            let mut changed = ui
-                .add(egui::Slider::new(&mut azimuth, -180.0..=180.0).text("azimuth °"))
-                .changed();
-            changed |= ui
-                .add(egui::Slider::new(&mut elevation, 2.0..=90.0).text("elevation °"))
-                .changed();
-            if !self.scene.config.lights.sun_keys.is_empty() {
-                ui.label("the scene moves the sun on keyframes; a slider takes over");
-            }
-            if changed {
-                self.set_sun(super::sun_direction([azimuth, elevation]));
-            }
-        });
+        // Open from the start when the command line set the light.
+        let open_sun = self.args.sun.is_some();
+        egui::CollapsingHeader::new("sun")
+            .default_open(open_sun)
+            .show(ui, |ui| {
+                let d = grassbench::glam::Vec3::from(self.scene.config.lights.sun_direction)
+                    .normalize_or(grassbench::glam::Vec3::Y);
+                let mut azimuth = d.z.atan2(d.x).to_degrees();
+                let mut elevation = d.y.clamp(-1.0, 1.0).asin().to_degrees();
+                let mut changed = ui
+                    .add(egui::Slider::new(&mut azimuth, -180.0..=180.0).text("azimuth °"))
+                    .changed();
+                changed |= ui
+                    .add(egui::Slider::new(&mut elevation, 2.0..=90.0).text("elevation °"))
+                    .changed();
+                if !self.scene.config.lights.sun_keys.is_empty() {
+                    ui.label("the scene moves the sun on keyframes; a slider takes over");
+                }
+                if changed {
+                    self.set_sun(super::sun_direction([azimuth, elevation]));
+                }
+            });
+        let open_point = self.args.point_light.is_some();
+        egui::CollapsingHeader::new("point light")
+            .default_open(open_point)
+            .show(ui, |ui| {
+                let current = self.scene.config.lights.point.clone();
+                let mut on = current.is_some();
+                let mut light = current.unwrap_or_else(|| self.default_point_light());
+                let mut changed = ui
+                    .checkbox(&mut on, "on (Lambert, 1 / (1 + β d²))")
+                    .changed();
+                if on {
+                    let min = self.scene.terrain.min_corner();
+                    let max = min + self.scene.terrain.size();
+                    let (low, high) = self.scene.terrain.height_range();
+                    let ranges = [min.x..=max.x, low..=high + 30.0, min.y..=max.y];
+                    for ((value, range), text) in light
+                        .position
+                        .iter_mut()
+                        .zip(ranges)
+                        .zip(["x m", "y m", "z m"])
+                    {
+                        changed |= ui.add(egui::Slider::new(value, range).text(text)).changed();
+                    }
+                    let mut intensity = light.color.iter().copied().fold(0.0, f32::max);
+                    if ui
+                        .add(egui::Slider::new(&mut intensity, 0.0..=40.0).text("intensity"))
+                        .changed()
+                    {
+                        let peak = light.color.iter().copied().fold(0.0, f32::max);
+                        light.color = if peak > 0.0 {
+                            light.color.map(|c| c * intensity / peak)
+                        } else {
+                            [intensity; 3]
+                        };
+                        changed = true;
+                    }
+                    changed |= ui
+                        .add(
+                            egui::Slider::new(&mut light.attenuation, 0.0..=2.0)
+                                .logarithmic(true)
+                                .text("β 1/m²"),
+                        )
+                        .changed();
+                    if !light.keys.is_empty() {
+                        ui.label("the scene moves the light on keyframes; a slider takes over");
+                    }
+                }
+                if changed {
+                    light.keys.clear();
+                    self.set_point_light(on.then_some(light));
+                }
+            });
 
         // Difference view.
         ui.collapsing("difference view", |ui| {
@@ -476,6 +532,33 @@ impl App {
         }
     }
 
+    /// Sets (or removes) the point light in every pane; techniques read it per frame.
+    fn set_point_light(&mut self, light: Option<grassbench::scene::PointLight>) {
+        for lights in std::iter::once(&mut self.scene.config.lights).chain(
+            self.panes
+                .iter_mut()
+                .map(|p| &mut p.harness.scene.config.lights),
+        ) {
+            lights.point = light.clone();
+        }
+        for p in &mut self.panes {
+            p.invalidate();
+        }
+    }
+
+    /// A warm point light 3 m above the middle of the terrain: where a newly switched-on light
+    /// starts.
+    fn default_point_light(&self) -> grassbench::scene::PointLight {
+        let terrain = &self.scene.terrain;
+        let centre = terrain.min_corner() + 0.5 * terrain.size();
+        grassbench::scene::PointLight {
+            position: (terrain.point_at(centre) + grassbench::glam::Vec3::Y * 3.0).to_array(),
+            color: [6.0, 5.0, 3.5],
+            attenuation: 0.05,
+            keys: Vec::new(),
+        }
+    }
+
     fn apply_wind(&mut self) {
         match wind_from_table(&self.wind) {
             Ok(config) => {
@@ -600,6 +683,13 @@ impl App {
             }
             if let Some(sun) = self.args.sun {
                 self.set_sun(super::sun_direction(sun));
+            }
+            if let Some(position) = self.args.point_light {
+                let light = grassbench::scene::PointLight {
+                    position,
+                    ..self.default_point_light()
+                };
+                self.set_point_light(Some(light));
             }
         }
         for (k, at, kind) in spawns {
@@ -847,6 +937,10 @@ impl App {
                     .panes
                     .first()
                     .map(|p| p.harness.scene.config.lights.sun_direction),
+                point_light: self.panes.first().and_then(|p| {
+                    let lights = &p.harness.scene.config.lights;
+                    lights.point.as_ref().map(|l| l.position)
+                }),
             };
             std::fs::write(Layout::path_for(&path), toml::to_string(&layout)?)?;
             for (k, pane) in self.panes.iter().enumerate() {

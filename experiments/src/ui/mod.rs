@@ -70,6 +70,24 @@ pub struct UiArgs {
     /// the panel's sun sliders would.
     #[arg(long, value_parser = parse_sun, allow_hyphen_values = true)]
     pub sun: Option<[f32; 2]>,
+    /// Scripted mode: after the first frame, switch on a point light at `X,Y,Z` (m, world), as
+    /// the panel's point-light controls would.
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
+    pub point_light: Option<[f32; 3]>,
+}
+
+/// `X,Y,Z` in metres, finite.
+fn parse_point(text: &str) -> Result<[f32; 3], String> {
+    let bad = |why: String| format!("{text}: {why}; expected X,Y,Z in metres, e.g. 0,3,-2");
+    let parts: Vec<f32> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| bad(e.to_string()))?;
+    match parts[..] {
+        [x, y, z] if parts.iter().all(|v| v.is_finite()) => Ok([x, y, z]),
+        _ => Err(bad("three finite numbers needed".into())),
+    }
 }
 
 /// `AZIMUTH,ELEVATION` in degrees, elevation in [2, 90].

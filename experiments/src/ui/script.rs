@@ -21,6 +21,10 @@ pub struct Layout {
     /// `--sun`).
     #[serde(default)]
     pub sun: Option<[f32; 3]>,
+    /// The point light's position in the first pane's scene, if one is on (the panel's
+    /// controls or `--point-light`).
+    #[serde(default)]
+    pub point_light: Option<[f32; 3]>,
 }
 
 impl Layout {

@@ -479,6 +479,11 @@ struct SliceOut {
 
 @vertex
 fn vs_slice(@builtin(vertex_index) vertex: u32, quad: SliceQuad) -> SliceOut {
+    return slice_vertex(vertex, quad);
+}
+
+// Vertex `vertex` of a slice quad: quad `vertex / 6` of its `tess x tess` tessellation.
+fn slice_vertex(vertex: u32, quad: SliceQuad) -> SliceOut {
     let n = u32(quad.tess.x);
     let k = vertex / 6u;
     let corner = vertex % 6u;
@@ -501,40 +506,59 @@ fn vs_slice(@builtin(vertex_index) vertex: u32, quad: SliceQuad) -> SliceOut {
     return out;
 }
 
+// Where a horizontal-slice fragment reads its BTF texel.
+struct SliceTexel {
+    // The cell's mirror signs (x, z).
+    signs: vec2<f32>,
+    uv: vec2<f32>,
+    // Screen gradients of the unwrapped coordinates, so the mip level does not jump at cell
+    // borders.
+    gx: vec2<f32>,
+    gy: vec2<f32>,
+}
+
+// The texel at `local` (in cells from `first_cell`) through the patch orientation map (Sec. 4.1):
+// one unfiltered texel per cell, bit 0 = mirror x, bit 1 = mirror z; Eq. 7: u' = (patchSize ·
+// orientation · u) mod 1. Call in uniform control flow (screen derivatives).
+fn slice_texel(local: vec2<f32>, first_cell: vec2<i32>) -> SliceTexel {
+    let dims = vec2<i32>(textureDimensions(orientation_map));
+    let index = clamp(first_cell + vec2<i32>(floor(local)), vec2(0), dims - 1);
+    let bits = textureLoad(orientation_map, index, 0).r;
+    var t: SliceTexel;
+    t.signs = vec2(select(1.0, -1.0, (bits & 1u) != 0u), select(1.0, -1.0, (bits & 2u) != 0u));
+    t.uv = fract(t.signs * local);
+    t.gx = dpdx(local) * t.signs;
+    t.gy = dpdy(local) * t.signs;
+    return t;
+}
+
+// The horizontal slice's opacity at `world` (a point of the slice) for a texel of `coverage`
+// and density threshold `dth`: its share of the blades there (Sec. 3.4, Fig. 11).
+fn slice_alpha(t: SliceTexel, coverage: f32, dth: f32, world: vec3<f32>) -> f32 {
+    let xz = world.xz;
+    let ground = vec3(xz.x, world.y - params.tile.y, xz.y);
+    let w_g = weight_geometry(distance(globals.camera_pos.xyz, ground));
+    let texels = max(length(t.gx), length(t.gy)) * params.tile.z;
+    return coverage * slice_share(dth, terrain_density(xz), w_g, 1.0, texels) * f32(on_grass(xz));
+}
+
 @fragment
 fn fs_slice(in: SliceOut) -> @location(0) vec4<f32> {
-    // Patch orientation map (Sec. 4.1): one unfiltered texel per cell, bit 0 = mirror x, bit 1 =
-    // mirror z; Eq. 7: u' = (patchSize · orientation · u) mod 1.
-    let local = in.cell_coord;
-    let dims = vec2<i32>(textureDimensions(orientation_map));
-    let index = clamp(in.first_cell + vec2<i32>(floor(local)), vec2(0), dims - 1);
-    let bits = textureLoad(orientation_map, index, 0).r;
-    let signs = vec2(select(1.0, -1.0, (bits & 1u) != 0u), select(1.0, -1.0, (bits & 2u) != 0u));
-    let uv = fract(signs * local);
-    // Gradients of the unwrapped coordinates, so the mip level does not jump at cell borders.
-    let gx = dpdx(local) * signs;
-    let gy = dpdy(local) * signs;
-    let color = textureSampleGrad(slice_color, repeat_sampler, uv, 0, gx, gy);
+    let t = slice_texel(in.cell_coord, in.first_cell);
+    let signs = t.signs;
+    let color = textureSampleGrad(slice_color, repeat_sampler, t.uv, 0, t.gx, t.gy);
     let coverage = color.a;
     if (coverage < 1e-3) {
         discard;
     }
-    let diffuse = textureSampleGrad(slice_diffuse, repeat_sampler, uv, 0, gx, gy) / coverage;
-    let extra = textureSampleGrad(slice_extra, repeat_sampler, uv, 0, gx, gy) / coverage;
-    let albedo_in = color.rgb / coverage;
-    let dth = extra.y;
+    let diffuse = textureSampleGrad(slice_diffuse, repeat_sampler, t.uv, 0, t.gx, t.gy) / coverage;
+    let extra = textureSampleGrad(slice_extra, repeat_sampler, t.uv, 0, t.gx, t.gy) / coverage;
     let ao = extra.z;
-
-    let xz = in.world.xz;
-    let ground = vec3(xz.x, in.world.y - params.tile.y, xz.y);
-    let w_g = weight_geometry(distance(globals.camera_pos.xyz, ground));
-    let texels = max(length(gx), length(gy)) * params.tile.z;
-    let share = slice_share(dth, terrain_density(xz), w_g, 1.0, texels) * f32(on_grass(xz));
-    let alpha = coverage * share;
+    let alpha = slice_alpha(t, coverage, extra.y, in.world);
     if (alpha < max(params.lod.w, 1e-3)) {
         discard;
     }
-    var albedo = albedo_in;
+    var albedo = color.rgb / coverage;
     if (globals.frame.z == 1u) {
         albedo = vec3(0.04, 0.4, 0.05); // Fig. 12: horizontal slices in green
     } else if (globals.frame.z == 2u) {
@@ -548,6 +572,129 @@ fn fs_slice(in: SliceOut) -> @location(0) vec4<f32> {
     point.b = in.p_b;
     let lit = btf_light(albedo, diffuse, extra.x, mirror_weights(sun, signs), mirror_weights(point, signs), in.world, ao);
     return vec4(apply_fog(lit, in.world), alpha);
+}
+
+// ---- Shadows projected on the ground (Sec. 3.5, Fig. 15) ----
+//
+// One render pass before the grass, with the stencil: (1) the geometric blades, projected along
+// the sun onto the ground, mark the stencil where they pass the depth test against the ground
+// (no colour, no depth written); (2) a screen-covering triangle multiplies the marked pixels by
+// the ground's shadowed-to-lit ratio (the paper's "black quadrilateral with blending"); (3) each
+// horizontal slice, projected likewise, multiplies the ground by its own opacity, where no blade
+// shadow was (slice shadows do not overlap one another, so they need no stencil of their own).
+// The vertical slices cast none (the paper: they would cover the whole ground).
+
+// The lowest sun, as the sine of its elevation over the ground, that casts projected shadows:
+// below it a shadow would stretch beyond 20 blade heights, and the sun gives the ground under 5 %
+// of its direct light there.
+const SHADOW_MIN_SINE: f32 = 0.05;
+
+// Sec. 3.5's projection matrix applied to one point: `p` moved along `l` (unit, towards a
+// directional light) onto the plane through `origin` with unit normal `n`, i.e. M = (n·l) I −
+// l nᵀ in homogeneous form. The plane is the ground at the caster's root: the paper's ground
+// plane, and uneven terrain becomes planar per blade.
+fn planar_projection(p: vec3<f32>, origin: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
+    return p - l * (dot(p - origin, n) / dot(n, l));
+}
+
+// Clip position of a shadow point on the ground, moved towards the eye along its view ray (its
+// pixel does not change) by 5 cm plus 0.3 % of the distance, so it passes the depth test against
+// the ground it lies on: more than the 24-bit depth's step (d² / (near · 2²⁴), 0.15 m at 500 m
+// with the 0.1 m near plane) and than the gap between the terrain mesh and the bilinear
+// heightmap the projection lands on.
+fn shadow_clip(p: vec3<f32>) -> vec4<f32> {
+    let to_eye = globals.camera_pos.xyz - p;
+    let d = max(length(to_eye), 1e-3);
+    let lifted = p + to_eye * min((0.05 + 0.003 * d) / d, 0.5);
+    return globals.view_proj * vec4(lifted, 1.0);
+}
+
+// How much of the ground's light a blade shadow leaves: the core lights the ground with
+// ambient + sun (n·l) (the prelude's `shade`), a shadow keeps the ambient term. Evaluated for the
+// paper's flat ground (n = Y+), per colour channel.
+fn ground_shadow_factor() -> vec3<f32> {
+    let a = globals.ambient.rgb;
+    return a / max(a + globals.sun_color.rgb * max(globals.sun_direction.y, 0.0), vec3(1e-4));
+}
+
+// (1) A geometric blade (the same blade, opacity and wind as `vs_blade`) projected on the ground.
+@vertex
+fn vs_ground_shadow(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> BladeOut {
+    var out = blade_vertex(vertex, instance);
+    let root = out.root.xyz;
+    let n = terrain_normal(root.xz);
+    let l = globals.sun_direction.xyz;
+    // Blades `blade_vertex` skips come back with zero opacity.
+    if (out.ao_opacity.y <= 0.0 || dot(n, l) < SHADOW_MIN_SINE) {
+        out.position = vec4(0.0, 0.0, 2.0, 1.0);
+        return out;
+    }
+    out.position = shadow_clip(planar_projection(out.world, root, n, l));
+    return out;
+}
+
+// The 4 x 4 ordered-dither (Bayer) threshold of a pixel, in (0, 1).
+fn bayer4(pixel: vec2<f32>) -> f32 {
+    var m = array<f32, 16>(0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
+    let p = vec2<u32>(pixel) % 4u;
+    return (m[p.y * 4u + p.x] + 0.5) / 16.0;
+}
+
+// The blade's shape marks the stencil (no colour is written) where its texture alpha times its
+// Eq. 5 opacity passes an ordered dither: an opaque blade's shadow is whole, and a blade fading
+// out of geometry leaves a shadow thinning with it rather than one that vanishes at once, while
+// the slices' shadows take the complementary share.
+@fragment
+fn fs_ground_shadow(in: BladeOut) -> @location(0) vec4<f32> {
+    let alpha = textureSample(blade_texture, clamp_sampler, in.uv).a * in.ao_opacity.y;
+    if (alpha < bayer4(in.position.xy)) {
+        discard;
+    }
+    return vec4(0.0);
+}
+
+// (2) One triangle over the screen; only the stencil's marked pixels pass.
+@vertex
+fn vs_shadow_cover(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
+    return vec4(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// Multiplied into the target (blend: destination x source).
+@fragment
+fn fs_shadow_cover() -> @location(0) vec4<f32> {
+    return vec4(ground_shadow_factor(), 1.0);
+}
+
+// (3) A horizontal slice quad projected on the ground; it carries the slice's own texture
+// coordinates and position, so the fragment reads the slice's texel.
+@vertex
+fn vs_slice_shadow(@builtin(vertex_index) vertex: u32, quad: SliceQuad) -> SliceOut {
+    var out = slice_vertex(vertex, quad);
+    let ground = out.world - vec3(0.0, params.tile.y, 0.0);
+    let n = terrain_normal(ground.xz);
+    let l = globals.sun_direction.xyz;
+    if (dot(n, l) < SHADOW_MIN_SINE) {
+        out.position = vec4(0.0, 0.0, 2.0, 1.0);
+        return out;
+    }
+    let q = planar_projection(out.world, ground, n, l);
+    out.position = shadow_clip(vec3(q.x, terrain_height(q.xz), q.z));
+    return out;
+}
+
+// The ground darkened by the slice's opacity there (its share of the blades, Sec. 3.4), so the
+// slices' shadows take over from the blades' through the same weights.
+@fragment
+fn fs_slice_shadow(in: SliceOut) -> @location(0) vec4<f32> {
+    let t = slice_texel(in.cell_coord, in.first_cell);
+    let color = textureSampleGrad(slice_color, repeat_sampler, t.uv, 0, t.gx, t.gy);
+    let extra = textureSampleGrad(slice_extra, repeat_sampler, t.uv, 0, t.gx, t.gy);
+    var alpha = 0.0;
+    if (color.a >= 1e-3) {
+        alpha = slice_alpha(t, color.a, extra.y / color.a, in.world);
+    }
+    return vec4(mix(vec3(1.0), ground_shadow_factor(), alpha), 1.0);
 }
 
 // ---- Vertical slices (Sec. 3.3): N across x and N across z in each cell of the mid band ----

@@ -10,12 +10,13 @@
 //!   disk cache;
 //! - Appendix A's spherical barycentric light interpolation; the scene's lights moving at run
 //!   time (keyframes of the sun and of a point light with Sec. 3.3's attenuation, `[lights]`);
-//! - Sec. 3.5's shadow-mask cylinder (blade-to-blade shadows on the blades, baked into the
-//!   slices) and ambient occlusion map (the covering map's trees and stones);
+//! - Sec. 3.5's shadows: the blades' and the horizontal slices' shadows projected on the ground
+//!   (stencil), the shadow-mask cylinder (blade-to-blade shadows on the blades, baked into the
+//!   slices) and the ambient occlusion map (the covering map's trees and stones);
 //! - the vertical slices sheared with the wind that bends the blades (beyond the paper).
 //!
-//! Not yet: moving the lights from the UI, and the blade and slice shadows projected on the
-//! ground (Sec. 3.5's stencil pass).
+//! The UI moves the sun and the point light at run time (`grassbench ui`, panels "sun" and
+//! "point light").
 //!
 //! ## Algorithm
 //! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
@@ -92,6 +93,12 @@
 //!   many texels (minified more than about 1.4x) the single averaged threshold would be
 //!   meaningless, so the expected fraction `ρ · mean_t(1 − opacity_g)` of the uniformly spread
 //!   thresholds is drawn instead.
+//! - **Ground shadows** (Sec. 3.5, Fig. 15, [`ground_shadow`]). One pass before the grass: the
+//!   geometric blades projected along the sun onto the ground (the plane tangent at each root)
+//!   mark the stencil where they pass the depth test, a screen-covering triangle multiplies the
+//!   marked pixels by the ground's shadowed-to-lit ratio (ambient over ambient + sun), and the
+//!   horizontal slices, projected likewise, multiply the unmarked ground by their opacity. The
+//!   vertical slices cast none (the paper). `ground_shadows = false` turns it off.
 //! - **Shadow mask** (Sec. 3.5, Fig. 17, [`shadow`]). The coverage of a slab of the patch as
 //!   thick as a cylinder of circumference `patch_size`, baked first, is the shadow image
 //!   wrapped around every blade with its origin at the blade's inclination; per fragment the
@@ -126,7 +133,9 @@
 //! fill: about one fragment per ground pixel; plus `4N` triangles per cell of the mid band
 //! (20 quads at `N` = 10, one draw), whose cost is fill again: at a grazing view several slices
 //! cover each pixel (depth complexity up to `2N` per cell crossed), which is why the paper's
-//! low horizontal view is its slowest (Sec. 5). Start-up: the BTF bake, bound by fill (4x MSAA,
+//! low horizontal view is its slowest (Sec. 5). The ground shadows draw the geometric blades'
+//! vertices and the horizontal slices' fill a second time, plus one screen of fill for the
+//! cover. Start-up: the BTF bake, bound by fill (4x MSAA,
 //! three targets, hundreds of blade fragments per texel of a side view), 4-8 s of wall time
 //! on lavapipe for the paper's 21 904-blade patch depending on what else runs on the two
 //! cores, 0.1 s from the disk cache. Memory: 32 bytes per patch
@@ -160,6 +169,12 @@
 //! - One shadow mask for every blade (Sec. 3.5's own approximation): shadows are plausible, not
 //!   cast by the actual neighbours, and a light straight above casts none (its ray leaves the
 //!   cylinder through the top).
+//! - Ground shadows are hard (a stencil bit) and take the sun's share of a flat ground's light
+//!   (on a slope the ground's own sun term differs a little); the point light casts none, as the
+//!   core lights the ground with the sun only. A horizontal slice's shadow lies almost under it
+//!   (it is `slice_height` up), so beyond `max_geom` the ground darkens in the slice's gaps
+//!   rather than beside the blades; blades fading out (Eq. 5) cast until their opacity falls
+//!   under one half.
 //! - The occlusion map sums its occluders' solid angles, so clumps of trees darken more than
 //!   an exact visibility test would ([`occlusion`]).
 //! - Neighbouring cells of different mirrors meet along seams where blades baked from unmirrored
@@ -174,6 +189,7 @@ pub mod barycentric;
 pub mod btf;
 pub mod cache;
 pub mod cells;
+pub mod ground_shadow;
 pub mod lod;
 pub mod occlusion;
 pub mod params;
@@ -193,6 +209,7 @@ use grassbench::{
     TechniqueInfo, TechniqueStats, bytemuck, shaders, target, wgpu,
 };
 
+pub use ground_shadow::GroundShadows;
 pub use lod::LodDistances;
 pub use params::{Params, Transparency};
 pub use patch::{Orientation, Patch, PatchBlade};
@@ -326,6 +343,8 @@ pub struct Boulanger {
     blade_pipeline: wgpu::RenderPipeline,
     slice_pipeline: wgpu::RenderPipeline,
     vslice_pipeline: wgpu::RenderPipeline,
+    /// Sec. 3.5's shadows on the ground, when `ground_shadows` is on.
+    ground_shadows: Option<GroundShadows>,
     group1: wgpu::BindGroup,
     cell_layout: wgpu::BindGroupLayout,
     cell_group: wgpu::BindGroup,
@@ -668,6 +687,19 @@ impl Boulanger {
                 )
             },
         );
+        let ground_shadows = params.ground_shadows.then(|| {
+            GroundShadows::new(
+                device,
+                &module,
+                [
+                    &blade_layout,
+                    &slice_pipeline_layout,
+                    &ctx.scene_gpu
+                        .pipeline_layout(device, "boulanger shadow cover", &[]),
+                ],
+                ctx.sample_count,
+            )
+        });
         // The BTF bake (Sec. 3.3): the blade shader in baking mode, three targets, 4x MSAA.
         let refs_layout = btf::refs_layout(device);
         let bake_layout = ctx.scene_gpu.pipeline_layout(
@@ -808,6 +840,7 @@ impl Boulanger {
             blade_pipeline,
             slice_pipeline,
             vslice_pipeline,
+            ground_shadows,
             group1,
             cell_layout,
             cell_group,
@@ -873,6 +906,33 @@ impl Boulanger {
             ],
             tess: [tess as f32, 0.0, 0.0, 0.0],
         }
+    }
+
+    /// Records this frame's geometric blades with the pass's pipeline (blade layout: the
+    /// cells in group 2, one dynamic offset per page); returns the draws.
+    fn draw_geometry(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
+        let vertices = self.vertices_per_blade();
+        let mut draws = 0;
+        for page in &self.pages {
+            // In range: `prepare` refuses a buffer over 4 GiB.
+            let offset = (u64::from(page.first_cell) * cells::CELL_BYTES) as u32;
+            pass.set_bind_group(2, &self.cell_group, &[offset]);
+            for r in &page.draws {
+                pass.draw(0..vertices, r.clone());
+                draws += 1;
+            }
+        }
+        draws
+    }
+
+    /// Records this frame's horizontal slice quads with the pass's pipeline (slice layout),
+    /// one draw per tessellation; returns the draws.
+    fn draw_quads(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
+        pass.set_vertex_buffer(0, self.quad_buffer.slice(..));
+        for (tess, range) in &self.quad_groups {
+            pass.draw(0..tess * tess * 6, range.clone());
+        }
+        self.quad_groups.len() as u64
     }
 
     fn vertices_per_blade(&self) -> u32 {
@@ -1248,16 +1308,32 @@ impl GrassTechnique for Boulanger {
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         let mut draws = 0;
+        if let Some(shadows) = &self.ground_shadows
+            && !(self.geometry.is_empty() && self.quads.is_empty())
+        {
+            // Sec. 3.5, before the grass: blades into the stencil, the cover, then the slices.
+            let mut pass = encoder.render_pass("ground_shadows");
+            pass.set_stencil_reference(ground_shadow::STENCIL_MARK);
+            pass.set_bind_group(1, &self.group1, &[]);
+            if !self.geometry.is_empty() {
+                pass.set_pipeline(&shadows.blades);
+                draws += self.draw_geometry(&mut pass);
+                pass.set_pipeline(&shadows.cover);
+                pass.draw(0..3, 0..1);
+                draws += 1;
+            }
+            if !self.quads.is_empty() {
+                pass.set_pipeline(&shadows.slices);
+                pass.set_bind_group(2, &self.slice_group, &[]);
+                draws += self.draw_quads(&mut pass);
+            }
+        }
         if !self.quads.is_empty() {
             let mut pass = encoder.render_pass("horizontal_slice");
             pass.set_pipeline(&self.slice_pipeline);
             pass.set_bind_group(1, &self.group1, &[]);
             pass.set_bind_group(2, &self.slice_group, &[]);
-            pass.set_vertex_buffer(0, self.quad_buffer.slice(..));
-            for (tess, range) in &self.quad_groups {
-                pass.draw(0..tess * tess * 6, range.clone());
-                draws += 1;
-            }
+            draws += self.draw_quads(&mut pass);
         }
         if !self.vcell_uniforms.is_empty() {
             let mut pass = encoder.render_pass("vertical_slices");
@@ -1275,16 +1351,7 @@ impl GrassTechnique for Boulanger {
             let mut pass = encoder.render_pass("geometry");
             pass.set_pipeline(&self.blade_pipeline);
             pass.set_bind_group(1, &self.group1, &[]);
-            let vertices = self.vertices_per_blade();
-            for page in &self.pages {
-                // In range: `prepare` refuses a buffer over 4 GiB.
-                let offset = (u64::from(page.first_cell) * cells::CELL_BYTES) as u32;
-                pass.set_bind_group(2, &self.cell_group, &[offset]);
-                for r in &page.draws {
-                    pass.draw(0..vertices, r.clone());
-                    draws += 1;
-                }
-            }
+            draws += self.draw_geometry(&mut pass);
         }
         encoder.count_draws(draws);
     }
@@ -1295,16 +1362,30 @@ impl GrassTechnique for Boulanger {
             .iter()
             .map(|q| 2 * (q.tess[0] as u64).pow(2))
             .sum();
+        let blade_triangles = self.lod_blades.geometry * u64::from(2 * self.params.segments);
+        let blade_draws = self.pages.iter().map(|p| p.draws.len()).sum::<usize>() as u64;
+        let quad_draws = self.quad_groups.len() as u64;
+        // Sec. 3.5's ground shadows draw the blades and the slices again, plus the cover.
+        let (shadow_triangles, shadow_draws) = match &self.ground_shadows {
+            Some(_) if !self.geometry.is_empty() => (
+                blade_triangles + 1 + quad_triangles,
+                blade_draws + 1 + quad_draws,
+            ),
+            Some(_) => (quad_triangles, quad_draws),
+            None => (0, 0),
+        };
         TechniqueStats {
             blades: self.lod_blades.geometry
                 + self.lod_blades.vertical_slices
                 + self.lod_blades.horizontal_slices,
-            triangles: self.lod_blades.geometry * u64::from(2 * self.params.segments)
+            triangles: blade_triangles
                 + quad_triangles
-                + self.vcell_uniforms.len() as u64 * u64::from(4 * self.params.vertical_slices),
-            draw_calls: (self.pages.iter().map(|p| p.draws.len()).sum::<usize>()
-                + self.quad_groups.len()
-                + usize::from(!self.vcell_uniforms.is_empty())) as u64,
+                + self.vcell_uniforms.len() as u64 * u64::from(4 * self.params.vertical_slices)
+                + shadow_triangles,
+            draw_calls: blade_draws
+                + quad_draws
+                + u64::from(!self.vcell_uniforms.is_empty())
+                + shadow_draws,
             gpu_bytes: self.fixed_bytes
                 + self.cell_capacity as u64 * cells::CELL_BYTES
                 + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64

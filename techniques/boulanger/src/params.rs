@@ -73,6 +73,9 @@ pub struct Params {
     /// Blade-to-blade shadows through the shadow mask (Sec. 3.5), on the blades and baked
     /// into the slices.
     pub shadow_mask: bool,
+    /// The blades' and the horizontal slices' shadows projected on the ground along the sun
+    /// (Sec. 3.5, Fig. 15: a stencil pass, then a darkening cover).
+    pub ground_shadows: bool,
     /// Ambient occlusion of the grass by the covering map's trees and stones (Sec. 3.5).
     pub external_ao: bool,
     /// Height given to the covering map's trees, m (for the occlusion map).
@@ -113,6 +116,7 @@ impl Default for Params {
             wind_response: 0.12,
             animate: true,
             shadow_mask: true,
+            ground_shadows: true,
             external_ao: true,
             tree_height: 6.0,
             stone_height: 0.5,
