@@ -34,6 +34,8 @@ pub struct Animation {
     threads: usize,
     /// The interaction sphere (centre, radius) of the next steps (Sec. 6.2), if any.
     sphere: Option<(Vec3, f32)>,
+    /// One step's blade ranges in instance order, and whether each is hidden (reused).
+    work: Vec<(Range<u32>, bool)>,
 }
 
 impl Animation {
@@ -60,6 +62,7 @@ impl Animation {
             winds: Vec::new(),
             threads: std::thread::available_parallelism().map_or(1, |t| t.get()),
             sphere: None,
+            work: Vec::new(),
         };
         let samples = 3 * a.blades.len() + a.flowers.len();
         a.points = vec![Vec3::ZERO; samples];
@@ -112,41 +115,71 @@ impl Animation {
         let all = 0..self.blades.len() as u32;
         let flowers = 0..self.flowers.len() as u32;
         let k = (wind_response, spring, damping);
-        let (all, flowers) = (std::slice::from_ref(&all), std::slice::from_ref(&flowers));
-        self.step_ranges(wind, time, dt, k, all, flowers);
+        let ranges = StepRanges {
+            drawn: std::slice::from_ref(&all),
+            hidden: &[],
+            flowers: std::slice::from_ref(&flowers),
+        };
+        self.step_ranges(wind, time, dt, k, ranges);
     }
 
-    /// Advances the blades in `blades` and the flowers in `flowers` (sorted, disjoint instance
-    /// ranges) by `dt` in `wind` at `time`; the others keep their state (the level-of-detail
-    /// choice animates only what it will draw, Sec. 5.2). The wind is read once per frame at
-    /// each moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is
-    /// 0) and at each petal, in batched [`WindField::velocities`] calls, then
-    /// `ceil(dt / MAX_STEP)` Verlet steps follow. `k` is (wind response, spring, damping).
-    /// The ranges are cut into pieces of at most one chunk per core (scoped threads, at least
-    /// `MIN_CHUNK` blades each); the sample buffers are reused, so nothing is allocated but
-    /// the threads and the piece list. The result does not depend on the split. A `dt` that
-    /// is not positive and finite does nothing; ranges beyond the blades are clipped.
+    /// Advances the blades and flowers of `ranges` by `dt` in `wind` at `time`; the others
+    /// keep their state (the level-of-detail choice animates only what it will draw or may
+    /// draw soon, Sec. 5.2). For the drawn blades the wind is read once per frame at each
+    /// moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is 0),
+    /// for the hidden ones once at `P2` for all three (see [`StepRanges::hidden`]), and at
+    /// each petal, in batched [`WindField::velocities`] calls; then `ceil(dt / MAX_STEP)`
+    /// Verlet steps follow, and the drawn blades' instance data is written. `k` is (wind
+    /// response, spring, damping). The blades are cut into one contiguous share per core
+    /// (scoped threads, at least `MIN_CHUNK` blades each); the sample buffers are reused, so
+    /// nothing is allocated but the threads and the piece lists. The result does not depend
+    /// on the split. A `dt` that is not positive and finite does nothing; ranges beyond the
+    /// blades are clipped.
     pub fn step_ranges(
         &mut self,
         wind: &dyn WindField,
         time: f32,
         dt: f32,
         (wind_response, spring, damping): (f32, f32, f32),
-        blades: &[Range<u32>],
-        flowers: &[Range<u32>],
+        ranges: StepRanges<'_>,
     ) {
         if !(dt.is_finite() && dt > 0.0) {
             return;
+        }
+        let flowers = ranges.flowers;
+        // Drawn and hidden ranges merged in instance order (each list is sorted).
+        let work = &mut self.work;
+        work.clear();
+        let (mut drawn, mut hidden) = (ranges.drawn.iter().peekable(), ranges.hidden.iter());
+        let mut next_hidden = hidden.next();
+        loop {
+            match (drawn.peek(), next_hidden) {
+                (Some(d), Some(h)) if h.start < d.start => {
+                    work.push((h.clone(), true));
+                    next_hidden = hidden.next();
+                }
+                (Some(d), _) => {
+                    work.push(((*d).clone(), false));
+                    drawn.next();
+                }
+                (None, Some(h)) => {
+                    work.push((h.clone(), true));
+                    next_hidden = hidden.next();
+                }
+                (None, None) => break,
+            }
         }
         let steps = ((dt / MAX_STEP).ceil() as u32).clamp(1, MAX_SUBSTEPS);
         let k = Dynamics::new(dt / steps as f32, wind_response, spring, damping);
         let n = self.blades.len();
         let (blade_points, flower_points) = self.points.split_at_mut(3 * n);
         let (blade_winds, flower_winds) = self.winds.split_at_mut(3 * n);
-        let total: usize = blades.iter().map(|r| r.len()).sum();
+        let total: usize = self.work.iter().map(|(r, _)| r.len()).sum();
         let threads = self.threads.clamp(1, MAX_THREADS);
         let chunk = total.div_ceil(threads).max(MIN_CHUNK);
-        // Disjoint pieces of at most `chunk` blades, dealt round-robin to the threads.
+        // Thread `t` takes blades `t·chunk..(t + 1)·chunk` of the ranges' concatenation, as
+        // disjoint pieces (a range may be cut between threads): equal shares, whatever the
+        // ranges' lengths.
         let mut buckets: Vec<Vec<Piece<'_>>> = (0..threads).map(|_| Vec::new()).collect();
         let mut rest = (
             self.blades.as_mut_slice(),
@@ -154,12 +187,13 @@ impl Animation {
             blade_winds,
             self.blade_out.as_mut_slice(),
         );
-        let (mut offset, mut next) = (0usize, 0usize);
-        for r in blades {
+        let (mut offset, mut done) = (0usize, 0usize);
+        for (r, hidden) in &self.work {
             let (start, end) = ((r.start as usize).max(offset), (r.end as usize).min(n));
             let mut at = start;
             while at < end {
-                let len = (end - at).min(chunk);
+                let bucket = done / chunk;
+                let len = (end - at).min(chunk * (bucket + 1) - done);
                 let skip = at - offset;
                 let (blades, points, winds, out) = rest;
                 let (_, blades) = blades.split_at_mut(skip);
@@ -170,8 +204,9 @@ impl Animation {
                 let (piece_w, winds) = winds.split_at_mut(3 * len);
                 let (_, out) = out.split_at_mut(skip);
                 let (piece_o, out) = out.split_at_mut(len);
-                buckets[next % threads].push((piece_b, piece_p, piece_w, piece_o));
-                next += 1;
+                let piece = (piece_b, piece_p, piece_w, piece_o, *hidden);
+                buckets[bucket.min(threads - 1)].push(piece);
+                done += len;
                 rest = (blades, points, winds, out);
                 offset = at + len;
                 at = offset;
@@ -185,13 +220,13 @@ impl Animation {
             let first = buckets.next();
             for bucket in buckets {
                 scope.spawn(move || {
-                    for (blades, points, winds, out) in bucket {
-                        step_blades(blades, points, winds, out, wind, time, steps, k, sphere);
+                    for piece in bucket {
+                        step_blades(piece, wind, time, steps, k, sphere);
                     }
                 });
             }
-            for (blades, points, winds, out) in first.into_iter().flatten() {
-                step_blades(blades, points, winds, out, wind, time, steps, k, sphere);
+            for piece in first.into_iter().flatten() {
+                step_blades(piece, wind, time, steps, k, sphere);
             }
         });
         let m = self.flowers.len();
@@ -237,41 +272,71 @@ const MAX_THREADS: usize = 16;
 /// Fewest blades a thread takes (below that, spawning costs more than it saves).
 const MIN_CHUNK: usize = 2048;
 
-/// A thread's share of one blade range: states, sample points, winds, instance data.
+/// What [`Animation::step_ranges`] moves: sorted, disjoint instance ranges.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StepRanges<'a> {
+    /// Blades drawn this frame: the wind at each moving control point, then their instance
+    /// data ([`Animation::blade_out`]) is written.
+    pub drawn: &'a [Range<u32>],
+    /// Blades animated but not drawn this frame (in culled grids, or a grid away from the
+    /// level they are drawn at: the level-of-detail margin of Sec. 5.2). They are kept in
+    /// motion with one wind sample (at `P2`) for all three control points, and their instance
+    /// data is not written (it is written the frame they are drawn). The wind varies little
+    /// along a blade (a few per cent over its height in the canonical winds), so a blade
+    /// coming into view is already in the pose and motion its full step would have given it,
+    /// and what remains decays with the damping (`keep` per step).
+    pub hidden: &'a [Range<u32>],
+    /// Flowers (always at their petal).
+    pub flowers: &'a [Range<u32>],
+}
+
+/// A thread's share of one blade range: states, sample points, winds, instance data, and
+/// whether the range is hidden.
 type Piece<'a> = (
     &'a mut [BladeState],
     &'a mut [Vec3],
     &'a mut [Vec3],
     &'a mut [BladeDynamic],
+    bool,
 );
 
-/// One chunk of the frame's blade step: gather the moving control points, one batched wind
-/// query, `steps` Verlet steps per blade, the sphere's push (Sec. 6.2), then the instance data.
-#[allow(clippy::too_many_arguments)]
+/// One chunk of the frame's blade step: gather the sample points (the moving control points,
+/// or `P2` of hidden blades), one batched wind query, `steps` Verlet steps per blade, the
+/// sphere's push (Sec. 6.2), then the instance data of drawn blades.
 fn step_blades(
-    blades: &mut [BladeState],
-    points: &mut [Vec3],
-    winds: &mut [Vec3],
-    out: &mut [BladeDynamic],
+    (blades, points, winds, out, hidden): Piece<'_>,
     wind: &dyn WindField,
     time: f32,
     steps: u32,
     k: &Dynamics,
     sphere: Option<(Vec3, f32)>,
 ) {
+    let step = |b: &mut BladeState, w: &[Vec3; 3]| {
+        let ground = b.pos[0].y;
+        for _ in 0..steps {
+            b.step(w, k, ground);
+        }
+        if let Some((centre, radius)) = sphere {
+            b.interact(centre, radius, ground);
+        }
+    };
+    if hidden {
+        let (points, winds) = (&mut points[..blades.len()], &mut winds[..blades.len()]);
+        for (p, b) in points.iter_mut().zip(blades.iter()) {
+            *p = b.pos[2];
+        }
+        wind.velocities(points, time, winds);
+        for (b, &w) in blades.iter_mut().zip(winds.iter()) {
+            step(b, &[w; 3]);
+        }
+        return;
+    }
     for (p, b) in points.chunks_exact_mut(3).zip(blades.iter()) {
         p.copy_from_slice(&b.pos[1..]);
     }
     wind.velocities(points, time, winds);
     for (b, w) in blades.iter_mut().zip(winds.chunks_exact(3)) {
-        let w = [w[0], w[1], w[2]];
-        let ground = b.pos[0].y;
-        for _ in 0..steps {
-            b.step(&w, k, ground);
-        }
-        if let Some((centre, radius)) = sphere {
-            b.interact(centre, radius, ground);
-        }
+        step(b, &[w[0], w[1], w[2]]);
     }
     write_blades(blades, out);
 }
@@ -334,6 +399,48 @@ mod tests {
     }
 
     #[test]
+    fn hidden_blades_keep_moving_with_the_drawn_ones_and_write_nothing() {
+        let (params, planted) = prairie();
+        let wind = Breeze::new(BreezeConfig::default(), 5);
+        let n = planted.len() as u32;
+        let k = (2.5, 40.0, 4.0);
+        let mut full = Animation::new(&planted, params.flower_mass);
+        let mut mixed = full.clone();
+        mixed.set_threads(3);
+        let rest = full.blade_out.clone();
+        let (drawn, hidden) = ([0..500, 2000..n], [500..2000]);
+        let all = [0..n];
+        for f in 0..60 {
+            let t = f as f32 / 30.0;
+            let ranges = |drawn, hidden| StepRanges {
+                drawn,
+                hidden,
+                flowers: &[],
+            };
+            full.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&all, &[]));
+            mixed.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, &hidden));
+        }
+        for b in 0..n as usize {
+            let (a, m) = (&full.blades()[b], &mixed.blades()[b]);
+            if hidden[0].contains(&(b as u32)) {
+                // One wind sample per blade: within a few per cent of the height of the full
+                // step, and the constraints hold.
+                let off = (a.pos[3] - m.pos[3]).length();
+                assert!(off < 0.03 * a.height, "blade {b}: tip {off} m off");
+                assert!((a.pos[3] - a.rest[3]).length() > 0.05 * a.height, "blade {b} still");
+                for i in 1..4 {
+                    let l = (m.pos[i] - m.pos[i - 1]).length();
+                    assert!((l - m.segment).abs() < 1e-4, "blade {b} segment {i}");
+                }
+                assert_eq!(mixed.blade_out[b], rest[b], "hidden blade {b} written");
+            } else {
+                assert_eq!(a, m, "drawn blade {b}");
+                assert_eq!(full.blade_out[b], mixed.blade_out[b]);
+            }
+        }
+    }
+
+    #[test]
     fn step_ranges_moves_only_its_ranges_and_like_a_full_step() {
         let (params, planted) = prairie();
         let wind = Breeze::new(BreezeConfig::default(), 5);
@@ -348,7 +455,12 @@ mod tests {
         for f in 0..10 {
             let t = f as f32 / 30.0;
             full.step(&wind, t, 1.0 / 30.0, 2.5, 40.0, 4.0);
-            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), &ranges, flowers);
+            let ranges = StepRanges {
+                drawn: &ranges,
+                hidden: &[],
+                flowers,
+            };
+            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), ranges);
         }
         let rest = Animation::new(&planted, params.flower_mass);
         for b in 0..n as usize {

@@ -53,12 +53,18 @@ pub struct FarGrid {
 /// What a frame animates and draws.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Plan {
-    /// Blade ranges to animate (sorted).
+    /// Blade ranges to animate and draw (sorted): the near grids drawn as single plants.
     pub animate_blades: Vec<Range<u32>>,
+    /// Blade ranges animated but not drawn this frame (sorted; see
+    /// [`crate::animate::StepRanges::hidden`]): culled grids, grids two away.
+    pub hidden_blades: Vec<Range<u32>>,
     /// Flower ranges to animate (sorted).
     pub animate_flowers: Vec<Range<u32>>,
-    /// Anchor ranges to animate (sorted).
+    /// Anchor ranges to animate whose top points the drawn wings read (sorted).
     pub animate_anchors: Vec<Range<u32>>,
+    /// Anchor ranges animated but not read this frame (sorted): culled grids, and the
+    /// anchors of the finer step one grid closer beyond those of the grid's own step.
+    pub hidden_anchors: Vec<Range<u32>>,
     /// Blade instance ranges drawn as single plants.
     pub blades: Vec<Range<u32>>,
     /// Flower instance ranges drawn.
@@ -116,23 +122,35 @@ impl Plan {
                 Level::Billboard { step } => Some(billboards.level(step)),
                 Level::Single => None,
             };
+            let visible = frustum.is_none_or(|f| f.intersects_aabb(index.bounds(k)));
             // Animated: blades up to two grids away (every grid without LOD), anchors at the
             // finer of the grid's step and the step one grid closer (the level a border
-            // crossing can give it).
+            // crossing can give it). What this frame draws is animated in full, the rest is
+            // kept moving (hidden).
             if g <= 2 || !lod {
-                push_merged(&mut plan.animate_blades, index.blades(k));
+                let blades = if visible && single > 0.0 {
+                    &mut plan.animate_blades
+                } else {
+                    &mut plan.hidden_blades
+                };
+                push_merged(blades, index.blades(k));
                 push_merged(&mut plan.animate_flowers, index.flowers(k));
             }
             if let (true, Level::Billboard { step: finer }) =
                 (g >= 1, Level::at(g.saturating_sub(1).max(2), lod))
             {
-                let l = billboards.level(finer);
-                push_merged(
-                    &mut plan.animate_anchors,
-                    billboards.grids[grid as usize][l].anchors.clone(),
-                );
+                let levels = &billboards.grids[grid as usize];
+                let all = levels[billboards.level(finer)].anchors.clone();
+                // The drawn step's anchors are a prefix of the finer step's.
+                let read = match step {
+                    Some(level) if visible && single < 1.0 => levels[level].anchors.end,
+                    _ => all.start,
+                }
+                .clamp(all.start, all.end);
+                push_merged(&mut plan.animate_anchors, all.start..read);
+                push_merged(&mut plan.hidden_anchors, read..all.end);
             }
-            if !frustum.is_none_or(|f| f.intersects_aabb(index.bounds(k))) {
+            if !visible {
                 plan.culled += 1;
                 continue;
             }
@@ -175,7 +193,9 @@ impl Plan {
 /// `rest` is each anchor's top point at rest; a fading grid's alpha (Sec. 6.1) goes with
 /// each wing. With
 /// `orders`, each grid's billboards follow the pre-computed far-to-near order of its section
-/// (Sec. 5.4.2); the grids come in the plan's order.
+/// (Sec. 5.4.2); the grids come in the plan's order. Each grid's top points are computed
+/// once per anchor into `tops` (scratch; an anchor serves up to six wings of its block and
+/// those of its neighbours).
 #[allow(clippy::too_many_arguments)]
 pub fn wings(
     plan: &Plan,
@@ -183,8 +203,8 @@ pub fn wings(
     orders: Option<&BlockOrders>,
     anchors: &[BladeDynamic],
     rest: &[Vec3],
-    height: f32,
-    sway: f32,
+    (height, sway): (f32, f32),
+    tops: &mut Vec<Vec3>,
     out: &mut Vec<WingInstance>,
 ) {
     out.clear();
@@ -206,11 +226,17 @@ pub fn wings(
             p.root + v
         };
         let level = &billboards.grids[far.grid as usize][far.level];
+        // Every wing corner is one of the level's anchors (a prefix of the grid's).
+        let first = level.anchors.start;
+        tops.clear();
+        tops.extend(level.anchors.clone().map(top));
+        let tops = &*tops;
         let mut push = |w: &crate::billboard::Wing| {
             let (c, o) = (
                 &billboards.anchors[w.centre as usize],
                 &billboards.anchors[w.outer as usize],
             );
+            let top = |a: u32| tops[(a - first) as usize];
             out.push(WingInstance {
                 centre_root: c.root.extend(w.u[0]).to_array(),
                 outer_root: o.root.extend(w.u[1]).to_array(),

@@ -279,6 +279,8 @@ pub struct Zhang {
     plan: frame::Plan,
     /// This frame's wings (`update` → `prepare`).
     wings: Vec<WingInstance>,
+    /// Scratch for [`frame::wings`]: one far grid's anchor top points.
+    tops: Vec<Vec3>,
     /// Sorting (Sec. 5.4): the pre-computed billboard orders of the nine sections, each
     /// blade's root and height, the blade at each lattice point (`grid·n² + cell`), the
     /// frame's single plants far to near and their instance data in that order.
@@ -498,6 +500,7 @@ impl Zhang {
             anchor_rest,
             billboard_height,
             wings: Vec::new(),
+            tops: Vec::new(),
             sorting,
             sort_ms: 0.0,
         })
@@ -545,16 +548,22 @@ impl GrassTechnique for Zhang {
             inputs.time,
             inputs.dt,
             k,
-            &plan.animate_blades,
-            &plan.animate_flowers,
+            animate::StepRanges {
+                drawn: &plan.animate_blades,
+                hidden: &plan.hidden_blades,
+                flowers: &plan.animate_flowers,
+            },
         );
         self.anchors.step_ranges(
             inputs.wind,
             inputs.time,
             inputs.dt,
             k,
-            &plan.animate_anchors,
-            &[],
+            animate::StepRanges {
+                drawn: &plan.animate_anchors,
+                hidden: &plan.hidden_anchors,
+                flowers: &[],
+            },
         );
         frame::wings(
             plan,
@@ -562,8 +571,8 @@ impl GrassTechnique for Zhang {
             self.sorting.as_ref().map(|s| &s.orders),
             &self.anchors.blade_out,
             &self.anchor_rest,
-            self.billboard_height,
-            p.billboard_sway,
+            (self.billboard_height, p.billboard_sway),
+            &mut self.tops,
             &mut self.wings,
         );
         // Fading single plants (Sec. 6.1): `P2.w` carries how far each has faded out.
