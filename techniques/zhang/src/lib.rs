@@ -279,8 +279,8 @@ pub struct Zhang {
     plan: frame::Plan,
     /// This frame's wings (`update` → `prepare`).
     wings: Vec<WingInstance>,
-    /// Scratch for [`frame::wings`]: one far grid's anchor top points.
-    tops: Vec<Vec3>,
+    /// Scratch for [`frame::wings`].
+    wing_scratch: frame::WingScratch,
     /// Sorting (Sec. 5.4): the pre-computed billboard orders of the nine sections, each
     /// blade's root and height, the blade at each lattice point (`grid·n² + cell`), the
     /// frame's single plants far to near and their instance data in that order.
@@ -354,7 +354,8 @@ impl Zhang {
         } else {
             billboard::Billboards::empty()
         };
-        let anchors = Animation::new(&billboards.anchors, params.flower_mass);
+        let mut anchors = Animation::new(&billboards.anchors, params.flower_mass);
+        anchors.set_rotations(false);
         let anchor_rest = anchors
             .blade_out
             .iter()
@@ -500,7 +501,7 @@ impl Zhang {
             anchor_rest,
             billboard_height,
             wings: Vec::new(),
-            tops: Vec::new(),
+            wing_scratch: frame::WingScratch::default(),
             sorting,
             sort_ms: 0.0,
         })
@@ -543,27 +544,23 @@ impl GrassTechnique for Zhang {
         let plan = &self.plan;
         // Sec. 6.2: the scene's moving object is the interaction sphere.
         self.animation.set_sphere(inputs.object());
-        self.animation.step_ranges(
+        // Blades and anchors share one set of threads.
+        let blades = animate::StepRanges {
+            drawn: &plan.animate_blades,
+            hidden: &plan.hidden_blades,
+            flowers: &plan.animate_flowers,
+        };
+        let anchors = animate::StepRanges {
+            drawn: &plan.animate_anchors,
+            hidden: &plan.hidden_anchors,
+            flowers: &[],
+        };
+        animate::step_together(
             inputs.wind,
             inputs.time,
             inputs.dt,
             k,
-            animate::StepRanges {
-                drawn: &plan.animate_blades,
-                hidden: &plan.hidden_blades,
-                flowers: &plan.animate_flowers,
-            },
-        );
-        self.anchors.step_ranges(
-            inputs.wind,
-            inputs.time,
-            inputs.dt,
-            k,
-            animate::StepRanges {
-                drawn: &plan.animate_anchors,
-                hidden: &plan.hidden_anchors,
-                flowers: &[],
-            },
+            &mut [(&mut self.animation, blades), (&mut self.anchors, anchors)],
         );
         frame::wings(
             plan,
@@ -572,7 +569,7 @@ impl GrassTechnique for Zhang {
             &self.anchors.blade_out,
             &self.anchor_rest,
             (self.billboard_height, p.billboard_sway),
-            &mut self.tops,
+            &mut self.wing_scratch,
             &mut self.wings,
         );
         // Fading single plants (Sec. 6.1): `P2.w` carries how far each has faded out.
