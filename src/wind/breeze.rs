@@ -99,7 +99,10 @@ impl Instant<'_> {
 
     fn noise(&self) -> [ValueNoiseCache; 2] {
         let seed = self.breeze.seed;
-        [ValueNoiseCache::new(seed), ValueNoiseCache::new(seed ^ 0xA5A5)]
+        [
+            ValueNoiseCache::new(seed),
+            ValueNoiseCache::new(seed ^ 0xA5A5),
+        ]
     }
 }
 
@@ -178,7 +181,10 @@ mod tests {
             b.velocities(&points, time, &mut out);
             for (p, v) in points.iter().zip(&out) {
                 let single = b.velocity(*p, time);
-                assert_eq!(single.to_array().map(f32::to_bits), v.to_array().map(f32::to_bits));
+                assert_eq!(
+                    single.to_array().map(f32::to_bits),
+                    v.to_array().map(f32::to_bits)
+                );
             }
         }
     }

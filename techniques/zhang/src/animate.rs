@@ -146,15 +146,15 @@ impl Animation {
     /// Advances the blades and flowers of `ranges` by `dt` in `wind` at `time`; the others
     /// keep their state (the level-of-detail choice animates only what it will draw or may
     /// draw soon, Sec. 5.2). For the drawn blades the wind is read once per frame at each
-    /// moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is 0),
-    /// for the hidden ones once at `P2` for all three (see [`StepRanges::hidden`]), and at
-    /// each petal, in batched [`WindField::velocities`] calls; then `ceil(dt / MAX_STEP)`
-    /// Verlet steps follow, and the drawn blades' instance data is written. `k` is (wind
-    /// response, spring, damping). The blades are cut into one contiguous share per core
-    /// (scoped threads, at least `MIN_CHUNK` blades each); the sample buffers are reused, so
-    /// nothing is allocated but the threads and the piece lists. The result does not depend
-    /// on the split. A `dt` that is not positive and finite does nothing; ranges beyond the
-    /// blades are clipped.
+    /// moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is 0)
+    /// and at each petal, in batched [`WindField::velocities`] calls; then `ceil(dt /
+    /// MAX_STEP)` Verlet steps follow, and the drawn blades' instance data is written. Half of
+    /// the hidden blades are stepped (see [`StepRanges::hidden`]). `k` is (wind response,
+    /// spring, damping). The blades are cut into one contiguous share per core (scoped
+    /// threads, at least `MIN_CHUNK` blades each); the sample buffers are reused, so nothing
+    /// is allocated but the threads and the piece lists. The result does not depend on the
+    /// split. A `dt` that is not positive and finite does nothing; ranges beyond the blades
+    /// are clipped.
     pub fn step_ranges(
         &mut self,
         wind: &dyn WindField,
@@ -357,11 +357,14 @@ pub struct StepRanges<'a> {
     pub drawn: &'a [Range<u32>],
     /// Blades animated but not drawn this frame (in culled grids, or a grid away from the
     /// level they are drawn at: the level-of-detail margin of Sec. 5.2). They are kept in
-    /// motion with one wind sample (at `P2`) for all three control points, and their instance
-    /// data is not written (it is written the frame they are drawn). The wind varies little
-    /// along a blade (a few per cent over its height in the canonical winds), so a blade
-    /// coming into view is already in the pose and motion its full step would have given it,
-    /// and what remains decays with the damping (`keep` per step).
+    /// motion at a lower cost: every `HIDDEN_PERIOD` frames (those whose instance index is
+    /// the step count modulo `HIDDEN_PERIOD` now, the others later) by the time of
+    /// `HIDDEN_PERIOD` frames in steps of at most `HIDDEN_MAX_STEP`, with one wind sample
+    /// (at `P2`) for all three control points, and their instance data is not written (it is
+    /// written the frame they are drawn). The wind varies little along a blade and over two
+    /// frames, so a blade coming into view is close to the pose and motion full steps would
+    /// have given it (within 2 % of its height in the test breeze), and what remains decays
+    /// with the damping.
     pub hidden: &'a [Range<u32>],
     /// Flowers (always at their petal).
     pub flowers: &'a [Range<u32>],
@@ -500,8 +503,8 @@ mod tests {
         let mut single = full.clone();
         single.set_threads(1);
         let rest = full.blade_out.clone();
-        let (drawn, hidden) = ([0..500, 2000..n], [500..2000]);
-        let all = [0..n];
+        let (drawn, hidden, all) = ([0..500, 2000..n], 500..2000, 0..n);
+        let (hidden, all) = (std::slice::from_ref(&hidden), std::slice::from_ref(&all));
         for f in 0..60 {
             let t = f as f32 / 30.0;
             let ranges = |drawn, hidden| StepRanges {
@@ -509,26 +512,33 @@ mod tests {
                 hidden,
                 flowers: &[],
             };
-            full.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&all, &[]));
-            mixed.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, &hidden));
-            single.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, &hidden));
+            full.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(all, &[]));
+            mixed.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, hidden));
+            single.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, hidden));
         }
-        assert_eq!(mixed.blades(), single.blades(), "the split changed the result");
+        assert_eq!(
+            mixed.blades(),
+            single.blades(),
+            "the split changed the result"
+        );
         let mut worst = 0.0f32;
-        for b in 0..n as usize {
-            let (a, m) = (&full.blades()[b], &mixed.blades()[b]);
+        let states = full.blades().iter().zip(mixed.blades()).zip(&rest);
+        for (b, ((a, m), rest)) in states.enumerate() {
             if hidden[0].contains(&(b as u32)) {
-                // One wind sample per blade: within a few per cent of the height of the full
-                // step, and the constraints hold.
+                // One wind sample per blade every other frame: within 2 % of the height of
+                // the full step, and the constraints hold.
                 let off = (a.pos[3] - m.pos[3]).length();
                 worst = worst.max(off / a.height);
-                assert!(off < 0.03 * a.height, "blade {b}: tip {off} m off");
-                assert!((a.pos[3] - a.rest[3]).length() > 0.05 * a.height, "blade {b} still");
+                assert!(off < 0.02 * a.height, "blade {b}: tip {off} m off");
+                assert!(
+                    (a.pos[3] - a.rest[3]).length() > 0.05 * a.height,
+                    "blade {b} still"
+                );
                 for i in 1..4 {
                     let l = (m.pos[i] - m.pos[i - 1]).length();
                     assert!((l - m.segment).abs() < 1e-4, "blade {b} segment {i}");
                 }
-                assert_eq!(mixed.blade_out[b], rest[b], "hidden blade {b} written");
+                assert_eq!(&mixed.blade_out[b], rest, "hidden blade {b} written");
             } else {
                 assert_eq!(a, m, "drawn blade {b}");
                 assert_eq!(full.blade_out[b], mixed.blade_out[b]);

@@ -440,11 +440,24 @@ mod tests {
         };
         let mut one = Vec::new();
         builder.build(&plan.far, &mut Vec::new(), &mut one);
-        assert!(one.len() > PARALLEL_WINGS, "{} wings: one thread only", one.len());
+        assert!(
+            one.len() > PARALLEL_WINGS,
+            "{} wings: one thread only",
+            one.len()
+        );
         let (mut scratch, mut two) = (WingScratch::default(), Vec::new());
         for _ in 0..2 {
             let k = (0.7, 0.05);
-            wings(&plan, &billboards, Some(&orders), &anchors.blade_out, &rest, k, &mut scratch, &mut two);
+            wings(
+                &plan,
+                &billboards,
+                Some(&orders),
+                &anchors.blade_out,
+                &rest,
+                k,
+                &mut scratch,
+                &mut two,
+            );
             assert_eq!(one, two);
         }
     }
