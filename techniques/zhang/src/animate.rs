@@ -257,8 +257,11 @@ impl Animation {
 
 /// Most threads the blade step uses.
 const MAX_THREADS: usize = 16;
-/// Fewest blades a thread takes (below that, spawning costs more than it saves).
+/// Fewest (drawn) blades a thread takes (below that, spawning costs more than it saves).
 const MIN_CHUNK: usize = 2048;
+/// The work of a drawn blade in hidden ones (a hidden blade takes one wind sample instead of
+/// three, every other frame, and writes no instance data), for the threads' shares.
+const DRAWN_WEIGHT: usize = 4;
 
 /// [`Animation::step_ranges`] for several animations at once (the blades and the billboard
 /// anchors): their blades are cut into one contiguous share per core of all the work
@@ -284,14 +287,15 @@ pub fn step_together(
         .max()
         .unwrap_or(1)
         .clamp(1, MAX_THREADS);
+    let weight = |hidden: bool| if hidden { 1 } else { DRAWN_WEIGHT };
     let total: usize = jobs
         .iter()
-        .flat_map(|(a, _)| a.work.iter().map(|(r, _)| r.len()))
+        .flat_map(|(a, _)| a.work.iter().map(|(r, h)| r.len() * weight(*h)))
         .sum();
-    let chunk = total.div_ceil(threads).max(MIN_CHUNK);
-    // Thread `t` takes blades `t·chunk..(t + 1)·chunk` of the ranges' concatenation, as
+    let chunk = total.div_ceil(threads).max(MIN_CHUNK * DRAWN_WEIGHT);
+    // Thread `t` takes the work `t·chunk..(t + 1)·chunk` of the ranges' concatenation, as
     // disjoint pieces (a range may be cut between threads): equal shares, whatever the
-    // ranges' lengths.
+    // ranges' lengths and kinds.
     let mut buckets: Vec<Vec<(Piece<'_>, &Stepping<'_>)>> =
         (0..threads).map(|_| Vec::new()).collect();
     let mut done = 0usize;
@@ -308,8 +312,8 @@ pub fn step_together(
             let (start, end) = ((r.start as usize).max(offset), (r.end as usize).min(n));
             let mut at = start;
             while at < end {
-                let bucket = done / chunk;
-                let len = (end - at).min(chunk * (bucket + 1) - done);
+                let (bucket, w) = (done / chunk, weight(*hidden));
+                let len = (end - at).min((chunk * (bucket + 1) - done).div_ceil(w));
                 let skip = at - offset;
                 let (blades, points, winds, out) = rest;
                 let (_, blades) = blades.split_at_mut(skip);
@@ -322,7 +326,7 @@ pub fn step_together(
                 let (piece_o, out) = out.split_at_mut(len);
                 let piece = (piece_b, piece_p, piece_w, piece_o, hidden.then_some(at));
                 buckets[bucket.min(threads - 1)].push((piece, stepping));
-                done += len;
+                done += len * w;
                 rest = (blades, points, winds, out);
                 offset = at + len;
                 at = offset;
