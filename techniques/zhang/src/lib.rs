@@ -158,9 +158,10 @@
 //! (13 k on the meadow: one top point per anchor per grid, then 80 bytes each). Sorting: a
 //! quicksort of the camera grid's `≤ n²` plants, line walks of the surrounding grids, a sort
 //! of the visible grids (0.2-0.3 ms measured on the meadow). Measured `update` on the meadow
-//! at 640x360 (2 shared vCPUs, lavapipe; the machine loaded, load average 3.5-3.8, 6
-//! alternating runs of 30 frames each): median 8.6 ms against 21.8 ms before hidden blades
-//! and batched breeze samples (the quiet-machine figure before was 10.0 ms,
+//! at 640x360 (2 shared vCPUs, lavapipe, another engineer's jobs running: load average
+//! 1.5-1.9; 13 runs of 30 frames per binary, alternating): median of the runs' medians
+//! 5.2 ms against 13.4 ms before hidden blades and batched breeze samples (at load 3.5-3.8:
+//! 8.6 against 21.8 ms; the quiet-machine figure before was 10.0 ms,
 //! `results/zhang_lod/README.md`). Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
 //! and with sorting 80 bytes per drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`)
 //! per visible near blade, 2 per petal and 2 per wing (at most `6·n'²` wings per far grid);
