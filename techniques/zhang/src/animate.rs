@@ -16,6 +16,14 @@ use crate::prairie::Planted;
 pub const MAX_STEP: f32 = 1.0 / 30.0;
 /// Most Verlet sub-steps per frame.
 pub const MAX_SUBSTEPS: u32 = 8;
+/// Hidden blades (see [`StepRanges::hidden`]) are stepped every `HIDDEN_PERIOD` frames, half
+/// of them (by instance parity) each frame, by the time of `HIDDEN_PERIOD` frames.
+pub const HIDDEN_PERIOD: usize = 2;
+/// Longest Verlet step of a hidden blade, s: one step per `HIDDEN_PERIOD` frames at 30 fps.
+/// The undamped Verlet step of a spring is stable for `ω·dt < 2`; at the default spring
+/// (`ω = √(40·stiffness)`, stiffness 0.7-1.3) `ω·dt` is at most 0.48 here, and the damping and
+/// the length constraints only steady it further.
+pub const HIDDEN_MAX_STEP: f32 = HIDDEN_PERIOD as f32 * MAX_STEP;
 
 /// Every animated blade and flower, and the instance data of the last step.
 #[derive(Clone, Debug)]
@@ -34,6 +42,12 @@ pub struct Animation {
     threads: usize,
     /// The interaction sphere (centre, radius) of the next steps (Sec. 6.2), if any.
     sphere: Option<(Vec3, f32)>,
+    /// One step's blade ranges in instance order, and whether each is hidden (reused).
+    work: Vec<(Range<u32>, bool)>,
+    /// Steps taken: which half of the hidden blades the next step moves.
+    frame: u32,
+    /// Whether the instance data carries the rotation θ of Sec. 3.2.5.
+    rotations: bool,
 }
 
 impl Animation {
@@ -60,6 +74,9 @@ impl Animation {
             winds: Vec::new(),
             threads: std::thread::available_parallelism().map_or(1, |t| t.get()),
             sphere: None,
+            work: Vec::new(),
+            frame: 0,
+            rotations: true,
         };
         let samples = 3 * a.blades.len() + a.flowers.len();
         a.points = vec![Vec3::ZERO; samples];
@@ -71,6 +88,12 @@ impl Animation {
     /// Sets the threads the blade step may use (1 = on the caller's thread; at most 16).
     pub fn set_threads(&mut self, threads: usize) {
         self.threads = threads;
+    }
+
+    /// Sets whether the instance data carries the rotation θ of Sec. 3.2.5 (on by default;
+    /// off for the billboards' anchors, whose wings read only the top points, Sec. 4.2).
+    pub fn set_rotations(&mut self, rotations: bool) {
+        self.rotations = rotations;
     }
 
     /// Sets the interaction sphere (centre, radius) the next steps push blades out of (Sec.
@@ -112,99 +135,99 @@ impl Animation {
         let all = 0..self.blades.len() as u32;
         let flowers = 0..self.flowers.len() as u32;
         let k = (wind_response, spring, damping);
-        let (all, flowers) = (std::slice::from_ref(&all), std::slice::from_ref(&flowers));
-        self.step_ranges(wind, time, dt, k, all, flowers);
+        let ranges = StepRanges {
+            drawn: std::slice::from_ref(&all),
+            hidden: &[],
+            flowers: std::slice::from_ref(&flowers),
+        };
+        self.step_ranges(wind, time, dt, k, ranges);
     }
 
-    /// Advances the blades in `blades` and the flowers in `flowers` (sorted, disjoint instance
-    /// ranges) by `dt` in `wind` at `time`; the others keep their state (the level-of-detail
-    /// choice animates only what it will draw, Sec. 5.2). The wind is read once per frame at
-    /// each moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is
-    /// 0) and at each petal, in batched [`WindField::velocities`] calls, then
-    /// `ceil(dt / MAX_STEP)` Verlet steps follow. `k` is (wind response, spring, damping).
-    /// The ranges are cut into pieces of at most one chunk per core (scoped threads, at least
-    /// `MIN_CHUNK` blades each); the sample buffers are reused, so nothing is allocated but
-    /// the threads and the piece list. The result does not depend on the split. A `dt` that
-    /// is not positive and finite does nothing; ranges beyond the blades are clipped.
+    /// Advances the blades and flowers of `ranges` by `dt` in `wind` at `time`; the others
+    /// keep their state (the level-of-detail choice animates only what it will draw or may
+    /// draw soon, Sec. 5.2). For the drawn blades the wind is read once per frame at each
+    /// moving control point (`P1..P3`; the root's wind is irrelevant, its inverse mass is 0)
+    /// and at each petal, in batched [`WindField::velocities`] calls; then `ceil(dt /
+    /// MAX_STEP)` Verlet steps follow, and the drawn blades' instance data is written. Half of
+    /// the hidden blades are stepped (see [`StepRanges::hidden`]). `k` is (wind response,
+    /// spring, damping). The blades are cut into one contiguous share per core (scoped
+    /// threads, at least `MIN_CHUNK` blades each); the sample buffers are reused, so nothing
+    /// is allocated but the threads and the piece lists. The result does not depend on the
+    /// split. A `dt` that is not positive and finite does nothing; ranges beyond the blades
+    /// are clipped.
     pub fn step_ranges(
         &mut self,
         wind: &dyn WindField,
         time: f32,
         dt: f32,
-        (wind_response, spring, damping): (f32, f32, f32),
-        blades: &[Range<u32>],
-        flowers: &[Range<u32>],
+        k: (f32, f32, f32),
+        ranges: StepRanges<'_>,
     ) {
-        if !(dt.is_finite() && dt > 0.0) {
-            return;
-        }
-        let steps = ((dt / MAX_STEP).ceil() as u32).clamp(1, MAX_SUBSTEPS);
-        let k = Dynamics::new(dt / steps as f32, wind_response, spring, damping);
-        let n = self.blades.len();
-        let (blade_points, flower_points) = self.points.split_at_mut(3 * n);
-        let (blade_winds, flower_winds) = self.winds.split_at_mut(3 * n);
-        let total: usize = blades.iter().map(|r| r.len()).sum();
-        let threads = self.threads.clamp(1, MAX_THREADS);
-        let chunk = total.div_ceil(threads).max(MIN_CHUNK);
-        // Disjoint pieces of at most `chunk` blades, dealt round-robin to the threads.
-        let mut buckets: Vec<Vec<Piece<'_>>> = (0..threads).map(|_| Vec::new()).collect();
-        let mut rest = (
-            self.blades.as_mut_slice(),
-            blade_points,
-            blade_winds,
-            self.blade_out.as_mut_slice(),
-        );
-        let (mut offset, mut next) = (0usize, 0usize);
-        for r in blades {
-            let (start, end) = ((r.start as usize).max(offset), (r.end as usize).min(n));
-            let mut at = start;
-            while at < end {
-                let len = (end - at).min(chunk);
-                let skip = at - offset;
-                let (blades, points, winds, out) = rest;
-                let (_, blades) = blades.split_at_mut(skip);
-                let (piece_b, blades) = blades.split_at_mut(len);
-                let (_, points) = points.split_at_mut(3 * skip);
-                let (piece_p, points) = points.split_at_mut(3 * len);
-                let (_, winds) = winds.split_at_mut(3 * skip);
-                let (piece_w, winds) = winds.split_at_mut(3 * len);
-                let (_, out) = out.split_at_mut(skip);
-                let (piece_o, out) = out.split_at_mut(len);
-                buckets[next % threads].push((piece_b, piece_p, piece_w, piece_o));
-                next += 1;
-                rest = (blades, points, winds, out);
-                offset = at + len;
-                at = offset;
+        step_together(wind, time, dt, k, &mut [(self, ranges)]);
+    }
+
+    /// This step's work: drawn and hidden ranges merged in instance order (each list is
+    /// sorted) into `self.work`, and what the pieces share.
+    fn plan_step<'w>(
+        &mut self,
+        ranges: &StepRanges<'_>,
+        (wind, time): (&'w dyn WindField, f32),
+        dt: f32,
+        (wind_response, spring, damping): (f32, f32, f32),
+    ) -> Stepping<'w> {
+        let work = &mut self.work;
+        work.clear();
+        let (mut drawn, mut hidden) = (ranges.drawn.iter().peekable(), ranges.hidden.iter());
+        let mut next_hidden = hidden.next();
+        loop {
+            match (drawn.peek(), next_hidden) {
+                (Some(d), Some(h)) if h.start < d.start => {
+                    work.push((h.clone(), true));
+                    next_hidden = hidden.next();
+                }
+                (Some(d), _) => {
+                    work.push(((*d).clone(), false));
+                    drawn.next();
+                }
+                (None, Some(h)) => {
+                    work.push((h.clone(), true));
+                    next_hidden = hidden.next();
+                }
+                (None, None) => break,
             }
         }
-        let sphere = self.sphere;
-        std::thread::scope(|scope| {
-            let k = &k;
-            let mut buckets = buckets.into_iter().filter(|b| !b.is_empty());
-            // The first bucket runs on the caller's thread.
-            let first = buckets.next();
-            for bucket in buckets {
-                scope.spawn(move || {
-                    for (blades, points, winds, out) in bucket {
-                        step_blades(blades, points, winds, out, wind, time, steps, k, sphere);
-                    }
-                });
-            }
-            for (blades, points, winds, out) in first.into_iter().flatten() {
-                step_blades(blades, points, winds, out, wind, time, steps, k, sphere);
-            }
-        });
-        let m = self.flowers.len();
-        for r in flowers {
+        let dynamics = |dt: f32, max: f32| {
+            let steps = ((dt / max).ceil() as u32).clamp(1, MAX_SUBSTEPS);
+            let k = Dynamics::new(dt / steps as f32, wind_response, spring, damping);
+            (steps, k)
+        };
+        self.frame = self.frame.wrapping_add(1);
+        Stepping {
+            wind,
+            time,
+            drawn: dynamics(dt, MAX_STEP),
+            hidden: dynamics(HIDDEN_PERIOD as f32 * dt, HIDDEN_MAX_STEP),
+            phase: self.frame as usize % HIDDEN_PERIOD,
+            sphere: self.sphere,
+            rotation: self.rotations,
+        }
+    }
+
+    /// Steps the flowers of `ranges` (after the blades, on the caller's thread).
+    fn step_flowers(&mut self, ranges: &[Range<u32>], s: &Stepping<'_>) {
+        let (m, n) = (self.flowers.len(), self.blades.len());
+        let (steps, k) = &s.drawn;
+        for r in ranges {
             let r = (r.start as usize).min(m)..(r.end as usize).min(m);
-            let (points, winds) = (&mut flower_points[r.clone()], &mut flower_winds[r.clone()]);
+            let points = &mut self.points[3 * n..][r.clone()];
+            let winds = &mut self.winds[3 * n..][r.clone()];
             for (p, f) in points.iter_mut().zip(&self.flowers[r.clone()]) {
                 *p = f.pos;
             }
-            wind.velocities(points, time, winds);
+            s.wind.velocities(points, s.time, winds);
             for (f, &w) in self.flowers[r].iter_mut().zip(winds.iter()) {
-                for _ in 0..steps {
-                    f.step(w, &k);
+                for _ in 0..*steps {
+                    f.step(w, k);
                 }
             }
         }
@@ -212,7 +235,7 @@ impl Animation {
     }
 
     fn write_out(&mut self) {
-        write_blades(&self.blades, &mut self.blade_out);
+        write_blades(&self.blades, &mut self.blade_out, self.rotations);
         self.write_flowers();
     }
 
@@ -234,52 +257,191 @@ impl Animation {
 
 /// Most threads the blade step uses.
 const MAX_THREADS: usize = 16;
-/// Fewest blades a thread takes (below that, spawning costs more than it saves).
+/// Fewest (drawn) blades a thread takes (below that, spawning costs more than it saves).
 const MIN_CHUNK: usize = 2048;
+/// The work of a drawn blade in hidden ones (a hidden blade takes one wind sample instead of
+/// three, every other frame, and writes no instance data), for the threads' shares.
+const DRAWN_WEIGHT: usize = 4;
 
-/// A thread's share of one blade range: states, sample points, winds, instance data.
+/// [`Animation::step_ranges`] for several animations at once (the blades and the billboard
+/// anchors): their blades are cut into one contiguous share per core of all the work
+/// together, in one set of scoped threads; the flowers follow on the caller's thread. Each
+/// animation gets the same result as stepped alone.
+pub fn step_together(
+    wind: &dyn WindField,
+    time: f32,
+    dt: f32,
+    k: (f32, f32, f32),
+    jobs: &mut [(&mut Animation, StepRanges<'_>)],
+) {
+    if !(dt.is_finite() && dt > 0.0) {
+        return;
+    }
+    let steppings: Vec<Stepping<'_>> = jobs
+        .iter_mut()
+        .map(|(a, r)| a.plan_step(r, (wind, time), dt, k))
+        .collect();
+    let threads = jobs
+        .iter()
+        .map(|(a, _)| a.threads)
+        .max()
+        .unwrap_or(1)
+        .clamp(1, MAX_THREADS);
+    let weight = |hidden: bool| if hidden { 1 } else { DRAWN_WEIGHT };
+    let total: usize = jobs
+        .iter()
+        .flat_map(|(a, _)| a.work.iter().map(|(r, h)| r.len() * weight(*h)))
+        .sum();
+    let chunk = total.div_ceil(threads).max(MIN_CHUNK * DRAWN_WEIGHT);
+    // Thread `t` takes the work `t·chunk..(t + 1)·chunk` of the ranges' concatenation, as
+    // disjoint pieces (a range may be cut between threads): equal shares, whatever the
+    // ranges' lengths and kinds.
+    let mut buckets: Vec<Vec<(Piece<'_>, &Stepping<'_>)>> =
+        (0..threads).map(|_| Vec::new()).collect();
+    let mut done = 0usize;
+    for ((a, _), stepping) in jobs.iter_mut().zip(&steppings) {
+        let n = a.blades.len();
+        let mut rest = (
+            a.blades.as_mut_slice(),
+            &mut a.points[..3 * n],
+            &mut a.winds[..3 * n],
+            a.blade_out.as_mut_slice(),
+        );
+        let mut offset = 0usize;
+        for (r, hidden) in &a.work {
+            let (start, end) = ((r.start as usize).max(offset), (r.end as usize).min(n));
+            let mut at = start;
+            while at < end {
+                let (bucket, w) = (done / chunk, weight(*hidden));
+                let len = (end - at).min((chunk * (bucket + 1) - done).div_ceil(w));
+                let skip = at - offset;
+                let (blades, points, winds, out) = rest;
+                let (_, blades) = blades.split_at_mut(skip);
+                let (piece_b, blades) = blades.split_at_mut(len);
+                let (_, points) = points.split_at_mut(3 * skip);
+                let (piece_p, points) = points.split_at_mut(3 * len);
+                let (_, winds) = winds.split_at_mut(3 * skip);
+                let (piece_w, winds) = winds.split_at_mut(3 * len);
+                let (_, out) = out.split_at_mut(skip);
+                let (piece_o, out) = out.split_at_mut(len);
+                let piece = (piece_b, piece_p, piece_w, piece_o, hidden.then_some(at));
+                buckets[bucket.min(threads - 1)].push((piece, stepping));
+                done += len * w;
+                rest = (blades, points, winds, out);
+                offset = at + len;
+                at = offset;
+            }
+        }
+    }
+    std::thread::scope(|scope| {
+        let mut buckets = buckets.into_iter().filter(|b| !b.is_empty());
+        // The first bucket runs on the caller's thread.
+        let first = buckets.next();
+        for bucket in buckets {
+            scope.spawn(move || {
+                for (piece, stepping) in bucket {
+                    step_blades(piece, stepping);
+                }
+            });
+        }
+        for (piece, stepping) in first.into_iter().flatten() {
+            step_blades(piece, stepping);
+        }
+    });
+    for ((a, r), stepping) in jobs.iter_mut().zip(&steppings) {
+        a.step_flowers(r.flowers, stepping);
+    }
+}
+
+/// What [`Animation::step_ranges`] moves: sorted, disjoint instance ranges.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StepRanges<'a> {
+    /// Blades drawn this frame: the wind at each moving control point, then their instance
+    /// data ([`Animation::blade_out`]) is written.
+    pub drawn: &'a [Range<u32>],
+    /// Blades animated but not drawn this frame (in culled grids, or a grid away from the
+    /// level they are drawn at: the level-of-detail margin of Sec. 5.2). They are kept in
+    /// motion at a lower cost: every `HIDDEN_PERIOD` frames (those whose instance index is
+    /// the step count modulo `HIDDEN_PERIOD` now, the others later) by the time of
+    /// `HIDDEN_PERIOD` frames in steps of at most `HIDDEN_MAX_STEP`, with one wind sample
+    /// (at `P2`) for all three control points, and their instance data is not written (it is
+    /// written the frame they are drawn). The wind varies little along a blade and over two
+    /// frames, so a blade coming into view is close to the pose and motion full steps would
+    /// have given it (within 2 % of its height in the test breeze), and what remains decays
+    /// with the damping.
+    pub hidden: &'a [Range<u32>],
+    /// Flowers (always at their petal).
+    pub flowers: &'a [Range<u32>],
+}
+
+/// A thread's share of one blade range: states, sample points, winds, instance data, and
+/// for a hidden range the instance index of its first blade.
 type Piece<'a> = (
     &'a mut [BladeState],
     &'a mut [Vec3],
     &'a mut [Vec3],
     &'a mut [BladeDynamic],
+    Option<usize>,
 );
 
-/// One chunk of the frame's blade step: gather the moving control points, one batched wind
-/// query, `steps` Verlet steps per blade, the sphere's push (Sec. 6.2), then the instance data.
-#[allow(clippy::too_many_arguments)]
-fn step_blades(
-    blades: &mut [BladeState],
-    points: &mut [Vec3],
-    winds: &mut [Vec3],
-    out: &mut [BladeDynamic],
-    wind: &dyn WindField,
+/// What every piece of one step shares.
+struct Stepping<'a> {
+    wind: &'a dyn WindField,
     time: f32,
-    steps: u32,
-    k: &Dynamics,
+    /// Sub-steps and constants of drawn blades (the frame's `dt`) and of hidden ones
+    /// (`HIDDEN_PERIOD` frames).
+    drawn: (u32, Dynamics),
+    hidden: (u32, Dynamics),
+    /// The hidden blades stepped now: instance index ≡ `phase` (mod `HIDDEN_PERIOD`).
+    phase: usize,
     sphere: Option<(Vec3, f32)>,
-) {
+    /// Whether to write θ.
+    rotation: bool,
+}
+
+/// One chunk of the frame's blade step: gather the sample points (the moving control points,
+/// or `P2` of the hidden blades due this frame), one batched wind query, the Verlet steps,
+/// the sphere's push (Sec. 6.2), then the instance data of drawn blades.
+fn step_blades((blades, points, winds, out, hidden): Piece<'_>, s: &Stepping<'_>) {
+    let step = |b: &mut BladeState, w: &[Vec3; 3], (steps, k): &(u32, Dynamics)| {
+        let ground = b.pos[0].y;
+        for _ in 0..*steps {
+            b.step(w, k, ground);
+        }
+        if let Some((centre, radius)) = s.sphere {
+            b.interact(centre, radius, ground);
+        }
+    };
+    if let Some(start) = hidden {
+        let first = (s.phase + HIDDEN_PERIOD - start % HIDDEN_PERIOD) % HIDDEN_PERIOD;
+        let due = blades.len().saturating_sub(first).div_ceil(HIDDEN_PERIOD);
+        let (points, winds) = (&mut points[..due], &mut winds[..due]);
+        let due_blades = blades.iter().skip(first).step_by(HIDDEN_PERIOD);
+        for (p, b) in points.iter_mut().zip(due_blades) {
+            *p = b.pos[2];
+        }
+        s.wind.velocities(points, s.time, winds);
+        let blades = blades.iter_mut().skip(first).step_by(HIDDEN_PERIOD);
+        for (b, &w) in blades.zip(winds.iter()) {
+            step(b, &[w; 3], &s.hidden);
+        }
+        return;
+    }
     for (p, b) in points.chunks_exact_mut(3).zip(blades.iter()) {
         p.copy_from_slice(&b.pos[1..]);
     }
-    wind.velocities(points, time, winds);
+    s.wind.velocities(points, s.time, winds);
     for (b, w) in blades.iter_mut().zip(winds.chunks_exact(3)) {
-        let w = [w[0], w[1], w[2]];
-        let ground = b.pos[0].y;
-        for _ in 0..steps {
-            b.step(&w, k, ground);
-        }
-        if let Some((centre, radius)) = sphere {
-            b.interact(centre, radius, ground);
-        }
+        step(b, &[w[0], w[1], w[2]], &s.drawn);
     }
-    write_blades(blades, out);
+    write_blades(blades, out, s.rotation);
 }
 
 /// `P1..P3` and the rotation θ of each blade, as the GPU reads them.
-fn write_blades(blades: &[BladeState], out: &mut [BladeDynamic]) {
+/// (θ = 0 without `rotation`).
+fn write_blades(blades: &[BladeState], out: &mut [BladeDynamic], rotation: bool) {
     for (out, b) in out.iter_mut().zip(blades) {
-        let rot = b.rotation();
+        let rot = if rotation { b.rotation() } else { 0.0 };
         let v = |p: Vec3, w: f32| [p.x, p.y, p.z, w];
         *out = BladeDynamic {
             p1_rotation: v(b.pos[1], rot),
@@ -334,6 +496,62 @@ mod tests {
     }
 
     #[test]
+    fn hidden_blades_keep_moving_with_the_drawn_ones_and_write_nothing() {
+        let (params, planted) = prairie();
+        let wind = Breeze::new(BreezeConfig::default(), 5);
+        let n = planted.len() as u32;
+        let k = (2.5, 40.0, 4.0);
+        let mut full = Animation::new(&planted, params.flower_mass);
+        let mut mixed = full.clone();
+        mixed.set_threads(3);
+        let mut single = full.clone();
+        single.set_threads(1);
+        let rest = full.blade_out.clone();
+        let (drawn, hidden, all) = ([0..500, 2000..n], 500..2000, 0..n);
+        let (hidden, all) = (std::slice::from_ref(&hidden), std::slice::from_ref(&all));
+        for f in 0..60 {
+            let t = f as f32 / 30.0;
+            let ranges = |drawn, hidden| StepRanges {
+                drawn,
+                hidden,
+                flowers: &[],
+            };
+            full.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(all, &[]));
+            mixed.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, hidden));
+            single.step_ranges(&wind, t, 1.0 / 30.0, k, ranges(&drawn, hidden));
+        }
+        assert_eq!(
+            mixed.blades(),
+            single.blades(),
+            "the split changed the result"
+        );
+        let mut worst = 0.0f32;
+        let states = full.blades().iter().zip(mixed.blades()).zip(&rest);
+        for (b, ((a, m), rest)) in states.enumerate() {
+            if hidden[0].contains(&(b as u32)) {
+                // One wind sample per blade every other frame: within 2 % of the height of
+                // the full step, and the constraints hold.
+                let off = (a.pos[3] - m.pos[3]).length();
+                worst = worst.max(off / a.height);
+                assert!(off < 0.02 * a.height, "blade {b}: tip {off} m off");
+                assert!(
+                    (a.pos[3] - a.rest[3]).length() > 0.05 * a.height,
+                    "blade {b} still"
+                );
+                for i in 1..4 {
+                    let l = (m.pos[i] - m.pos[i - 1]).length();
+                    assert!((l - m.segment).abs() < 1e-4, "blade {b} segment {i}");
+                }
+                assert_eq!(&mixed.blade_out[b], rest, "hidden blade {b} written");
+            } else {
+                assert_eq!(a, m, "drawn blade {b}");
+                assert_eq!(full.blade_out[b], mixed.blade_out[b]);
+            }
+        }
+        assert!(worst > 0.0);
+    }
+
+    #[test]
     fn step_ranges_moves_only_its_ranges_and_like_a_full_step() {
         let (params, planted) = prairie();
         let wind = Breeze::new(BreezeConfig::default(), 5);
@@ -348,7 +566,12 @@ mod tests {
         for f in 0..10 {
             let t = f as f32 / 30.0;
             full.step(&wind, t, 1.0 / 30.0, 2.5, 40.0, 4.0);
-            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), &ranges, flowers);
+            let ranges = StepRanges {
+                drawn: &ranges,
+                hidden: &[],
+                flowers,
+            };
+            part.step_ranges(&wind, t, 1.0 / 30.0, (2.5, 40.0, 4.0), ranges);
         }
         let rest = Animation::new(&planted, params.flower_mass);
         for b in 0..n as usize {

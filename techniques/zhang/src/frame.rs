@@ -53,12 +53,18 @@ pub struct FarGrid {
 /// What a frame animates and draws.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Plan {
-    /// Blade ranges to animate (sorted).
+    /// Blade ranges to animate and draw (sorted): the near grids drawn as single plants.
     pub animate_blades: Vec<Range<u32>>,
+    /// Blade ranges animated but not drawn this frame (sorted; see
+    /// [`crate::animate::StepRanges::hidden`]): culled grids, grids two away.
+    pub hidden_blades: Vec<Range<u32>>,
     /// Flower ranges to animate (sorted).
     pub animate_flowers: Vec<Range<u32>>,
-    /// Anchor ranges to animate (sorted).
+    /// Anchor ranges to animate whose top points the drawn wings read (sorted).
     pub animate_anchors: Vec<Range<u32>>,
+    /// Anchor ranges animated but not read this frame (sorted): culled grids, and the
+    /// anchors of the finer step one grid closer beyond those of the grid's own step.
+    pub hidden_anchors: Vec<Range<u32>>,
     /// Blade instance ranges drawn as single plants.
     pub blades: Vec<Range<u32>>,
     /// Flower instance ranges drawn.
@@ -116,23 +122,35 @@ impl Plan {
                 Level::Billboard { step } => Some(billboards.level(step)),
                 Level::Single => None,
             };
+            let visible = frustum.is_none_or(|f| f.intersects_aabb(index.bounds(k)));
             // Animated: blades up to two grids away (every grid without LOD), anchors at the
             // finer of the grid's step and the step one grid closer (the level a border
-            // crossing can give it).
+            // crossing can give it). What this frame draws is animated in full, the rest is
+            // kept moving (hidden).
             if g <= 2 || !lod {
-                push_merged(&mut plan.animate_blades, index.blades(k));
+                let blades = if visible && single > 0.0 {
+                    &mut plan.animate_blades
+                } else {
+                    &mut plan.hidden_blades
+                };
+                push_merged(blades, index.blades(k));
                 push_merged(&mut plan.animate_flowers, index.flowers(k));
             }
             if let (true, Level::Billboard { step: finer }) =
                 (g >= 1, Level::at(g.saturating_sub(1).max(2), lod))
             {
-                let l = billboards.level(finer);
-                push_merged(
-                    &mut plan.animate_anchors,
-                    billboards.grids[grid as usize][l].anchors.clone(),
-                );
+                let levels = &billboards.grids[grid as usize];
+                let all = levels[billboards.level(finer)].anchors.clone();
+                // The drawn step's anchors are a prefix of the finer step's.
+                let read = match step {
+                    Some(level) if visible && single < 1.0 => levels[level].anchors.end,
+                    _ => all.start,
+                }
+                .clamp(all.start, all.end);
+                push_merged(&mut plan.animate_anchors, all.start..read);
+                push_merged(&mut plan.hidden_anchors, read..all.end);
             }
-            if !frustum.is_none_or(|f| f.intersects_aabb(index.bounds(k))) {
+            if !visible {
                 plan.culled += 1;
                 continue;
             }
@@ -175,7 +193,11 @@ impl Plan {
 /// `rest` is each anchor's top point at rest; a fading grid's alpha (Sec. 6.1) goes with
 /// each wing. With
 /// `orders`, each grid's billboards follow the pre-computed far-to-near order of its section
-/// (Sec. 5.4.2); the grids come in the plan's order.
+/// (Sec. 5.4.2); the grids come in the plan's order. Each grid's top points are computed
+/// once per anchor (an anchor serves up to six wings of its block and those of its
+/// neighbours) into `scratch`'s buffers; from `PARALLEL_WINGS` wings on, the second half
+/// of the grids is built on a second (scoped) thread and appended: the same wings in the
+/// same order.
 #[allow(clippy::too_many_arguments)]
 pub fn wings(
     plan: &Plan,
@@ -183,52 +205,133 @@ pub fn wings(
     orders: Option<&BlockOrders>,
     anchors: &[BladeDynamic],
     rest: &[Vec3],
-    height: f32,
-    sway: f32,
+    (height, sway): (f32, f32),
+    scratch: &mut WingScratch,
     out: &mut Vec<WingInstance>,
 ) {
     out.clear();
-    for far in &plan.far {
-        let gain = 1.0 + sway * far.offset.saturating_sub(2) as f32;
-        let alpha = far.alpha;
-        let top = |a: u32| {
-            let a = a as usize;
-            let p = &billboards.anchors[a];
-            let tip = Vec3::from_slice(&anchors[a].p3[..3]);
-            let (d0, d) = ((rest[a] - p.root) / p.height, (tip - p.root) / p.height);
-            let mut v = (d0 + gain * (d - d0)) * height;
-            let side = v.x.hypot(v.z);
-            if side > height {
-                v.x *= height / side;
-                v.z *= height / side;
+    let builder = WingBuilder {
+        billboards,
+        orders,
+        anchors,
+        rest,
+        height,
+        sway,
+    };
+    // Two halves of about equal wing counts on two threads, if worth it.
+    let count = |f: &FarGrid| billboards.grids[f.grid as usize][f.level].wings.len();
+    let total: usize = plan.far.iter().map(count).sum();
+    let mut split = plan.far.len();
+    if total >= PARALLEL_WINGS {
+        let mut before = 0;
+        for (i, f) in plan.far.iter().enumerate() {
+            if 2 * before >= total {
+                split = i;
+                break;
             }
-            v.y = v.y.clamp(0.1 * height, height);
-            p.root + v
-        };
-        let level = &billboards.grids[far.grid as usize][far.level];
-        let mut push = |w: &crate::billboard::Wing| {
-            let (c, o) = (
-                &billboards.anchors[w.centre as usize],
-                &billboards.anchors[w.outer as usize],
-            );
-            out.push(WingInstance {
-                centre_root: c.root.extend(w.u[0]).to_array(),
-                outer_root: o.root.extend(w.u[1]).to_array(),
-                centre_top: top(w.centre).extend(far.level as f32).to_array(),
-                outer_top: top(w.outer).extend(w.density).to_array(),
-                fade: [alpha, 0.0, 0.0, 0.0],
-            });
-        };
-        match orders {
-            Some(orders) => {
-                for &b in orders.get(far.level, section(far.delta, IVec2::ZERO)) {
-                    let r = level.blocks[b as usize].clone();
-                    level.wings[r.start as usize..r.end as usize]
-                        .iter()
-                        .for_each(&mut push);
+            before += count(f);
+        }
+    }
+    let (head, tail) = plan.far.split_at(split);
+    let WingScratch {
+        tops: [head_tops, tail_tops],
+        tail: tail_out,
+    } = scratch;
+    if tail.is_empty() {
+        builder.build(head, head_tops, out);
+        return;
+    }
+    tail_out.clear();
+    std::thread::scope(|scope| {
+        let builder = &builder;
+        let tail_out = &mut *tail_out;
+        scope.spawn(move || builder.build(tail, tail_tops, tail_out));
+        builder.build(head, head_tops, out);
+    });
+    out.extend_from_slice(tail_out);
+}
+
+/// Fewest wings a frame builds on two threads.
+const PARALLEL_WINGS: usize = 4096;
+
+/// The buffers [`wings`] reuses from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub struct WingScratch {
+    /// One far grid's anchor top points, per thread.
+    tops: [Vec<Vec3>; 2],
+    /// The second thread's wings.
+    tail: Vec<WingInstance>,
+}
+
+/// What building wings reads.
+struct WingBuilder<'a> {
+    billboards: &'a Billboards,
+    orders: Option<&'a BlockOrders>,
+    anchors: &'a [BladeDynamic],
+    rest: &'a [Vec3],
+    height: f32,
+    sway: f32,
+}
+
+impl WingBuilder<'_> {
+    /// Appends the wings of the grids `far` to `out`.
+    fn build(&self, far: &[FarGrid], tops: &mut Vec<Vec3>, out: &mut Vec<WingInstance>) {
+        let Self {
+            billboards,
+            orders,
+            anchors,
+            rest,
+            height,
+            sway,
+        } = *self;
+        for far in far {
+            let gain = 1.0 + sway * far.offset.saturating_sub(2) as f32;
+            let alpha = far.alpha;
+            let top = |a: u32| {
+                let a = a as usize;
+                let p = &billboards.anchors[a];
+                let tip = Vec3::from_slice(&anchors[a].p3[..3]);
+                let (d0, d) = ((rest[a] - p.root) / p.height, (tip - p.root) / p.height);
+                let mut v = (d0 + gain * (d - d0)) * height;
+                let side = v.x.hypot(v.z);
+                if side > height {
+                    v.x *= height / side;
+                    v.z *= height / side;
                 }
+                v.y = v.y.clamp(0.1 * height, height);
+                p.root + v
+            };
+            let level = &billboards.grids[far.grid as usize][far.level];
+            // Every wing corner is one of the level's anchors (a prefix of the grid's).
+            let first = level.anchors.start;
+            tops.clear();
+            tops.extend(level.anchors.clone().map(top));
+            let tops = &*tops;
+            let mut push = |w: &crate::billboard::Wing| {
+                let (c, o) = (
+                    &billboards.anchors[w.centre as usize],
+                    &billboards.anchors[w.outer as usize],
+                );
+                let top = |a: u32| tops[(a - first) as usize];
+                out.push(WingInstance {
+                    centre_root: c.root.extend(w.u[0]).to_array(),
+                    outer_root: o.root.extend(w.u[1]).to_array(),
+                    centre_top: top(w.centre).extend(far.level as f32).to_array(),
+                    outer_top: top(w.outer).extend(w.density).to_array(),
+                    fade: [alpha, 0.0, 0.0, 0.0],
+                });
+            };
+            match orders {
+                Some(orders) => {
+                    for &b in orders.get(far.level, section(far.delta, IVec2::ZERO)) {
+                        let r = level.blocks[b as usize].clone();
+                        level.wings[r.start as usize..r.end as usize]
+                            .iter()
+                            .for_each(&mut push);
+                    }
+                }
+                None => level.wings.iter().for_each(push),
             }
-            None => level.wings.iter().for_each(push),
         }
     }
 }
@@ -298,6 +401,66 @@ mod tests {
     use grassbench::camera::Camera;
     use grassbench::grass::GrassConfig;
     use grassbench::terrain::Terrain;
+
+    #[test]
+    fn wings_on_two_threads_are_the_wings_of_one() {
+        let terrain = Terrain::flat(Vec2::new(80.0, 80.0));
+        let params = Params::default();
+        let grass = GrassConfig::default();
+        let (layout, planted) = plant(&params, &grass, &terrain, 3);
+        let index = GridIndex::new(&planted);
+        let billboards = Billboards::new(&layout, &params, &grass, &terrain, 3);
+        let mut anchors = crate::Animation::new(&billboards.anchors, params.flower_mass);
+        let rest: Vec<Vec3> = anchors
+            .blade_out
+            .iter()
+            .map(|d| Vec3::from_slice(&d.p3[..3]))
+            .collect();
+        let wind = grassbench::wind::Breeze::new(Default::default(), 3);
+        for f in 0..10 {
+            anchors.step(&wind, f as f32 / 30.0, 1.0 / 30.0, 2.5, 40.0, 4.0);
+        }
+        let orders = BlockOrders::new(&billboards.per_side(layout.per_side));
+        let eye = Vec3::new(-30.0, 1.6, -25.0);
+        let plan = Plan::new(
+            &layout,
+            &index,
+            &billboards,
+            &Transition::new(&layout, eye, 0.25),
+            None,
+            (true, true),
+        );
+        let builder = WingBuilder {
+            billboards: &billboards,
+            orders: Some(&orders),
+            anchors: &anchors.blade_out,
+            rest: &rest,
+            height: 0.7,
+            sway: 0.05,
+        };
+        let mut one = Vec::new();
+        builder.build(&plan.far, &mut Vec::new(), &mut one);
+        assert!(
+            one.len() > PARALLEL_WINGS,
+            "{} wings: one thread only",
+            one.len()
+        );
+        let (mut scratch, mut two) = (WingScratch::default(), Vec::new());
+        for _ in 0..2 {
+            let k = (0.7, 0.05);
+            wings(
+                &plan,
+                &billboards,
+                Some(&orders),
+                &anchors.blade_out,
+                &rest,
+                k,
+                &mut scratch,
+                &mut two,
+            );
+            assert_eq!(one, two);
+        }
+    }
 
     #[test]
     fn sorted_blades_are_the_visible_near_plants_once_camera_grid_last_and_far_to_near() {

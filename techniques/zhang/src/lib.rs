@@ -16,7 +16,10 @@
 //!   scene has; with `[wind] model = "fluid"` that is the core's
 //!   [`FluidWind`](grassbench::wind::FluidWind): the thesis' 8³ Stam solver, one solution
 //!   tiled over the grass grids with per-grid offsets (Sec. 5.1), sampled trilinearly. Each
-//!   control point reads `inputs.wind.velocity(p, time)` at its own position every frame.
+//!   moving control point of a drawn blade reads the wind at its own position every frame
+//!   (one batched `inputs.wind.velocities(points, time)` call per thread's share; the breeze
+//!   computes its per-time constants once and reuses its noise cells, bit for bit equal to
+//!   `velocity`); blades animated but not drawn read it once, at `P2` (see Animation).
 //! - **Prairie (Sec. 3.1.2, 5.1).** `grids x grids` grass grids (16 x 16) fitted over the
 //!   terrain (grid size = terrain size / grids), `n x n` blades per grid (32 x 32) on a
 //!   jittered lattice with random facing, heights on the shared terrain, gaps where the
@@ -39,7 +42,14 @@
 //!   reflected above the ground as the thesis' `abs(y)`; then the length constraints
 //!   bottom-up (`P_i -= (P_i − P_{i−1})·(l' − l)/l'`, Sec. 3.2.4); then the rotation θ of
 //!   Sec. 3.2.5 (segment points of backbone point `i` turn by `θ·i/(n−1)` around up).
-//!   `prepare` uploads `P1..P3` and θ (48 bytes a blade).
+//!   `prepare` uploads `P1..P3` and θ (48 bytes a blade) of the blades drawn. Blades the
+//!   level of detail animates without drawing them this frame (culled grids, grids two away,
+//!   anchors beyond the drawn step's) are *hidden*: kept in motion every other frame (half
+//!   of them each frame) by one Verlet step of two frames' time with the wind at `P2` for
+//!   all three points, and no instance data ([`animate::StepRanges::hidden`]); a blade
+//!   coming into view is then within 2 % of its height of where full steps would have put
+//!   it. Blades and anchors are stepped together, one equal share per core (scoped
+//!   threads).
 //! - **Culling (Sec. 5.3, [`culling`]).** Blades are planted grid by grid, so each grass grid
 //!   is a contiguous instance range with a conservative box (widened for the billboards'
 //!   anchor plants); `update` keeps the grids whose box meets the frustum. With sorting, the
@@ -66,7 +76,9 @@
 //! - **Level of detail (Sec. 5.2, [`lod`], [`frame`]).** `g ≤ 1`: single plants; otherwise
 //!   billboards. Blades are animated in the grids up to two away and anchors at the step one
 //!   grid closer, so a grid whose level changes at a border crossing is already in motion;
-//!   the far blades are not animated at all (the bulk of part 1's CPU time).
+//!   the far blades are not animated at all (the bulk of part 1's CPU time). Of what is
+//!   animated, only what the frame draws gets the full step; the rest is hidden (see
+//!   Animation).
 //! - **Far to near (Sec. 5.4, [`order`]).** `sorting = "sort"`: grids by squared grid offset
 //!   (quicksort), billboards by the pre-computed orders of the nine sections of Fig. 17,
 //!   the camera grid's plants quicksorted by distance, the surrounding grids' plants line by
@@ -123,19 +135,39 @@
 //!   line; we walk each line from its far end towards the camera (tested exhaustively).
 //! - Billboard textures and the single plants' colours come from the scene's grass colours,
 //!   not from separate photographs.
+//! - The thesis steps every animated blade every frame with the wind at each control point.
+//!   Blades that are animated but not drawn this frame (about two thirds of them on the
+//!   meadow: grids behind the camera, grids two away, the finer billboard step's extra
+//!   anchors) take one step every other frame, of two frames' time (`ω·dt` ≤ 0.48 at the
+//!   default spring, well inside Verlet's stability bound of 2), with one wind sample at
+//!   `P2`: they only have to be moving plausibly when they come into view, and their tips
+//!   stay within 2 % of the blade height of fully stepped ones (tested; what remains decays
+//!   with the damping once they are drawn).
 //!
 //! ## Cost model
-//! CPU per frame: the blades of the (at most 5 x 5) grids up to two away x 3 moving control
-//! points (wind sample + Verlet + constraint) plus one `atan2` for θ, their flowers, and the
-//! anchors of the far grids (289 per grid at `l' = 5`, 81 at 9, 25 at 17, for `n = 32`);
-//! spread over the cores. Sorting: a quicksort of the camera grid's `≤ n²` plants, line walks
-//! of the surrounding grids, a sort of the visible grids (0.2-0.3 ms measured on the meadow).
-//! Upload `48·B_anim + 32·F_anim` bytes, 80 bytes per wing, and with sorting 80 bytes per
-//! drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`) per visible near blade, 2 per
-//! petal and 2 per wing (at most `6·n'²` wings per far grid); 3-5 draws. Memory: `80·B + 32·F`
-//! bytes of instances, 80 per wing, 80 per sorted single plant (16 near grids' worth), 91 KB
-//! of textures plus 128 KB per billboard layer (3 on the canonical scenes). Measured numbers:
-//! `README.md`, `results/zhang_lod/`.
+//! CPU per frame: animated are the blades of the (at most 5 x 5) grids up to two away, their
+//! flowers, and the anchors of the far grids (289 per grid at `l' = 5`, 81 at 9, 25 at 17,
+//! for `n = 32`). The drawn ones (`B_draw`: the visible near grids' blades and the anchors
+//! the visible wings read) cost 3 wind samples + Verlet + 3 length constraints each (and one
+//! `acos` for θ, blades only); the hidden ones (`B_hid`) half of one sample + Verlet each
+//! frame. On the meadow walk (16 x 16 grids of `n = 32`): 21 320 blades and 31 117 anchors
+//! animated, of which 6 256 blades and 11 183 anchors drawn, 15 064 and 19 934 hidden, so
+//! about 70 k wind samples and 35 k Verlet steps a frame (part 2 took 157 k and 52 k). A
+//! breeze sample (3 `sin`, 2 value noises, mostly from the cached cell) costs about as much
+//! as a blade's Verlet step; both are spread over the cores, and so are the wings
+//! (13 k on the meadow: one top point per anchor per grid, then 80 bytes each). Sorting: a
+//! quicksort of the camera grid's `≤ n²` plants, line walks of the surrounding grids, a sort
+//! of the visible grids (0.2-0.3 ms measured on the meadow). Measured `update` on the meadow
+//! at 640x360 (2 shared vCPUs, lavapipe, another engineer's jobs running: load average
+//! 1.5-1.9; 13 runs of 30 frames per binary, alternating): median of the runs' medians
+//! 5.2 ms against 13.4 ms before hidden blades and batched breeze samples (at load 3.5-3.8:
+//! 8.6 against 21.8 ms; the quiet-machine figure before was 10.0 ms,
+//! `results/zhang_lod/README.md`). Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
+//! and with sorting 80 bytes per drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`)
+//! per visible near blade, 2 per petal and 2 per wing (at most `6·n'²` wings per far grid);
+//! 3-5 draws. Memory: `80·B + 32·F` bytes of instances, 80 per wing, 80 per sorted single
+//! plant (16 near grids' worth), 91 KB of textures plus 128 KB per billboard layer (3 on the
+//! canonical scenes). Measured numbers: `README.md`, `results/zhang_lod/`.
 //!
 //! ## Known artifacts
 //! - Textures are sampled at mip level 0 (a cut-out's alpha would blur away with distance) and
@@ -148,6 +180,13 @@
 //!   out of order; the near grids' fading billboards are drawn in the wing pass, before the
 //!   blades of farther fading grids. Petals of a fading grid appear and vanish at once.
 //! - Without sorting and MSAA the alpha test gives hard, aliased outlines.
+//! - Hidden blades (animated, not drawn) are up to 2 % of their height off the pose full
+//!   steps would give. With the default fades a grid's blades are drawn, and so stepped in
+//!   full, from the start of the fade band, about a second before they are half opaque, and
+//!   the difference has decayed by then; with `fade_radius = 0` the blades of a grid that
+//!   switches to single plants show it for the first second (at the meadow's frame 30 the
+//!   mean absolute difference from the finest image grows from 2.2 to 2.7 levels of 255;
+//!   with fades it stays at 3.1) and a grid turning into view shows it either way.
 //! - With the tiled fluid wind the same motion repeats every grass grid (offset per grid,
 //!   Sec. 5.1); the thesis accepts this.
 
@@ -279,6 +318,8 @@ pub struct Zhang {
     plan: frame::Plan,
     /// This frame's wings (`update` → `prepare`).
     wings: Vec<WingInstance>,
+    /// Scratch for [`frame::wings`].
+    wing_scratch: frame::WingScratch,
     /// Sorting (Sec. 5.4): the pre-computed billboard orders of the nine sections, each
     /// blade's root and height, the blade at each lattice point (`grid·n² + cell`), the
     /// frame's single plants far to near and their instance data in that order.
@@ -352,7 +393,8 @@ impl Zhang {
         } else {
             billboard::Billboards::empty()
         };
-        let anchors = Animation::new(&billboards.anchors, params.flower_mass);
+        let mut anchors = Animation::new(&billboards.anchors, params.flower_mass);
+        anchors.set_rotations(false);
         let anchor_rest = anchors
             .blade_out
             .iter()
@@ -498,6 +540,7 @@ impl Zhang {
             anchor_rest,
             billboard_height,
             wings: Vec::new(),
+            wing_scratch: frame::WingScratch::default(),
             sorting,
             sort_ms: 0.0,
         })
@@ -540,21 +583,23 @@ impl GrassTechnique for Zhang {
         let plan = &self.plan;
         // Sec. 6.2: the scene's moving object is the interaction sphere.
         self.animation.set_sphere(inputs.object());
-        self.animation.step_ranges(
+        // Blades and anchors share one set of threads.
+        let blades = animate::StepRanges {
+            drawn: &plan.animate_blades,
+            hidden: &plan.hidden_blades,
+            flowers: &plan.animate_flowers,
+        };
+        let anchors = animate::StepRanges {
+            drawn: &plan.animate_anchors,
+            hidden: &plan.hidden_anchors,
+            flowers: &[],
+        };
+        animate::step_together(
             inputs.wind,
             inputs.time,
             inputs.dt,
             k,
-            &plan.animate_blades,
-            &plan.animate_flowers,
-        );
-        self.anchors.step_ranges(
-            inputs.wind,
-            inputs.time,
-            inputs.dt,
-            k,
-            &plan.animate_anchors,
-            &[],
+            &mut [(&mut self.animation, blades), (&mut self.anchors, anchors)],
         );
         frame::wings(
             plan,
@@ -562,8 +607,8 @@ impl GrassTechnique for Zhang {
             self.sorting.as_ref().map(|s| &s.orders),
             &self.anchors.blade_out,
             &self.anchor_rest,
-            self.billboard_height,
-            p.billboard_sway,
+            (self.billboard_height, p.billboard_sway),
+            &mut self.wing_scratch,
             &mut self.wings,
         );
         // Fading single plants (Sec. 6.1): `P2.w` carries how far each has faded out.
