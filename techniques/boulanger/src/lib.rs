@@ -4,7 +4,7 @@
 //! Sources* (2006; the transcript is `shared/seeds/001_15b45c4dc11230fe.txt`). Part 1 (issue 8):
 //! geometric blades, the tiled and mirrored patch, density management, the LOD weights with
 //! their smooth transition, the quadtree terrain with macro-cells, the horizontal slice for far
-//! grass and both semi-transparency modes. Part 2 (issue 9) so far:
+//! grass and both semi-transparency modes. Part 2 (issue 9):
 //! - the vertical slices of the mid band and the BTF pre-computation of every slice (five light
 //!   directions x the slice's two view directions, K_d, alpha, density threshold), with its
 //!   disk cache;
