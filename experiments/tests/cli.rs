@@ -281,6 +281,53 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
 }
 
 #[test]
+fn interleaved_runs_give_the_same_images_and_every_technique_its_rows() {
+    // `--interleave` measures frame 0 of each technique, then frame 1 of each, ...: each
+    // technique sees the frame sequence of a plain run, so its images are the same bytes.
+    let d = temp("interleave");
+    let run = |extra: &[&str], name: &str| {
+        let out = d.join(name);
+        let mut args = vec![
+            "run",
+            "-t",
+            "reference,zhang,boulanger",
+            "-s",
+            "football_field",
+            "--frames",
+            "2",
+            "--warmup",
+            "1",
+            "--size",
+            "96x64",
+            "-o",
+        ];
+        let out_s = out.to_str().unwrap().to_owned();
+        args.push(&out_s);
+        args.extend_from_slice(extra);
+        let (ok, _, err) = grassbench(&args);
+        assert!(ok, "{err}");
+        out.join("football_field")
+    };
+    let plain = run(&[], "plain");
+    let interleaved = run(&["--interleave"], "interleaved");
+    for id in ["reference", "zhang", "boulanger"] {
+        for f in [1, 2] {
+            let png = format!("{id}_frame{f:04}.png");
+            let a = std::fs::read(plain.join(&png)).unwrap();
+            let b = std::fs::read(interleaved.join(&png)).unwrap();
+            assert!(a == b, "{png} differs between plain and interleaved runs");
+        }
+    }
+    let frames = std::fs::read_to_string(interleaved.join("frames.csv")).unwrap();
+    // A header, then 2 measured frames of each of the three techniques.
+    assert_eq!(frames.lines().count(), 1 + 3 * 2, "{frames}");
+    let runs = std::fs::read_to_string(interleaved.join("runs.csv")).unwrap();
+    for id in ["reference", "zhang", "boulanger"] {
+        assert!(runs.contains(&format!(",{id},")), "no row for {id}: {runs}");
+    }
+}
+
+#[test]
 fn missing_backend_names_the_fix() {
     // No machine this runs on has Metal and DX12 at once; on Linux, neither.
     let backend = if cfg!(target_os = "macos") {

@@ -352,29 +352,71 @@ pub fn run(
     options: &RunOptions,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<RunResult> {
+    let mut results = run_interleaved(harness, &mut [technique], options, progress)?;
+    results
+        .pop()
+        .unwrap_or_else(|| Err(Error::param("techniques", 0, "one technique")))
+}
+
+/// Runs several techniques on one harness with their frames interleaved: frame 0 of each in
+/// turn, then frame 1 of each, and so on, so that every technique is measured under the same
+/// conditions at the same moments. A ratio between two techniques then no longer depends on
+/// how the machine's speed drifts between one technique's frames and the next one's (a shared
+/// or throttling host). Each technique sees exactly the frame sequence of [`run`], so its
+/// images are the same. Returns one result per technique, in order; a technique that fails is
+/// dropped from the rotation and its error returned in its slot, the others go on.
+/// `progress(done, total)` counts frames of all techniques.
+pub fn run_interleaved(
+    harness: &mut Harness<'_>,
+    techniques: &mut [&mut dyn GrassTechnique],
+    options: &RunOptions,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Vec<Result<RunResult>>> {
     if options.frames == 0 {
         return Err(Error::param("frames", 0, "at least 1 measured frame"));
     }
     let total = options.warmup + options.frames;
-    let mut frames = Vec::with_capacity(options.frames as usize);
-    let mut images = Vec::new();
+    let n = techniques.len();
+    let mut frames: Vec<Vec<FrameRecord>> = (0..n)
+        .map(|_| Vec::with_capacity(options.frames as usize))
+        .collect();
+    let mut images: Vec<Vec<(u64, image::RgbaImage)>> = (0..n).map(|_| Vec::new()).collect();
+    let mut errors: Vec<Option<Error>> = (0..n).map(|_| None).collect();
+    let mut done = 0;
     for frame in 0..total {
-        let mut out = harness.frame(technique, frame, options.capture.contains(&frame))?;
-        if frame >= options.warmup {
-            out.record.run_id.clone_from(&options.run_id);
-            frames.push(out.record);
+        for (k, technique) in techniques.iter_mut().enumerate() {
+            if errors[k].is_some() {
+                continue;
+            }
+            match harness.frame(&mut **technique, frame, options.capture.contains(&frame)) {
+                Ok(mut out) => {
+                    if frame >= options.warmup {
+                        out.record.run_id.clone_from(&options.run_id);
+                        frames[k].push(out.record);
+                    }
+                    if let Some(image) = out.image {
+                        images[k].push((frame, image));
+                    }
+                }
+                Err(e) => errors[k] = Some(e),
+            }
+            done += 1;
+            progress(done, total * n as u64);
         }
-        if let Some(image) = out.image {
-            images.push((frame, image));
-        }
-        progress(frame + 1, total);
     }
-    let summary = RunSummary::from_frames(&frames, &technique.params());
-    Ok(RunResult {
-        frames,
-        summary,
-        images,
-    })
+    Ok(techniques
+        .iter()
+        .zip(frames.into_iter().zip(images))
+        .zip(errors)
+        .map(|((technique, (frames, images)), error)| match error {
+            Some(e) => Err(e),
+            None => Ok(RunResult {
+                summary: RunSummary::from_frames(&frames, &technique.params()),
+                frames,
+                images,
+            }),
+        })
+        .collect())
 }
 
 fn ms(since: Instant) -> f64 {

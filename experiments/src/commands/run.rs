@@ -47,6 +47,11 @@ pub struct RunArgs {
     /// Replace an existing non-empty output folder.
     #[arg(long)]
     pub force: bool,
+    /// Measure the techniques' frames in turn (frame 0 of each, then frame 1 of each, ...)
+    /// rather than one technique after the other, so ratios between them hold even when the
+    /// machine's speed drifts during the run (a shared host). Same images.
+    #[arg(long)]
+    pub interleave: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -128,72 +133,64 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
                 backgrounds.push((f, img));
             }
         }
-        let (mut frames, mut runs, mut images, mut params) = (
-            Vec::<FrameRecord>::new(),
-            Vec::new(),
-            Vec::new(),
-            Vec::new(),
-        );
-        for entry in &entries {
-            let id = entry.info.id;
-            let bar = progress_bar(options.warmup + options.frames, &format!("{name} / {id}"));
-            let result = harness.create(entry, &overrides).and_then(|mut t| {
-                runner::run(&mut harness, t.as_mut(), &options, &mut |done, _| {
-                    bar.set_position(done)
-                })
-            });
-            bar.finish_and_clear();
-            let result = match result {
-                Ok(r) => r,
-                Err(e) => {
-                    eprintln!("error: `{id}` on `{name}`: {e}");
-                    failures.push(format!("{id} on {name}: {e}"));
-                    continue;
+        let mut out = SceneOutput {
+            dir: &dir,
+            name: &name,
+            backgrounds: &backgrounds,
+            frames: Vec::new(),
+            runs: Vec::new(),
+            images: Vec::new(),
+            params: Vec::new(),
+        };
+        let mut fail = |id: &str, e: &dyn std::fmt::Display| {
+            eprintln!("error: `{id}` on `{name}`: {e}");
+            failures.push(format!("{id} on {name}: {e}"));
+        };
+        if args.interleave {
+            let mut created = Vec::new();
+            for entry in &entries {
+                match harness.create(entry, &overrides) {
+                    Ok(t) => created.push((entry.info.id, t)),
+                    Err(e) => fail(entry.info.id, &e),
                 }
-            };
-            for (f, img) in &result.images {
-                let png = format!("{id}_frame{f:04}.png");
-                save_png(img, &dir.join(&png))?;
-                let coverage = backgrounds
-                    .iter()
-                    .find(|(b, _)| b == f)
-                    .map(|(_, bg)| grass_coverage(img, bg, 6))
-                    .transpose()?
-                    .unwrap_or(f64::NAN);
-                images.push(ImageRow {
-                    technique: id.into(),
-                    scene: name.clone(),
-                    frame: *f,
-                    png,
-                    coverage,
-                });
             }
-            let s = &result.summary;
-            eprintln!(
-                "{name:>16} {id:<12} {:>8.1} ms/frame GPU wall (p5 {:.1}, p95 {:.1}), {} blades, {} triangles",
-                s.gpu_wall_ms_median, s.gpu_wall_ms_p5, s.gpu_wall_ms_p95, s.blades, s.triangles
-            );
-            for (key, value) in result
-                .summary
-                .params
-                .split(';')
-                .filter_map(|kv| kv.split_once('='))
-            {
-                params.push(ParamRow {
-                    technique: id.into(),
-                    scene: name.clone(),
-                    key: key.into(),
-                    value: value.into(),
-                });
+            let total = (options.warmup + options.frames) * created.len() as u64;
+            let bar = progress_bar(total, &format!("{name} / interleaved"));
+            let ids: Vec<&str> = created.iter().map(|(id, _)| *id).collect();
+            let mut techniques: Vec<&mut dyn grassbench::GrassTechnique> = created
+                .iter_mut()
+                .map(|(_, t)| t.as_mut() as &mut dyn grassbench::GrassTechnique)
+                .collect();
+            let results = runner::run_interleaved(
+                &mut harness,
+                &mut techniques,
+                &options,
+                &mut |done, _| bar.set_position(done),
+            )?;
+            bar.finish_and_clear();
+            for (id, result) in ids.into_iter().zip(results) {
+                match result {
+                    Ok(r) => out.add(id, r)?,
+                    Err(e) => fail(id, &e),
+                }
             }
-            frames.extend(result.frames);
-            runs.push(result.summary);
-            // Write after every technique, so a later failure loses nothing already measured.
-            write_csv(&dir.join("frames.csv"), &frames)?;
-            write_csv(&dir.join("runs.csv"), &runs)?;
-            write_csv(&dir.join("images.csv"), &images)?;
-            write_csv(&dir.join("params.csv"), &params)?;
+        } else {
+            for entry in &entries {
+                let id = entry.info.id;
+                let bar = progress_bar(options.warmup + options.frames, &format!("{name} / {id}"));
+                let result = harness.create(entry, &overrides).and_then(|mut t| {
+                    runner::run(&mut harness, t.as_mut(), &options, &mut |done, _| {
+                        bar.set_position(done)
+                    })
+                });
+                bar.finish_and_clear();
+                match result {
+                    Ok(r) => out.add(id, r)?,
+                    Err(e) => fail(id, &e),
+                }
+            }
         }
+        let runs = out.runs;
         all_runs.extend(runs);
         write_csv(&args.out.join("runs.csv"), &all_runs)?;
     }
@@ -208,6 +205,64 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// One scene's output folder as runs come in: images, frames, runs and parameters, written
+/// after every technique, so a later failure loses nothing already measured.
+struct SceneOutput<'a> {
+    dir: &'a Path,
+    name: &'a str,
+    /// Background-only frames (frame index, image): the baseline of grass coverage.
+    backgrounds: &'a [(u64, image::RgbaImage)],
+    frames: Vec<FrameRecord>,
+    runs: Vec<RunSummary>,
+    images: Vec<ImageRow>,
+    params: Vec<ParamRow>,
+}
+
+impl SceneOutput<'_> {
+    /// Saves `result`'s images and appends its rows; rewrites the scene's CSV files.
+    fn add(&mut self, id: &str, result: runner::RunResult) -> anyhow::Result<()> {
+        let (dir, name) = (self.dir, self.name);
+        for (f, img) in &result.images {
+            let png = format!("{id}_frame{f:04}.png");
+            save_png(img, &dir.join(&png))?;
+            let coverage = self
+                .backgrounds
+                .iter()
+                .find(|(b, _)| b == f)
+                .map(|(_, bg)| grass_coverage(img, bg, 6))
+                .transpose()?
+                .unwrap_or(f64::NAN);
+            self.images.push(ImageRow {
+                technique: id.into(),
+                scene: name.to_owned(),
+                frame: *f,
+                png,
+                coverage,
+            });
+        }
+        let s = &result.summary;
+        eprintln!(
+            "{name:>16} {id:<12} {:>8.1} ms/frame GPU wall (p5 {:.1}, p95 {:.1}), {} blades, {} triangles",
+            s.gpu_wall_ms_median, s.gpu_wall_ms_p5, s.gpu_wall_ms_p95, s.blades, s.triangles
+        );
+        for (key, value) in s.params.split(';').filter_map(|kv| kv.split_once('=')) {
+            self.params.push(ParamRow {
+                technique: id.into(),
+                scene: name.to_owned(),
+                key: key.into(),
+                value: value.into(),
+            });
+        }
+        self.frames.extend(result.frames);
+        self.runs.push(result.summary);
+        write_csv(&dir.join("frames.csv"), &self.frames)?;
+        write_csv(&dir.join("runs.csv"), &self.runs)?;
+        write_csv(&dir.join("images.csv"), &self.images)?;
+        write_csv(&dir.join("params.csv"), &self.params)?;
+        Ok(())
+    }
 }
 
 /// Refuses to mix new results into an old folder unless `force`.
