@@ -4,19 +4,13 @@ use crate::rng::hash_f32;
 
 /// Value noise in `[0, 1]` at `(x, y)` (lattice spacing 1), smoothly interpolated.
 pub fn value_noise(seed: u64, x: f32, y: f32) -> f32 {
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (smooth(x - x0), smooth(y - y0));
-    let (i, j) = (x0 as i64, y0 as i64);
-    let n = |di: i64, dj: i64| hash_f32(seed, &[i + di, j + dj]);
-    let a = n(0, 0) + (n(1, 0) - n(0, 0)) * fx;
-    let b = n(0, 1) + (n(1, 1) - n(0, 1)) * fx;
-    a + (b - a) * fy
+    ValueNoiseCache::new(seed).sample(x, y)
 }
 
 /// [`value_noise`] of one seed at many nearby points: remembers the last lattice cell and its
 /// four corner hashes, so a point in the same cell as the one before skips the floors and the
-/// hashing. Gives bit-for-bit the values of [`value_noise`] (same operations in the same
-/// order); worth it when consecutive points are close compared with the lattice spacing.
+/// hashing (a fresh cache is [`value_noise`] itself); worth it when consecutive points are
+/// close compared with the lattice spacing.
 #[derive(Clone, Copy, Debug)]
 pub struct ValueNoiseCache {
     seed: u64,

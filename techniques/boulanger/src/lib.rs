@@ -484,16 +484,19 @@ impl Boulanger {
         let repeat_sampler = sampler("boulanger slice", wgpu::AddressMode::Repeat);
 
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let float_texture = |binding| wgpu::BindGroupLayoutEntry {
+        // A filterable float texture of `view_dimension` at `binding`.
+        let texture_entry = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: vf,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
+                view_dimension,
                 multisampled: false,
             },
             count: None,
         };
+        let float_texture = |binding| texture_entry(binding, wgpu::TextureViewDimension::D2);
+        let array_texture = |binding| texture_entry(binding, wgpu::TextureViewDimension::D2Array);
         let sampler_entry = |binding| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: vf,
@@ -516,16 +519,7 @@ impl Boulanger {
                 float_texture(1),
                 sampler_entry(2),
                 sampler_entry(3),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: vf,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2Array,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                array_texture(4),
                 float_texture(5),
             ],
         });
@@ -573,16 +567,6 @@ impl Boulanger {
         let no_mask = btf::create_textures(device, 1, 1, 1);
         let no_mask_group1 = make_group1(&btf::wrap(no_mask, 1, 1, 1).color);
         let cell_layout = cells::layout(device);
-        let array_texture = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: vf,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
-            },
-            count: None,
-        };
         let slice_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("boulanger slices (group 2)"),
             entries: &[
