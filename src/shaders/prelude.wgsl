@@ -119,16 +119,24 @@ fn shade(albedo: vec3<f32>, normal: vec3<f32>, ao: f32) -> vec3<f32> {
 // Two-sided shading for thin leaves: the normal faces the viewer, and light from behind
 // passes through (`translucency` of the back-side irradiance).
 fn shade_leaf(albedo: vec3<f32>, normal: vec3<f32>, world_pos: vec3<f32>, ao: f32, translucency: f32) -> vec3<f32> {
-    let to_eye = normalize(globals.camera_pos.xyz - world_pos);
-    let n = select(-normal, normal, dot(normal, to_eye) >= 0.0);
-    let l = globals.sun_direction.xyz;
-    let front = max(dot(n, l), 0.0);
-    let back = max(dot(-n, l), 0.0) * translucency;
-    var direct = globals.sun_color.rgb * (front + back);
+    let n = facing_viewer(normal, world_pos);
+    var direct = globals.sun_color.rgb * leaf_lambert(n, globals.sun_direction.xyz, translucency);
     if (globals.point_color.w > 0.0) {
         direct += point_light(world_pos) * leaf_lambert(n, normalize(globals.point_position.xyz - world_pos), translucency);
     }
-    return albedo * (globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao));
+    return albedo * leaf_irradiance(direct, ao);
+}
+
+// `normal` or its opposite, whichever faces the eye from `world_pos` (a leaf has two sides).
+fn facing_viewer(normal: vec3<f32>, world_pos: vec3<f32>) -> vec3<f32> {
+    let to_eye = normalize(globals.camera_pos.xyz - world_pos);
+    return select(-normal, normal, dot(normal, to_eye) >= 0.0);
+}
+
+// What `shade_leaf` multiplies the albedo by, from the direct light on the leaf: the ambient
+// term darkened by `ao`, the direct one by half of that. Affine in `ao`.
+fn leaf_irradiance(direct: vec3<f32>, ao: f32) -> vec3<f32> {
+    return globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao);
 }
 
 // Two-sided Lambert factor of a leaf whose normal `n` faces the viewer, for the unit vector
@@ -154,9 +162,13 @@ fn sky_color(dir: vec3<f32>) -> vec3<f32> {
 
 // Aerial perspective: the same haze over every technique's grass and the ground.
 fn apply_fog(color: vec3<f32>, world_pos: vec3<f32>) -> vec3<f32> {
+    return mix(color, globals.sky_horizon.rgb, fog_factor(world_pos));
+}
+
+// How much haze lies between the eye and `world_pos`, in [0, 1).
+fn fog_factor(world_pos: vec3<f32>) -> f32 {
     let d = distance(world_pos, globals.camera_pos.xyz);
-    let f = 1.0 - exp(-d * globals.ground_color.w);
-    return mix(color, globals.sky_horizon.rgb, f);
+    return 1.0 - exp(-d * globals.ground_color.w);
 }
 
 // Integer hash (PCG), for per-instance variation in shaders.

@@ -17,6 +17,21 @@ fn fluid_scene() -> anyhow::Result<grassbench::Scene> {
     )?)
 }
 
+/// The size of the tests on the full meadow: large enough that the far billboards are a few
+/// pixels tall, not one.
+const SIZE: Size = Size {
+    width: 640,
+    height: 360,
+};
+
+/// The technique's counter `name` (0 when it has none).
+fn counter(t: &dyn grassbench::GrassTechnique, name: &str) -> f64 {
+    t.counters()
+        .iter()
+        .find(|(k, _)| *k == name)
+        .map_or(0.0, |(_, v)| *v)
+}
+
 /// `scene` with the camera held still, so frames differ only through the wind.
 fn still(scene: grassbench::Scene) -> anyhow::Result<grassbench::Scene> {
     let mut config = scene.config;
@@ -111,22 +126,18 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
 #[test]
 fn zhang_compares_with_reference_on_the_meadow() -> anyhow::Result<()> {
     let gpu = gpu()?;
-    let size = Size {
-        width: 640,
-        height: 360,
-    };
     let none = toml::Table::new();
-    let reference = render(&gpu, "reference", scene("meadow", 1.0)?, 30, size, &none)?;
+    let reference = render(&gpu, "reference", scene("meadow", 1.0)?, 30, SIZE, &none)?;
     let mut matched = toml::Table::new();
     matched.insert("blades_per_side".into(), 47.into());
-    let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, size, false)?;
+    let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, SIZE, false)?;
     let background = render_with(&mut harness, &mut NoGrass, 30)?;
     let ref_coverage = grass_coverage(&reference, &background, 6)?;
     for (overrides, limits) in [
         (&none, [0.20, 0.14, 0.125]),
         (&matched, [0.20, 0.13, 0.097]),
     ] {
-        let z = render(&gpu, "zhang", scene("meadow", 1.0)?, 30, size, overrides)?;
+        let z = render(&gpu, "zhang", scene("meadow", 1.0)?, 30, SIZE, overrides)?;
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
             let mean = flip(&downsample(&reference, factor), &downsample(&z, factor))?.mean;
             eprintln!("measured: {overrides:?} at 1/{factor}: FLIP {mean:.4}");
@@ -217,25 +228,15 @@ fn bad_parameters_are_refused_naming_the_key() -> anyhow::Result<()> {
 #[test]
 fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let gpu = gpu()?;
-    let size = Size {
-        width: 640,
-        height: 360,
-    };
     let entry = grassbench_cli::registry::find("zhang")?;
     let finest_params = entry
         .variant(grassbench::technique::FINEST)
         .expect("finest")?;
-    let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, size, false)?;
+    let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, SIZE, false)?;
     let mut lod = harness.create(entry, &toml::Table::new())?;
     let image = render_with(&mut harness, lod.as_mut(), 30)?;
     let mut finest = harness.create(entry, &finest_params)?;
     let fine = render_with(&mut harness, finest.as_mut(), 30)?;
-    let counter = |t: &dyn grassbench::GrassTechnique, name: &str| {
-        t.counters()
-            .iter()
-            .find(|(k, _)| *k == name)
-            .map_or(0.0, |(_, v)| *v)
-    };
     let (s, f) = (lod.stats(), finest.stats());
     eprintln!(
         "measured: LOD {s:?} {:?}; finest {f:?} {:?}",
@@ -320,6 +321,149 @@ fn fades_soften_the_switch_at_a_grid_crossing() -> anyhow::Result<()> {
     assert!(
         with[0] < 1.2 * steady(&with),
         "fades did not soften it: {with:?}"
+    );
+    Ok(())
+}
+
+/// Wings cut down to their texels (`trim_wings`, `techniques/zhang/src/wing_trim.rs`) draw what
+/// whole wings draw. In calm air with upright blades every wing is planar (its two tops are its
+/// roots raised by the same height), and the cut keeps every texel the whole wing shows.
+/// Measured on lavapipe (640x360, full meadow): calm, frame 0, 26 of 230 400 pixels differ by
+/// more than 2 levels (texel lookups along the cut's edges), FLIP 0.00022; 226 of 12 140 wings
+/// can show nothing and are not drawn. In the wind (frame 30) a wing's two tops sway apart,
+/// the wing is no longer planar, and the cut rectangle's diagonal is not the whole one's: 8.6 %
+/// of the pixels differ (nearest-texel lookups shifted), FLIP 0.0178 between the two, but both
+/// are about as far from the finest image (`lod = false`): FLIP 0.0422 cut against 0.0420
+/// whole.
+#[test]
+fn trimmed_wings_draw_what_whole_wings_draw() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let entry = grassbench_cli::registry::find("zhang")?;
+    let mut whole_params = toml::Table::new();
+    whole_params.insert("trim_wings".into(), false.into());
+    let meadow = scene("meadow", 1.0)?;
+    let mut calm = meadow.config.clone();
+    calm.wind = WindConfig::Calm;
+    calm.grass.lean = 0.0;
+    let calm = grassbench::Scene::from_config(calm, meadow.base_dir.clone())?;
+    for (what, scene, frame) in [("calm", calm, 0), ("wind", meadow, 30)] {
+        let mut harness = Harness::new(&gpu, scene, SIZE, false)?;
+        let mut trimmed = harness.create(entry, &toml::Table::new())?;
+        let cut = render_with(&mut harness, trimmed.as_mut(), frame)?;
+        let mut whole = harness.create(entry, &whole_params)?;
+        let full = render_with(&mut harness, whole.as_mut(), frame)?;
+        // Wings that can show nothing are not drawn at all.
+        let (drawn, wings) = (
+            counter(trimmed.as_ref(), "wings"),
+            counter(whole.as_ref(), "wings"),
+        );
+        assert!(
+            wings > 1000.0 && drawn <= wings,
+            "{drawn} of {wings} wings drawn"
+        );
+        let differ = cut
+            .pixels()
+            .zip(full.pixels())
+            .filter(|(a, b)| a.0.iter().zip(b.0).any(|(x, y)| x.abs_diff(y) > 2))
+            .count();
+        let mean = flip(&full, &cut)?.mean;
+        let finest_params = entry
+            .variant(grassbench::technique::FINEST)
+            .expect("finest")?;
+        let mut finest = harness.create(entry, &finest_params)?;
+        let fine = render_with(&mut harness, finest.as_mut(), frame)?;
+        let (to_cut, to_full) = (flip(&fine, &cut)?.mean, flip(&fine, &full)?.mean);
+        eprintln!(
+            "measured: {what}: {drawn} of {wings} wings drawn; {differ} pixels differ, FLIP {mean:.5}; against finest: trimmed {to_cut:.5}, whole {to_full:.5}"
+        );
+        if what == "calm" {
+            // Limits: about 10x the measured differences (rounding along the cut's edges).
+            assert!(
+                differ < 230 && mean < 0.0015,
+                "{differ} pixels, FLIP {mean}"
+            );
+        } else {
+            // Limits: the measured FLIP plus half, and one part in twenty of the fidelity.
+            assert!(mean < 0.03, "trimmed against whole: FLIP {mean}");
+            assert!(
+                to_cut < 1.05 * to_full,
+                "against finest: {to_cut} trimmed, {to_full} whole"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The billboards' point light (`fs_wing_point_lit`, per pixel; the ambient and the sun are
+/// per vertex): a light 0.5 m above the grass 17 m away, among the billboards (the camera grid
+/// and its neighbours end within 10 m), brightens the wings around it and not those across
+/// the field. The ground is lit by the sun alone, so what brightens there is the billboards.
+/// Measured on lavapipe (320x180, still camera, quarter density; sum of the RGB means in a
+/// 24 x 16 window, 8-bit levels): +7.4 around the light, +1.2 110 pixels to the side; with
+/// the sun-only wing pipeline drawn instead, +0.2.
+#[test]
+fn a_point_light_lights_the_billboards_around_it() -> anyhow::Result<()> {
+    use grassbench::glam::{Vec2, Vec3};
+    let gpu = gpu()?;
+    let dark = still(scene("meadow", 0.25)?)?;
+    let target = Vec2::new(16.0, 6.4);
+    let light = Vec3::new(target.x, dark.terrain.height_at(target) + 0.5, target.y);
+    let mut lit = dark.config.clone();
+    lit.lights.point = Some(grassbench::scene::PointLight {
+        position: light.to_array(),
+        color: [6.0, 5.2, 4.0],
+        attenuation: 1.0,
+        keys: Vec::new(),
+    });
+    let lit = grassbench::Scene::from_config(lit, dark.base_dir.clone())?;
+    let none = toml::Table::new();
+    let camera = dark.config.camera.camera_at(
+        0.0,
+        &dark.terrain,
+        TEST_SIZE.width as f32 / TEST_SIZE.height as f32,
+    );
+    let a = render(&gpu, "zhang", dark, 0, TEST_SIZE, &none)?;
+    let b = render(&gpu, "zhang", lit, 0, TEST_SIZE, &none)?;
+    let clip = camera.view_projection() * light.extend(1.0);
+    let (px, py) = (
+        ((clip.x / clip.w * 0.5 + 0.5) * TEST_SIZE.width as f32) as i64,
+        ((0.5 - clip.y / clip.w * 0.5) * TEST_SIZE.height as f32) as i64,
+    );
+    // Mean brightening (sum of RGB, 8-bit levels) in a 24 x 16 window around a pixel.
+    let gain = |cx: i64, cy: i64| {
+        let mut sum = 0.0;
+        let mut n = 0.0;
+        for y in (cy - 8).max(0)..(cy + 8).min(i64::from(TEST_SIZE.height)) {
+            for x in (cx - 12).max(0)..(cx + 12).min(i64::from(TEST_SIZE.width)) {
+                let (p, q) = (
+                    a.get_pixel(x as u32, y as u32),
+                    b.get_pixel(x as u32, y as u32),
+                );
+                sum += (0..3)
+                    .map(|c| f64::from(q[c]) - f64::from(p[c]))
+                    .sum::<f64>();
+                n += 1.0;
+            }
+        }
+        sum / n
+    };
+    let side = if px < i64::from(TEST_SIZE.width) / 2 {
+        110
+    } else {
+        -110
+    };
+    let (near, across) = (gain(px, py), gain(px + side, py));
+    eprintln!(
+        "measured: light at pixel ({px}, {py}): brightening {near:.1} there, {across:.1} across the field"
+    );
+    // Limits: half the measured brightening; the fall-off with twice the measured room.
+    assert!(
+        near > 3.7,
+        "the point light does not light the billboards: {near:.1}"
+    );
+    assert!(
+        across < 0.3 * near,
+        "no fall-off: {near:.1} near, {across:.1} across"
     );
     Ok(())
 }

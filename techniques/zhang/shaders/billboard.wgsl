@@ -25,20 +25,31 @@ struct WingIn {
     @location(1) outer_root: vec4<f32>,   // xyz; w: texture u at the outer edge
     @location(2) centre_top: vec4<f32>,   // xyz; w: texture layer
     @location(3) outer_top: vec4<f32>,    // xyz; w: kept fraction of the blades (density)
-    @location(4) fade: vec4<f32>,         // x: fade alpha (Sec. 6.1)
+    @location(4) fade: vec4<f32>,         // x: fade alpha (Sec. 6.1); y: cut height (v at top)
 }
 
 struct WingOut {
     @builtin(position) position: vec4<f32>,
     @location(0) world: vec3<f32>,
-    @location(1) normal: vec3<f32>,
+    // The wing's normal, turned to the eye.
+    @location(1) @interpolate(flat) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) layer: u32,
     @location(4) @interpolate(flat) keep: f32,
     @location(5) @interpolate(flat) alpha: f32,
+    // `leaf_irradiance` of the ambient and the sun (affine in `uv.y`, so exact per vertex).
+    @location(6) light: vec3<f32>,
+    // `fog_factor` (per vertex: see the essay).
+    @location(7) fog: f32,
 }
 
-// A 4-vertex strip: centre bottom, outer bottom, centre top, outer top.
+// Ambient occlusion at height v of a wing: darker near the ground, like `vs_blade`'s.
+fn wing_ao(v: f32) -> f32 {
+    return mix(0.3, 1.0, v);
+}
+
+// A 4-vertex strip: centre bottom, outer bottom, centre top, outer top. The instance is a
+// wing cut down (`wing_trim.rs`): its top edge at fraction `fade.y` of the wing's height.
 @vertex
 fn vs_wing(@builtin(vertex_index) vertex: u32, w: WingIn) -> WingOut {
     var out: WingOut;
@@ -46,15 +57,24 @@ fn vs_wing(@builtin(vertex_index) vertex: u32, w: WingIn) -> WingOut {
     let top = vertex >= 2u;
     let bottom = select(w.centre_root.xyz, w.outer_root.xyz, outer);
     let upper = select(w.centre_top.xyz, w.outer_top.xyz, outer);
-    let world = select(bottom, upper, top);
+    let world = select(bottom, mix(bottom, upper, w.fade.y), top);
     let along = w.outer_root.xyz - w.centre_root.xyz;
     let across = normalize(vec3(-along.z, 0.0, along.x) + vec3(0.0, 1e-6, 0.0));
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;
     // Lit like the single blades it stands for: their faces are near-vertical, so the wing's
-    // face normal, tilted a little up (blades lean and bend).
-    out.normal = normalize(across + vec3(0.0, 0.5, 0.0));
-    out.uv = vec2(select(w.centre_root.w, w.outer_root.w, outer), select(0.0, 1.0, top));
+    // face normal, tilted a little up (blades lean and bend), turned to the eye from the
+    // middle of the wing's foot (the same side at all four corners).
+    let normal = normalize(across + vec3(0.0, 0.5, 0.0));
+    out.normal = facing_viewer(normal, 0.5 * (w.centre_root.xyz + w.outer_root.xyz));
+    out.uv = vec2(select(w.centre_root.w, w.outer_root.w, outer), select(0.0, w.fade.y, top));
+    // `shade_leaf` split: the ambient and the sun are the same over the whole wing but for
+    // the ambient occlusion, which is affine in v, so their sum is too and interpolates
+    // exactly; the point light, which falls off with distance, is added per pixel
+    // (`fs_wing_point_lit`).
+    let sun = globals.sun_color.rgb * leaf_lambert(out.normal, globals.sun_direction.xyz, params.color_tip.w);
+    out.light = leaf_irradiance(sun, wing_ao(out.uv.y));
+    out.fog = fog_factor(world);
     out.layer = u32(w.centre_top.w);
     // Fading (Sec. 6.1): blended, the alpha scales the output; otherwise the wing's blades
     // dissolve with their density thresholds.
@@ -64,8 +84,8 @@ fn vs_wing(@builtin(vertex_index) vertex: u32, w: WingIn) -> WingOut {
     return out;
 }
 
-@fragment
-fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
+// The texel a wing fragment shows, coloured like the blades it stands for (or discarded).
+fn wing_albedo(in: WingOut) -> vec4<f32> {
     let size = textureDimensions(billboard_texture);
     let texel_xy = vec2<i32>(
         i32(fract(in.uv.x) * f32(size.x)) % i32(size.x),
@@ -79,7 +99,6 @@ fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
     if (alpha < params.shape.y || texel.g >= in.keep) {
         discard;
     }
-    let v = in.uv.y;
     var albedo: vec3<f32>;
     if (texel.b >= PETAL_CODE - 0.01) {
         // A petal: the colour of its petal texture half-way out.
@@ -88,13 +107,32 @@ fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
     } else {
         // Like `vs_blade`: root-to-tip colour, per-blade variation, textured luminance.
         let variation = (texel.b / 0.75 * 2.0 - 1.0) * params.color_root.w;
-        albedo = mix(params.color_root.rgb, params.color_tip.rgb, pow(v, 0.8));
+        albedo = mix(params.color_root.rgb, params.color_tip.rgb, pow(in.uv.y, 0.8));
         albedo *= 1.0 + variation;
         albedo.r *= 1.0 + 0.6 * max(variation, 0.0);
         albedo *= texel.r * 1.15;
     }
-    let ao = mix(0.3, 1.0, v);
-    let lit = shade_leaf(albedo, normalize(in.normal), in.world, ao, params.color_tip.w);
-    // Alpha blends with Eq. (10) when sorting, drives coverage under MSAA otherwise.
-    return vec4(apply_fog(lit, in.world), alpha);
+    return vec4(albedo, alpha);
+}
+
+// Lit by `light`, hazed by the fog. Alpha blends with Eq. (10) when sorting, drives coverage
+// under MSAA otherwise.
+fn wing_color(albedo: vec4<f32>, light: vec3<f32>, fog: f32) -> vec4<f32> {
+    return vec4(mix(albedo.rgb * light, globals.sky_horizon.rgb, fog), albedo.a);
+}
+
+// Ambient and sun only (the frame has no point light): no per-pixel lighting at all.
+@fragment
+fn fs_wing(in: WingOut) -> @location(0) vec4<f32> {
+    return wing_color(wing_albedo(in), in.light, in.fog);
+}
+
+// With the point light, whose fall-off with distance does not interpolate, added per pixel.
+@fragment
+fn fs_wing_point_lit(in: WingOut) -> @location(0) vec4<f32> {
+    let albedo = wing_albedo(in);
+    let to_light = normalize(globals.point_position.xyz - in.world);
+    let direct = point_light(in.world) * leaf_lambert(in.normal, to_light, params.color_tip.w);
+    let light = in.light + direct * mix(0.5, 1.0, wing_ao(in.uv.y));
+    return wing_color(albedo, light, in.fog);
 }

@@ -31,6 +31,7 @@ use grassbench::terrain::{Terrain, covering};
 use crate::billboard_texture::SPAN;
 use crate::params::Params;
 use crate::prairie::{Layout, Planted, candidate};
+use crate::wing_trim::{Cut, Skyline};
 
 /// One wing (rectangle) of a billboard: anchor indices and texture span.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +44,8 @@ pub struct Wing {
     pub u: [f32; 2],
     /// Mean of the density map over the wing (texture blades above it are not drawn).
     pub density: f32,
+    /// The part drawn ([`crate::wing_trim`]); `None` when it can show nothing.
+    pub cut: Option<Cut>,
 }
 
 /// Wings and anchors of one grid at one step.
@@ -182,6 +185,7 @@ impl Billboards {
                                     outer,
                                     u: [u0, u0 + length / (SPAN * spacing)],
                                     density,
+                                    cut: Some(Cut::WHOLE),
                                 });
                             }
                             billboards += u32::from(wings.len() > before);
@@ -228,6 +232,17 @@ impl Billboards {
             .iter()
             .map(|&s| crate::lod::billboards_per_side(n, s + 1))
             .collect()
+    }
+
+    /// Cuts every wing down to the texels it can show ([`crate::wing_trim`]).
+    pub fn cut_wings(&mut self, skyline: &Skyline) {
+        for levels in &mut self.grids {
+            for (k, level) in levels.iter_mut().enumerate() {
+                for w in &mut level.wings {
+                    w.cut = skyline.cut(k as u32, w.u, w.density);
+                }
+            }
+        }
     }
 
     /// Wings of every grid at its finest level (an upper bound on the wings of a frame).

@@ -313,12 +313,22 @@ impl WingBuilder<'_> {
                     &billboards.anchors[w.outer as usize],
                 );
                 let top = |a: u32| tops[(a - first) as usize];
+                let Some(cut) = w.cut else { return };
+                // The cut's corners and texture `u`: the wing's, interpolated along it.
+                let at = |t: f32| {
+                    (
+                        c.root.lerp(o.root, t),
+                        top(w.centre).lerp(top(w.outer), t),
+                        w.u[0] + (w.u[1] - w.u[0]) * t,
+                    )
+                };
+                let ((root0, top0, u0), (root1, top1, u1)) = (at(cut.along[0]), at(cut.along[1]));
                 out.push(WingInstance {
-                    centre_root: c.root.extend(w.u[0]).to_array(),
-                    outer_root: o.root.extend(w.u[1]).to_array(),
-                    centre_top: top(w.centre).extend(far.level as f32).to_array(),
-                    outer_top: top(w.outer).extend(w.density).to_array(),
-                    fade: [alpha, 0.0, 0.0, 0.0],
+                    centre_root: root0.extend(u0).to_array(),
+                    outer_root: root1.extend(u1).to_array(),
+                    centre_top: top0.extend(far.level as f32).to_array(),
+                    outer_top: top1.extend(w.density).to_array(),
+                    fade: [alpha, cut.top, 0.0, 0.0],
                 });
             };
             match orders {

@@ -41,19 +41,23 @@ pub struct FlowerInstance {
     pub axis_layer: [f32; 4],
 }
 
-/// Per-frame per-wing data (instance step): one rectangle of a billboard (Sec. 4.1-4.2).
+/// Per-frame data of one wing (instance step): a rectangle of a billboard (Sec. 4.1-4.2), or
+/// the part of it [`crate::wing_trim`] keeps. "Centre" is its edge towards the billboard's
+/// middle line, "outer" the other.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct WingInstance {
-    /// Root of the plant at the middle line xyz; w = texture `u` there.
+    /// Root (ground point) of the edge towards the middle line xyz; w = texture `u` there.
     pub centre_root: [f32; 4],
-    /// Root of the plant at the outer edge xyz; w = texture `u` there.
+    /// Root of the outer edge xyz; w = texture `u` there.
     pub outer_root: [f32; 4],
-    /// Top of the middle line xyz; w = billboard texture layer.
+    /// The whole wing's top above `centre_root` xyz; w = billboard texture layer.
     pub centre_top: [f32; 4],
-    /// Top of the outer edge xyz; w = kept fraction of the texture's blades (the density).
+    /// The whole wing's top above `outer_root` xyz; w = kept fraction of the texture's blades
+    /// (the density).
     pub outer_top: [f32; 4],
-    /// x = the grid's fade alpha (Sec. 6.1; 1 unless fading); yzw unused.
+    /// x = the grid's fade alpha (Sec. 6.1; 1 unless fading); y = the cut's height as a
+    /// fraction of the wing's (texture `v` at its top edge); zw unused.
     pub fade: [f32; 4],
 }
 
@@ -140,8 +144,10 @@ pub struct Pipelines {
     pub blades: wgpu::RenderPipeline,
     /// Petal quads.
     pub flowers: wgpu::RenderPipeline,
-    /// Billboard wings.
+    /// Billboard wings, lit by the ambient and the sun (per vertex).
     pub wings: wgpu::RenderPipeline,
+    /// Billboard wings with the point light added per pixel, for frames that have one.
+    pub wings_point_lit: wgpu::RenderPipeline,
     /// Trees and stones (Sec. 5.5.2).
     pub props: wgpu::RenderPipeline,
     /// Group 1.
@@ -360,6 +366,13 @@ impl Pipelines {
             blend,
             &[Some(WING_LAYOUT.clone())],
         );
+        let wings_point_lit = pipeline(
+            "zhang billboard wings (point light)",
+            &billboard_module,
+            ("vs_wing", "fs_wing_point_lit"),
+            blend,
+            &[Some(WING_LAYOUT.clone())],
+        );
         let props_module = shaders::module(device, "zhang props", crate::PROPS_SHADER);
         let props_buffers = [Some(PROP_LAYOUT.clone())];
         let props_spec = shaders::PipelineSpec::new(
@@ -385,6 +398,7 @@ impl Pipelines {
             blades,
             flowers,
             wings,
+            wings_point_lit,
             props,
             bind_group,
             bytes: Self::bytes(layers),

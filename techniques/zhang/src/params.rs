@@ -66,6 +66,10 @@ pub struct Params {
     pub fade_radius: f32,
     /// Simple tree and stone meshes where the covering map holds IDs 253 and 254 (Sec. 5.5.2).
     pub props: bool,
+    /// Draw each billboard wing cut down to the texels it can show (the same image where a
+    /// wing is planar, a quarter less fill; [`crate::wing_trim`]); off draws whole
+    /// rectangles as the thesis does.
+    pub trim_wings: bool,
 }
 
 impl Default for Params {
@@ -89,6 +93,7 @@ impl Default for Params {
             sorting: Sorting::Sort,
             fade_radius: 0.25,
             props: true,
+            trim_wings: true,
         }
     }
 }
