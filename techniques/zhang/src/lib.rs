@@ -140,13 +140,15 @@
 //! - A wing is drawn as the part of its rectangle that holds the texels it can show (ends
 //!   moved in to the first and last such column, top down to the highest such row;
 //!   [`wing_trim`], `trim_wings = false` draws whole ones), not the whole rectangle as tall as
-//!   the scene's tallest blade: the same texels where a wing is planar, 24 % less fill on the
-//!   meadow's walk, 8 % off zhang's frame on lavapipe (A/B, `results/zhang_lod/README.md`).
+//!   the scene's tallest blade: the same texels where a wing is planar, a quarter less fill on
+//!   the meadow's walk and half on the prairie's flight, 8 % off zhang's frame on the meadow
+//!   on lavapipe (A/B, `results/zhang_lod/README.md`).
 //! - Wings are shaded per vertex for the ambient and the sun (exact: over a wing only the
 //!   ambient occlusion varies, affinely with the height, so the sum interpolates exactly)
 //!   and for the fog (across a wing's 0.6 m of depth `1 − exp(−k·d)` departs from a line by
-//!   at most `k²·0.6²/8`, 2·10⁻⁷ at the default `k` = 0.002/m), per pixel for the point light (a second pipeline, drawn only in frames that have one). The
-//!   per-pixel `shade_leaf` made zhang's frame 19 % longer on lavapipe (13 k wings over ten
+//!   at most `k²·0.6²/8`, 2·10⁻⁷ at the default `k` = 0.002/m), per pixel for the point
+//!   light (a second pipeline, drawn only in frames that have one). The per-pixel
+//!   `shade_leaf` made zhang's frame 17 % longer on the meadow on lavapipe (13 k wings, five
 //!   screens of fill); the blades keep it.
 //! - The thesis steps every animated blade every frame with the wind at each control point.
 //!   Blades that are animated but not drawn this frame (about two thirds of them on the
@@ -179,10 +181,11 @@
 //! and with sorting 80 bytes per drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`)
 //! per visible near blade, 2 per petal and 2 per wing (at most `6·n'²` wings per far grid);
 //! 3-5 draws. On a software rasteriser the wings' fill dominates: on the meadow's walk at
-//! 640x360 they cover the screen ten times whole and 7.7 times cut, 84 % of it in the
-//! nearest billboards (`l' = 5`). Memory: `80·B + 32·F`
-//! bytes of instances, 80 per wing, 80 per sorted single plant (16 near grids' worth), 91 KB of textures plus 128 KB per
-//! billboard layer (3 on the canonical scenes). Measured numbers: `README.md`, `results/zhang_lod/`.
+//! 640x360 they cover 5.4 screens whole and 4.0 cut (on the prairie's flight 1.1 and 0.6),
+//! most of it in the nearest billboards (`l' = 5`). Memory: `80·B + 32·F` bytes of
+//! instances, 80 per wing, 80 per sorted single plant (16 near grids' worth), 91 KB of
+//! textures plus 128 KB per billboard layer (3 on the canonical scenes). Measured numbers:
+//! `README.md`, `results/zhang_lod/`.
 //!
 //! ## Known artifacts
 //! - Textures are sampled at mip level 0 (a cut-out's alpha would blur away with distance) and

@@ -5,7 +5,7 @@
 //! Fig. 11 in a rectangle as tall as the tallest blade of the scene: most of its area is clear
 //! texels that the fragment shader discards. A GPU with a hardware rasteriser hardly notices;
 //! a software one (lavapipe) pays for every covered pixel, and on the meadow's walk the wings
-//! cover the screen about ten times over, 84 % of it in the nearest billboards.
+//! cover the screen five times over, most of it in the nearest billboards.
 //!
 //! So each wing is cut once, at start-up, to the part of its rectangle that holds every texel a
 //! fragment of it could keep: alpha at or above the cut-off and a density threshold below the
@@ -18,10 +18,10 @@
 //! lie in one plane with its roots, and there the cut rectangle's diagonal is not the whole
 //! one's (a texel off here and there). `trim_wings = false` draws whole wings.
 //!
-//! Cutting a wing into several strips of different heights saves more fill (measured on the
-//! meadow's walk: 46 % of the wings' area, against 24 % for one rectangle) but costs an
-//! instance per strip; on lavapipe, with the wings lit per vertex, up to four strips per wing
-//! were no faster than one rectangle (`results/zhang_lod/README.md`).
+//! Cutting a wing into several strips of different heights saves more fill (measured over the
+//! first frames of the meadow's walk: 46 % of the wings' projected area, against 24 % for one
+//! rectangle) but costs an instance per strip; on lavapipe, with the wings lit per vertex, up
+//! to four strips per wing were no faster than one rectangle (`results/zhang_lod/README.md`).
 
 /// The part of a wing that is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
