@@ -34,6 +34,36 @@ fn fails_with(args: &[&str], needles: &[&str]) {
     }
 }
 
+/// Every sweep and scene file the project ships validates (`grassbench validate`: parses,
+/// expands, every scene variant builds, every parameter is one the technique knows), so a
+/// sweep in `experiments/` cannot rot unnoticed until someone spends an hour running it.
+#[test]
+fn every_shipped_sweep_and_scene_file_validates() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in [root.to_path_buf(), root.join("scenes"), root.join("boulanger_views")] {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name.ends_with(".toml") && name != "Cargo.toml" {
+                files.push(path.to_string_lossy().into_owned());
+            }
+        }
+    }
+    assert!(files.len() >= 10, "{files:?}");
+    // From the repository's root, as the README runs them (sweeps name scene files by their
+    // path from there).
+    let out = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .arg("validate")
+        .args(&files)
+        .current_dir(root.parent().unwrap())
+        .output()
+        .expect("binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("sweep `zhang_target`"), "{err}");
+}
+
 #[test]
 fn list_shows_techniques_and_scenes() {
     let (ok, out, _) = grassbench(&["list"]);

@@ -145,11 +145,11 @@
 //!   on lavapipe (A/B, `results/zhang_lod/README.md`).
 //! - Wings are shaded per vertex for the ambient and the sun (exact: over a wing only the
 //!   ambient occlusion varies, affinely with the height, so the sum interpolates exactly)
-//!   and for the fog (across a wing's 0.6 m of depth `1 − exp(−k·d)` departs from a line by
-//!   at most `k²·0.6²/8`, 2·10⁻⁷ at the default `k` = 0.002/m), per pixel for the point
-//!   light (a second pipeline, drawn only in frames that have one). The per-pixel
-//!   `shade_leaf` made zhang's frame 17 % longer on the meadow on lavapipe (13 k wings, five
-//!   screens of fill); the blades keep it.
+//!   and for the fog (across a wing, at most 1.8 m deep for the coarsest diagonal ones,
+//!   `1 − exp(−k·d)` departs from a line by at most `k²·1.8²/8`, 2·10⁻⁶ at the default
+//!   `k` = 0.002/m), per pixel for the point light (a second pipeline, drawn only in frames
+//!   that have one). The per-pixel `shade_leaf` made zhang's frame 17 % longer on the meadow
+//!   on lavapipe (13 k wings, five screens of fill); the blades keep it.
 //! - The thesis steps every animated blade every frame with the wind at each control point.
 //!   Blades that are animated but not drawn this frame (about two thirds of them on the
 //!   meadow: grids behind the camera, grids two away, the finer billboard step's extra
