@@ -205,8 +205,17 @@ impl SweepSpec {
             * f64::from(self.repetitions)
     }
 
-    /// The runs in execution order, for the resolved technique ids.
+    /// The runs in execution order, for the resolved technique ids. Within each group (scene,
+    /// scene variant, resolution, MSAA, repetition) `reference` runs first, whatever the file's
+    /// order, so every other run of the group can be divided by it and compared with its image
+    /// as it finishes.
     pub fn expand(&self, techniques: &[&str]) -> Result<Vec<PlannedRun>> {
+        let techniques: Vec<&str> = techniques
+            .iter()
+            .filter(|&&t| t == REFERENCE)
+            .chain(techniques.iter().filter(|&&t| t != REFERENCE))
+            .copied()
+            .collect();
         let scene_grid = cartesian(&self.scene_params);
         let mut runs = Vec::new();
         for repetition in 0..self.repetitions {
@@ -221,7 +230,7 @@ impl SweepSpec {
                         for &msaa in &self.msaa {
                             let group_key =
                                 format!("{scene}|{scene_overrides:?}|{resolution}|{msaa}");
-                            for &technique in techniques {
+                            for &technique in &techniques {
                                 let grid = self
                                     .params
                                     .get(technique)
@@ -258,6 +267,9 @@ impl SweepSpec {
         Ok(runs)
     }
 }
+
+/// The technique every other is measured against (ratio and FLIP in a sweep's `runs.csv`).
+const REFERENCE: &str = "reference";
 
 /// Every combination of a table of `key = [values…]` (a scalar counts as one value), in key
 /// order; one empty combination for an empty table.
@@ -366,6 +378,13 @@ k = [1, 2, 3]
         }
         let again = spec.expand(&["x", "y"]).unwrap();
         assert_eq!(runs, again);
+        // `reference` first in every group, wherever the file lists it.
+        let with_reference = spec.expand(&["y", "reference", "x"]).unwrap();
+        assert_eq!(with_reference.len(), 40);
+        for group in with_reference.chunk_by(|a, b| a.group == b.group) {
+            assert_eq!(group[0].technique, "reference", "{group:?}");
+            assert_eq!(group[1].technique, "y");
+        }
         let mut ids: Vec<_> = runs.iter().map(|r| r.id.clone()).collect();
         ids.sort();
         ids.dedup();
