@@ -41,7 +41,11 @@ fn fails_with(args: &[&str], needles: &[&str]) {
 fn every_shipped_sweep_and_scene_file_validates() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    for dir in [root.to_path_buf(), root.join("scenes"), root.join("boulanger_views")] {
+    for dir in [
+        root.to_path_buf(),
+        root.join("scenes"),
+        root.join("boulanger_views"),
+    ] {
         for entry in std::fs::read_dir(&dir).unwrap() {
             let path = entry.unwrap().path();
             let name = path.file_name().unwrap().to_string_lossy().into_owned();

@@ -324,6 +324,44 @@ fn report_on_a_fixture_writes_tables_and_plots() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
+/// A run written before its group's reference (the reference in another shard, joined by
+/// `merge`) has no ratio in runs.csv; the report divides by the group's reference itself.
+#[test]
+fn report_fills_speed_ups_from_the_group_reference() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/report");
+    let out = temp("report-ratio");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::copy(fixture.join("meta.toml"), out.join("meta.toml")).unwrap();
+    let mut reader = csv::Reader::from_path(fixture.join("runs.csv")).unwrap();
+    let headers = reader.headers().unwrap().clone();
+    let ratio = headers
+        .iter()
+        .position(|h| h == "gpu_wall_ratio_to_reference")
+        .unwrap();
+    let technique = headers.iter().position(|h| h == "technique").unwrap();
+    let mut writer = csv::Writer::from_path(out.join("runs.csv")).unwrap();
+    writer.write_record(&headers).unwrap();
+    for record in reader.records() {
+        let record = record.unwrap();
+        let blank = &record[technique] != "reference";
+        let fields = record
+            .iter()
+            .enumerate()
+            .map(|(k, v)| if blank && k == ratio { "" } else { v });
+        writer.write_record(fields).unwrap();
+    }
+    writer.flush().unwrap();
+    let (ok, err) = grassbench(&["report", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    // bakay at density 10: 4 ms against 20, 5 against 21 → 1 / median(0.2, 0.238) = 4.57;
+    // at density 40 (its second repetition failed): 5 against 70 → 14.00.
+    for row in ["| 4.57 |", "| 14.00 |"] {
+        assert!(report.contains(row), "REPORT.md lacks `{row}`:\n{report}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
 #[test]
 fn bad_sweep_files_are_refused_with_the_reason() {
     let d = temp("bad");

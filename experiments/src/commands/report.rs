@@ -89,9 +89,21 @@ fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
     .map(col)
     .into_iter()
     .collect::<anyhow::Result<Vec<_>>>()?;
+    let records = reader.records().collect::<Result<Vec<_>, _>>()?;
+    // The reference's GPU time per group (scene, variant, size, MSAA, repetition): a run
+    // written before its group's reference (another shard's, after `merge`) has no ratio in
+    // runs.csv, and gets it here.
+    let c_rep = col("repetition")?;
+    let group = |r: &csv::StringRecord| {
+        [c_scene, c_var, c_w, c_h, c_msaa, c_rep].map(|k| r.get(k).unwrap_or_default().to_owned())
+    };
+    let reference: BTreeMap<_, f64> = records
+        .iter()
+        .filter(|r| r.get(c_tech) == Some("reference") && r.get(c_status) == Some("ok"))
+        .filter_map(|r| Some((group(r), r.get(nums[0])?.parse().ok()?)))
+        .collect();
     let mut configs: BTreeMap<String, Config> = BTreeMap::new();
-    for record in reader.records() {
-        let r = record?;
+    for r in &records {
         let get = |k: usize| r.get(k).unwrap_or_default();
         let num = |k: usize| get(nums[k]).parse::<f64>().ok();
         let id = get(c_id);
@@ -117,7 +129,14 @@ fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         push(&mut c.update, 2);
         push(&mut c.upload, 3);
         push(&mut c.encode, 4);
-        push(&mut c.ratio, 5);
+        match num(5) {
+            Some(ratio) => c.ratio.push(ratio),
+            None => {
+                if let (Some(t), Some(&t_ref)) = (num(0), reference.get(&group(r))) {
+                    c.ratio.push(t / t_ref);
+                }
+            }
+        }
         push(&mut c.flip, 6);
         push(&mut c.flip_quarter, 7);
         push(&mut c.efficiency, 8);
