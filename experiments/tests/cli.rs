@@ -3,11 +3,18 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use std::path::Path;
 use std::process::Command;
 
 fn grassbench(args: &[&str]) -> (bool, String, String) {
+    grassbench_in(Path::new("."), args)
+}
+
+/// `grassbench args` run in `dir`.
+fn grassbench_in(dir: &Path, args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_grassbench"))
         .args(args)
+        .current_dir(dir)
         .output()
         .expect("binary runs");
     (
@@ -39,7 +46,7 @@ fn fails_with(args: &[&str], needles: &[&str]) {
 /// sweep in `experiments/` cannot rot unnoticed until someone spends an hour running it.
 #[test]
 fn every_shipped_sweep_and_scene_file_validates() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
     for dir in [
         root.to_path_buf(),
@@ -57,14 +64,10 @@ fn every_shipped_sweep_and_scene_file_validates() {
     assert!(files.len() >= 10, "{files:?}");
     // From the repository's root, as the README runs them (sweeps name scene files by their
     // path from there).
-    let out = Command::new(env!("CARGO_BIN_EXE_grassbench"))
-        .arg("validate")
-        .args(&files)
-        .current_dir(root.parent().unwrap())
-        .output()
-        .expect("binary runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
+    let mut args = vec!["validate"];
+    args.extend(files.iter().map(String::as_str));
+    let (ok, _, err) = grassbench_in(root.parent().unwrap(), &args);
+    assert!(ok, "{err}");
     assert!(err.contains("sweep `zhang_target`"), "{err}");
 }
 

@@ -11,8 +11,8 @@ pub use pipeline::{PipelineSpec, depth_less, depth_test, render_pipeline};
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,
 /// `terrain_covering`, `wind_at`, `shade`, `shade_leaf` (and its parts `facing_viewer`,
-/// `leaf_lambert`, `leaf_irradiance`, `point_light`), `sky_color`, `apply_fog` (`fog_factor`),
-/// hashes.
+/// `leaf_lambert`, `leaf_irradiance`, `direct_occlusion`, `point_light`), `sky_color`,
+/// `apply_fog` (`fog_factor`), hashes.
 pub const PRELUDE: &str = include_str!("prelude.wgsl");
 
 /// The core's sky and ground shader (without the prelude).

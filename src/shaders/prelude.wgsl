@@ -134,9 +134,15 @@ fn facing_viewer(normal: vec3<f32>, world_pos: vec3<f32>) -> vec3<f32> {
 }
 
 // What `shade_leaf` multiplies the albedo by, from the direct light on the leaf: the ambient
-// term darkened by `ao`, the direct one by half of that. Affine in `ao`.
+// term darkened by `ao`, the direct one by `direct_occlusion(ao)`. Affine in `ao`.
 fn leaf_irradiance(direct: vec3<f32>, ao: f32) -> vec3<f32> {
-    return globals.ambient.rgb * ao + direct * mix(0.5, 1.0, ao);
+    return globals.ambient.rgb * ao + direct * direct_occlusion(ao);
+}
+
+// How much of the direct light reaches a leaf point whose ambient occlusion is `ao`: half as
+// much darkening as the ambient light gets.
+fn direct_occlusion(ao: f32) -> f32 {
+    return mix(0.5, 1.0, ao);
 }
 
 // Two-sided Lambert factor of a leaf whose normal `n` faces the viewer, for the unit vector

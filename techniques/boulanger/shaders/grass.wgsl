@@ -192,7 +192,7 @@ fn btf_light(albedo: vec3<f32>, d_a: vec4<f32>, d_b: f32, sun: Weights, point: W
     }
     // The occlusion map (Sec. 3.5) per pixel, below the texel.
     let sky = ambient_visibility(world.xz);
-    return albedo * (globals.ambient.rgb * ao * sky + direct * mix(0.5, 1.0, ao));
+    return albedo * (globals.ambient.rgb * ao * sky + direct * direct_occlusion(ao));
 }
 
 // A cell mirrored in x (z) sees the light mirrored: X+ and X- (Z+ and Z-) swap weights.
@@ -373,7 +373,7 @@ fn shade_blade(albedo: vec3<f32>, normal: vec3<f32>, world: vec3<f32>, root: vec
         let l = normalize(globals.point_position.xyz - world);
         direct += point_light(world) * leaf_lambert(n, l, translucency) * blade_shadow(p, root.w, l);
     }
-    return albedo * (globals.ambient.rgb * ao * sky + direct * mix(0.5, 1.0, ao));
+    return albedo * (globals.ambient.rgb * ao * sky + direct * direct_occlusion(ao));
 }
 
 // The orthographic cameras of the bake (Sec. 3.3, Fig. 6), in the patch's frame (the patch

@@ -133,6 +133,6 @@ fn fs_wing_point_lit(in: WingOut) -> @location(0) vec4<f32> {
     let albedo = wing_albedo(in);
     let to_light = normalize(globals.point_position.xyz - in.world);
     let direct = point_light(in.world) * leaf_lambert(in.normal, to_light, params.color_tip.w);
-    let light = in.light + direct * mix(0.5, 1.0, wing_ao(in.uv.y));
+    let light = in.light + direct * direct_occlusion(wing_ao(in.uv.y));
     return wing_color(albedo, light, in.fog);
 }

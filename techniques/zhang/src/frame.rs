@@ -308,17 +308,18 @@ impl WingBuilder<'_> {
             tops.extend(level.anchors.clone().map(top));
             let tops = &*tops;
             let mut push = |w: &crate::billboard::Wing| {
+                let Some(cut) = w.cut else { return };
                 let (c, o) = (
                     &billboards.anchors[w.centre as usize],
                     &billboards.anchors[w.outer as usize],
                 );
                 let top = |a: u32| tops[(a - first) as usize];
-                let Some(cut) = w.cut else { return };
+                let (top_c, top_o) = (top(w.centre), top(w.outer));
                 // The cut's corners and texture `u`: the wing's, interpolated along it.
                 let at = |t: f32| {
                     (
                         c.root.lerp(o.root, t),
-                        top(w.centre).lerp(top(w.outer), t),
+                        top_c.lerp(top_o, t),
                         w.u[0] + (w.u[1] - w.u[0]) * t,
                     )
                 };
