@@ -12,6 +12,9 @@
 //! | [`wind`] | the [`wind::WindField`] abstraction every wind model implements, and its GPU copy |
 //! | [`grass`] | the scene's grass population: a deterministic field of blades every technique can draw from |
 //! | [`scene`] | scene files (TOML): terrain + camera path + wind + lights + sky + grass + seed |
+//! | [`files`] | result files written atomically (a crash never leaves half a file), CSV |
+//! | [`keyframes`] | values keyed by scene time: paths of the moving object, blasts, lights |
+//! | [`object`] | the scene's moving object (a sphere on a path) every technique sees |
 //! | [`frame`] | [`frame::FrameInputs`] (time is passed in) and the per-frame GPU globals |
 //! | [`technique`] | the [`technique::GrassTechnique`] trait, its contexts and the timed [`technique::FrameEncoder`] |
 //! | [`runner`] | one technique x one scene x N frames, timed stage by stage, written as CSV |
@@ -27,10 +30,13 @@ pub mod camera;
 pub mod color;
 pub mod compare;
 pub mod error;
+pub mod files;
 pub mod frame;
 pub mod gpu;
 pub mod grass;
+pub mod keyframes;
 pub mod metrics;
+pub mod object;
 pub mod params;
 pub mod rng;
 pub mod runner;

@@ -320,7 +320,7 @@ fn padded_row_bytes(width: u32) -> u32 {
 
 /// Writes a PNG atomically (temporary file, then rename), creating parent folders.
 pub fn save_png(image: &image::RgbaImage, path: &Path) -> Result<()> {
-    crate::runner::write_atomic(path, |file| {
+    crate::files::write_atomic(path, |file| {
         image::codecs::png::PngEncoder::new(file)
             .write_image(
                 image.as_raw(),

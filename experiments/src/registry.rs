@@ -37,3 +37,31 @@ pub fn select(spec: &str) -> Result<Vec<&'static TechniqueEntry>> {
     }
     spec.split(',').map(|s| find(s.trim())).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::panic)]
+
+    use super::*;
+
+    #[test]
+    fn ids_are_unique_and_every_variant_passes_its_technique_check() {
+        let mut ids = ids();
+        ids.sort_unstable();
+        ids.dedup();
+        assert_eq!(ids.len(), TECHNIQUES.len(), "two techniques share an id");
+        for e in TECHNIQUES {
+            e.check(&toml::Table::new())
+                .unwrap_or_else(|err| panic!("{}: defaults rejected: {err}", e.info.id));
+            for v in e.variants.iter() {
+                let overrides = e
+                    .variant(v.name)
+                    .unwrap()
+                    .unwrap_or_else(|err| panic!("{}: {err}", e.info.id));
+                e.check(&overrides).unwrap_or_else(|err| {
+                    panic!("{}: variant `{}` rejected: {err}", e.info.id, v.name)
+                });
+            }
+        }
+    }
+}

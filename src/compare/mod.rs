@@ -20,7 +20,7 @@ pub use temporal::{CameraMotion, TemporalStability, frame_differences, temporal_
 use crate::metrics;
 use crate::runner::Harness;
 use crate::target::Size;
-use crate::technique::{FINEST, GrassTechnique, TechniqueEntry};
+use crate::technique::{GrassTechnique, TechniqueEntry};
 use crate::{GpuContext, Result, Scene};
 
 /// Per-pixel scores of an image against a reference image.
@@ -87,23 +87,21 @@ pub struct LodFidelity {
     pub finest_image: image::RgbaImage,
 }
 
-/// LOD fidelity of `entry` at `frame`, or `None` when it declares no finest variant.
+/// LOD fidelity of `entry` at `frame` (every technique has a finest variant: the type of
+/// [`crate::technique::Variants`] requires it).
 pub fn lod_fidelity(
     gpu: &GpuContext,
     scene: &Scene,
     entry: &TechniqueEntry,
     frame: u64,
     size: Size,
-) -> Result<Option<LodFidelity>> {
-    let Some(finest) = entry.variant(FINEST) else {
-        return Ok(None);
-    };
-    let finest = finest?;
+) -> Result<LodFidelity> {
+    let finest = entry.finest()?;
     let default_image = render(gpu, scene, entry, &toml::Table::new(), frame, size)?;
     let finest_image = render(gpu, scene, entry, &finest, frame, size)?;
-    Ok(Some(LodFidelity {
+    Ok(LodFidelity {
         scores: scores(&finest_image, &default_image)?,
         default_image,
         finest_image,
-    }))
+    })
 }

@@ -9,16 +9,15 @@
 //! - `gpu_ts_*_ms` come from timestamp queries around each pass, where the adapter has them;
 //!   render and compute passes are kept apart because lavapipe's compute timestamps are wrong.
 
-mod output;
 mod provenance;
 mod record;
 mod stats;
 
 use std::time::Instant;
 
-pub use output::{write_atomic, write_csv};
+pub use crate::files::{write_atomic, write_csv};
 pub use provenance::{Provenance, WGPU_VERSION};
-pub use record::{FrameRecord, RunSummary};
+pub use record::{FrameRecord, LevelRow, RunSummary};
 pub use stats::Percentiles;
 
 use crate::scene::SceneGpu;
@@ -104,26 +103,32 @@ impl<'g> Harness<'g> {
         self.wind.as_ref()
     }
 
-    /// Creates a technique: its defaults, overlaid with the scene file's `[techniques.<id>]`,
-    /// overlaid with `overrides`.
-    pub fn create(
-        &self,
-        entry: &TechniqueEntry,
-        overrides: &toml::Table,
-    ) -> Result<Box<dyn GrassTechnique>> {
-        let mut params = self.scene.technique_overrides(entry.info.id);
-        params.extend(overrides.iter().map(|(k, v)| (k.clone(), v.clone())));
-        let ctx = InitContext {
+    /// What a technique is created with on this harness's scene and target.
+    pub fn init_context(&self) -> InitContext<'_> {
+        InitContext {
             gpu: self.gpu,
             scene: &self.scene,
             scene_gpu: &self.scene_gpu,
             size: self.target.size,
             sample_count: self.target.sample_count,
-        };
-        let estimate = (entry.estimate)(&self.scene, &params)?.plus(self.target.estimate());
+        }
+    }
+
+    /// Creates a technique: its defaults, overlaid with the scene file's `[techniques.<id>]`,
+    /// overlaid with `overrides`; its GPU memory estimate is checked against the adapter first.
+    pub fn create(
+        &self,
+        entry: &TechniqueEntry,
+        overrides: &toml::Table,
+    ) -> Result<Box<dyn GrassTechnique>> {
+        let params = self.scene.technique_params(entry.info.id, overrides);
+        let estimate = entry
+            .estimate(&self.scene, &params)?
+            .plus(self.target.estimate());
         crate::gpu::memory::check(self.gpu, entry.info.id, estimate)?;
         let during = format!("creating technique `{}`", entry.info.id);
-        self.gpu.scoped(&during, || (entry.create)(&ctx, &params))?
+        let ctx = self.init_context();
+        self.gpu.scoped(&during, || entry.create(&ctx, &params))?
     }
 
     /// Advances the wind to `frame` (stateful fields are rebuilt and replayed when going back).
@@ -263,8 +268,9 @@ impl<'g> Harness<'g> {
                         .draw(&mut pass, &self.scene_gpu.terrain);
                 }
                 enc.set_label_prefix(&prefix);
+                let core_draws = enc.counts().draws;
                 technique.encode(&mut enc);
-                let draw_calls = enc.draw_calls();
+                let draw_calls = enc.counts().draws - core_draws;
                 let mut encoder = enc.finish();
                 let readback = capture.then(|| self.target.encode_readback(gpu, &mut encoder));
                 let command_buffer = encoder.finish();
@@ -290,7 +296,6 @@ impl<'g> Harness<'g> {
         };
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
-        let lod = technique.lod_blades();
         let record = FrameRecord {
             run_id: String::new(),
             technique: info.id.to_owned(),
@@ -309,13 +314,11 @@ impl<'g> Harness<'g> {
             gpu_ts_render_ms: sum(&|p| !p.label.starts_with("core.") && p.kind == PassKind::Render),
             gpu_ts_compute_ms: sum(&|p| p.kind == PassKind::Compute),
             blades: stats.blades,
-            blades_geometry: lod.map(|l| l.geometry),
-            blades_vertical_slices: lod.map(|l| l.vertical_slices),
-            blades_horizontal_slices: lod.map(|l| l.horizontal_slices),
             triangles: stats.triangles,
-            draw_calls: stats.draw_calls.max(draw_calls),
+            draw_calls,
             gpu_bytes: stats.gpu_bytes,
             counters: record::format_counters(&technique.counters()),
+            levels: technique.levels(),
         };
         Ok(FrameOutput { record, image })
     }
@@ -411,7 +414,7 @@ pub fn run_interleaved(
         .map(|((technique, (frames, images)), error)| match error {
             Some(e) => Err(e),
             None => Ok(RunResult {
-                summary: RunSummary::from_frames(&frames, &technique.params()),
+                summary: RunSummary::from_frames(&frames, &technique.param_table()),
                 frames,
                 images,
             }),

@@ -2,6 +2,7 @@
 //! technique parameters recorded separately in long format.
 
 use super::Percentiles;
+use crate::technique::LevelBlades;
 
 /// One measured frame (a row of `frames.csv`).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -40,12 +41,6 @@ pub struct FrameRecord {
     pub gpu_ts_compute_ms: Option<f64>,
     /// Blades represented.
     pub blades: u64,
-    /// Blades drawn as geometry (empty for techniques without levels of detail).
-    pub blades_geometry: Option<u64>,
-    /// Blades represented by vertical slices (empty without levels of detail).
-    pub blades_vertical_slices: Option<u64>,
-    /// Blades represented by horizontal slices (empty without levels of detail).
-    pub blades_horizontal_slices: Option<u64>,
     /// Triangles submitted.
     pub triangles: u64,
     /// Draw calls.
@@ -56,6 +51,44 @@ pub struct FrameRecord {
     ///
     /// [`GrassTechnique::counters`]: crate::GrassTechnique::counters
     pub counters: String,
+    /// Blades per level of detail, in the technique's own levels (written to `levels.csv` in
+    /// long format, not to `frames.csv`).
+    #[serde(skip)]
+    pub levels: Vec<LevelBlades>,
+}
+
+/// A row of `levels.csv`: blades one level of detail drew or stood for in one frame (long
+/// format, since every technique names its own levels).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LevelRow {
+    /// Run id.
+    pub run_id: String,
+    /// Technique id.
+    pub technique: String,
+    /// Frame number.
+    pub frame: u64,
+    /// The technique's name for the level.
+    pub level: String,
+    /// Blades.
+    pub blades: u64,
+}
+
+impl LevelRow {
+    /// The level rows of measured frames, in frame order.
+    pub fn of(frames: &[FrameRecord]) -> Vec<Self> {
+        frames
+            .iter()
+            .flat_map(|f| {
+                f.levels.iter().map(|l| Self {
+                    run_id: f.run_id.clone(),
+                    technique: f.technique.clone(),
+                    frame: f.frame,
+                    level: l.level.to_owned(),
+                    blades: l.blades,
+                })
+            })
+            .collect()
+    }
 }
 
 /// `name=value;...` of a technique's counters.
@@ -118,12 +151,6 @@ pub struct RunSummary {
     pub frame_ms_p95: f64,
     /// Median blades.
     pub blades: u64,
-    /// Median blades drawn as geometry (empty without levels of detail).
-    pub blades_geometry: Option<u64>,
-    /// Median blades represented by vertical slices.
-    pub blades_vertical_slices: Option<u64>,
-    /// Median blades represented by horizontal slices.
-    pub blades_horizontal_slices: Option<u64>,
     /// Median triangles.
     pub triangles: u64,
     /// Median draw calls.
@@ -157,10 +184,6 @@ impl RunSummary {
         };
         let median_u64 =
             |f: &dyn Fn(&FrameRecord) -> u64| pct(&|r| f(r) as f64).median.round() as u64;
-        let median_opt_u64 = |f: &dyn Fn(&FrameRecord) -> Option<u64>| {
-            Percentiles::of(frames.iter().filter_map(f).map(|v| v as f64))
-                .map(|p| p.median.round() as u64)
-        };
         let wall = pct(&|r| r.gpu_wall_ms);
         let total = pct(&|r| r.wind_ms + r.update_ms + r.upload_ms + r.encode_ms + r.gpu_wall_ms);
         let first = frames.first();
@@ -190,9 +213,6 @@ impl RunSummary {
             frame_ms_p5: total.p5,
             frame_ms_p95: total.p95,
             blades,
-            blades_geometry: median_opt_u64(&|r| r.blades_geometry),
-            blades_vertical_slices: median_opt_u64(&|r| r.blades_vertical_slices),
-            blades_horizontal_slices: median_opt_u64(&|r| r.blades_horizontal_slices),
             triangles: median_u64(&|r| r.triangles),
             draw_calls: median_u64(&|r| r.draw_calls),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max().unwrap_or(0),

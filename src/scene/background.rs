@@ -115,7 +115,7 @@ impl Background {
     /// Draws the sky, the apron beyond the terrain, the ground, then the scene's moving object
     /// (a sphere ray-cast on a camera-facing quad; nothing when it has none). Bind group 0 must
     /// be set.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, terrain: &TerrainGpu) {
+    pub fn draw(&self, pass: &mut crate::technique::RenderPass<'_>, terrain: &TerrainGpu) {
         pass.set_pipeline(&self.sky);
         pass.draw(0..3, 0..1);
         pass.set_pipeline(&self.apron);

@@ -68,7 +68,7 @@ pub struct LightState {
 
 /// The value of light keyframes (sorted by time, validated) at `time`.
 fn sample_keys(keys: &[LightKey], time: f32) -> Option<glam::Vec3> {
-    super::keyframes::sample(keys, time, |k| (k.time, k.value.into()))
+    crate::keyframes::sample(keys, time, |k| (k.time, k.value.into()))
 }
 
 impl Default for LightsConfig {

@@ -4,18 +4,16 @@
 
 mod background;
 mod gpu;
-pub mod keyframes;
 mod lighting;
-mod object;
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::object::ObjectConfig;
 pub use background::Background;
 pub use gpu::SceneGpu;
 pub use lighting::{LightKey, LightState, LightsConfig, PointLight, SkyConfig};
-pub use object::{ObjectConfig, track, validate_track};
 
 use crate::camera::{Camera, CameraConfig};
 use crate::grass::{BladeField, GrassConfig};
@@ -193,5 +191,13 @@ impl Scene {
             .and_then(|v| v.as_table())
             .cloned()
             .unwrap_or_default()
+    }
+
+    /// The parameter overrides technique `id` runs with on this scene: the scene file's
+    /// `[techniques.<id>]`, overlaid with `overrides` (from a sweep grid or the command line).
+    pub fn technique_params(&self, id: &str, overrides: &toml::Table) -> toml::Table {
+        let mut params = self.technique_overrides(id);
+        params.extend(overrides.iter().map(|(k, v)| (k.clone(), v.clone())));
+        params
     }
 }

@@ -5,8 +5,10 @@
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
 
+mod layout;
 pub mod pipeline;
 
+pub use layout::struct_size;
 pub use pipeline::{PipelineSpec, depth_less, depth_test, render_pipeline};
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,

@@ -86,7 +86,7 @@ impl SweepStore {
         let runs = self.dir.join("runs.csv");
         truncate_torn_line(&runs)?;
         self.finished = read_column(&runs, "run_id")?.into_iter().collect();
-        for name in ["frames.csv", "params.csv"] {
+        for name in ["frames.csv", "params.csv", "levels.csv"] {
             let path = self.dir.join(name);
             truncate_torn_line(&path)?;
             keep_rows(&path, &self.finished)?;
@@ -94,7 +94,8 @@ impl SweepStore {
         Ok(())
     }
 
-    /// Appends a finished run: its frames and parameters first, its `runs.csv` row last.
+    /// Appends a finished run: its frames, levels and parameters first, its `runs.csv` row
+    /// last.
     pub fn append(
         &mut self,
         run: &RunSummary,
@@ -102,6 +103,10 @@ impl SweepStore {
         params: &[ParamRow],
     ) -> Result<()> {
         append_rows(&self.dir.join("frames.csv"), frames)?;
+        append_rows(
+            &self.dir.join("levels.csv"),
+            &crate::runner::LevelRow::of(frames),
+        )?;
         append_rows(&self.dir.join("params.csv"), params)?;
         append_rows(&self.dir.join("runs.csv"), std::slice::from_ref(run))?;
         self.finished.insert(run.run_id.clone());

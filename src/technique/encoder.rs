@@ -1,5 +1,6 @@
 //! Recording a frame: passes opened here get bind group 0 set and timestamp queries added.
 
+use super::pass::{ComputePass, PassCounts, RenderPass};
 use crate::scene::SceneGpu;
 use crate::{GpuContext, RenderTarget};
 
@@ -115,7 +116,7 @@ pub struct FrameEncoder<'a> {
     encoder: wgpu::CommandEncoder,
     timer: Option<&'a mut PassTimer>,
     label_prefix: &'a str,
-    draw_calls: u64,
+    counts: PassCounts,
 }
 
 impl<'a> FrameEncoder<'a> {
@@ -141,7 +142,7 @@ impl<'a> FrameEncoder<'a> {
                 }),
             timer,
             label_prefix,
-            draw_calls: 0,
+            counts: PassCounts::default(),
         }
     }
 
@@ -162,7 +163,7 @@ impl<'a> FrameEncoder<'a> {
     }
 
     /// Opens a render pass on the target (colour and depth loaded), with bind group 0 set.
-    pub fn render_pass(&mut self, label: &str) -> wgpu::RenderPass<'_> {
+    pub fn render_pass(&mut self, label: &str) -> RenderPass<'_> {
         self.render_pass_with(label, None, false)
     }
 
@@ -173,7 +174,7 @@ impl<'a> FrameEncoder<'a> {
         label: &str,
         clear: Option<wgpu::Color>,
         clear_depth: bool,
-    ) -> wgpu::RenderPass<'_> {
+    ) -> RenderPass<'_> {
         let full = format!("{}{}", self.label_prefix, label);
         let target = self.target;
         let scene = self.scene;
@@ -195,11 +196,11 @@ impl<'a> FrameEncoder<'a> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        pass
+        RenderPass::new(pass, &mut self.counts)
     }
 
     /// Opens a compute pass with bind group 0 set.
-    pub fn compute_pass(&mut self, label: &str) -> wgpu::ComputePass<'_> {
+    pub fn compute_pass(&mut self, label: &str) -> ComputePass<'_> {
         let full = format!("{}{}", self.label_prefix, label);
         let scene = self.scene;
         let timestamp_writes = self
@@ -218,7 +219,7 @@ impl<'a> FrameEncoder<'a> {
                 }),
             });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        pass
+        ComputePass::new(pass, &mut self.counts)
     }
 
     /// The raw command encoder, for copies and clears outside passes.
@@ -226,14 +227,9 @@ impl<'a> FrameEncoder<'a> {
         &mut self.encoder
     }
 
-    /// Counts draw calls for the statistics (techniques call it once per draw they record).
-    pub fn count_draws(&mut self, n: u64) {
-        self.draw_calls += n;
-    }
-
-    /// Draw calls counted so far.
-    pub fn draw_calls(&self) -> u64 {
-        self.draw_calls
+    /// Draws and dispatches recorded so far through this encoder's passes.
+    pub fn counts(&self) -> PassCounts {
+        self.counts
     }
 
     /// Resolves the timestamp queries and returns the finished command encoder.

@@ -8,14 +8,24 @@
 //! 2. [`GrassTechnique::prepare`]: uploads to the GPU;
 //! 3. [`GrassTechnique::encode`]: records passes, changing no state, so the same frame can be
 //!    encoded again; passes are opened through the [`FrameEncoder`], which adds timestamp
-//!    queries, so no technique can forget to be timed or be timed differently.
+//!    queries and counts every draw and dispatch, so no technique can forget to be timed or
+//!    counted, or be timed or counted differently.
+//!
+//! What a technique *is* (parameters, identity, variants, construction, memory estimate) is
+//! the typed [`Technique`] trait; [`entry`] turns it into the registry's [`TechniqueEntry`].
 
+mod definition;
 mod encoder;
 mod no_grass;
+mod pass;
 pub mod ranges;
 
+pub use definition::{
+    Describe, FINEST, NO_TRANSITIONS, Technique, TechniqueEntry, Variant, Variants, entry,
+};
 pub use encoder::{FrameEncoder, PassKind, PassTime, PassTimer};
-pub use no_grass::NoGrass;
+pub use no_grass::{NoGrass, NoParams};
+pub use pass::{ComputePass, PassCounts, RenderPass};
 
 use crate::scene::SceneGpu;
 use crate::target::Size;
@@ -38,29 +48,26 @@ pub struct TechniqueInfo {
     pub debug_views: &'static [&'static str],
 }
 
-/// What a technique submitted in its last frame and what it holds.
+/// What a technique submitted in its last frame and what it holds. Draw calls are not here:
+/// the [`FrameEncoder`] counts them as they are recorded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct TechniqueStats {
     /// Blades represented (drawn as geometry or standing in an impostor).
     pub blades: u64,
     /// Triangles submitted.
     pub triangles: u64,
-    /// Draw calls recorded.
-    pub draw_calls: u64,
     /// GPU memory held by the technique, bytes.
     pub gpu_bytes: u64,
 }
 
-/// Blades drawn by each level of detail in the last frame (Boulanger Sec. 3.1's three levels;
-/// other techniques map their own levels onto these three or report none).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
-pub struct LodBlades {
-    /// Blades drawn as geometry.
-    pub geometry: u64,
-    /// Blades represented by vertical (volume) slices.
-    pub vertical_slices: u64,
-    /// Blades represented by horizontal slices or other flat impostors.
-    pub horizontal_slices: u64,
+/// Blades one of a technique's own levels of detail drew or stood for in the last frame
+/// (written to `levels.csv` in long format: run, frame, level, blades).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct LevelBlades {
+    /// The level's name, as the technique's essay calls it (`geometry`, `billboards`, ...).
+    pub level: &'static str,
+    /// Blades it drew or stood for.
+    pub blades: u64,
 }
 
 /// What a technique is created with.
@@ -77,14 +84,10 @@ pub struct InitContext<'a> {
     pub sample_count: u32,
 }
 
-/// A real-time grass technique. Object-safe: the registry holds `Box<dyn GrassTechnique>`.
-pub trait GrassTechnique {
-    /// Id, name and paper.
-    fn info(&self) -> TechniqueInfo;
-
-    /// The parameters in use, as recorded in result files.
-    fn params(&self) -> toml::Table;
-
+/// A real-time grass technique's per-frame work. Object-safe: the registry creates
+/// `Box<dyn GrassTechnique>`. Its identity and parameters come from [`Describe`], which every
+/// [`Technique`] has without writing anything.
+pub trait GrassTechnique: Describe {
     /// The target changed size (pipelines stay valid: sample count changes recreate the
     /// technique).
     fn resize(&mut self, _gpu: &GpuContext, _size: Size) -> Result<()> {
@@ -103,69 +106,15 @@ pub trait GrassTechnique {
     /// Counts for the last frame.
     fn stats(&self) -> TechniqueStats;
 
-    /// Blades per level of detail in the last frame, for techniques that have levels (`None`
-    /// leaves the CSV columns empty).
-    fn lod_blades(&self) -> Option<LodBlades> {
-        None
+    /// Blades per level of detail in the last frame, in the technique's own levels, finest
+    /// first (empty for techniques without levels).
+    fn levels(&self) -> Vec<LevelBlades> {
+        Vec::new()
     }
 
     /// Technique-specific counts of the last frame (grids culled, impostors by size, sort
     /// time, ...), written to `frames.csv`'s `counters` column as `name=value;...`.
     fn counters(&self) -> Vec<(&'static str, f64)> {
         Vec::new()
-    }
-}
-
-/// A named set of parameter overrides a technique offers to the comparison suite.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Variant {
-    /// `finest` (its finest representation everywhere, for LOD fidelity) or
-    /// `no_transitions` (LOD switches without blending, to show the popping metric works).
-    pub name: &'static str,
-    /// Parameter overrides, in TOML (`"shells = 128"`).
-    pub params: &'static str,
-}
-
-/// Name of the variant that forces a technique's finest representation everywhere.
-pub const FINEST: &str = "finest";
-/// Name of the variant that switches levels of detail without transitions.
-pub const NO_TRANSITIONS: &str = "no_transitions";
-
-/// One line of the registry: how to make a technique.
-#[derive(Clone, Copy)]
-pub struct TechniqueEntry {
-    /// Id, name and paper.
-    pub info: TechniqueInfo,
-    /// Parameter variants for the comparison suite (see [`FINEST`], [`NO_TRANSITIONS`]).
-    pub variants: &'static [Variant],
-    /// The defaults of its parameter struct.
-    pub default_params: fn() -> toml::Table,
-    /// Creates it with parameter overrides (unknown keys and bad values are errors).
-    pub create: fn(&InitContext<'_>, &toml::Table) -> Result<Box<dyn GrassTechnique>>,
-    /// What `create` with these overrides will allocate on the GPU, computed without any GPU
-    /// work from the same numbers `create` uses; the harness checks it against the adapter
-    /// ([`crate::gpu::memory`]) before creating anything.
-    pub estimate: fn(&crate::Scene, &toml::Table) -> Result<crate::gpu::GpuEstimate>,
-}
-
-impl TechniqueEntry {
-    /// The overrides of variant `name`, if the technique offers it.
-    pub fn variant(&self, name: &str) -> Option<crate::Result<toml::Table>> {
-        self.variants.iter().find(|v| v.name == name).map(|v| {
-            v.params
-                .parse::<toml::Table>()
-                .map_err(|e| crate::Error::Technique {
-                    technique: self.info.id.to_owned(),
-                    message: format!("variant `{name}` is not valid TOML: {e}"),
-                })
-        })
-    }
-}
-
-impl std::fmt::Debug for TechniqueEntry {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("TechniqueEntry")
-            .field("info", &self.info)
-            .finish_non_exhaustive()
     }
 }

@@ -36,7 +36,7 @@ pub use primitives::{Mixing, PrimitiveConfig, PrimitiveSet, PrimitivesConfig, Wi
 pub use texture::WindTexture;
 
 use crate::Result;
-use crate::scene::ObjectConfig;
+use crate::object::ObjectConfig;
 use crate::terrain::Terrain;
 
 /// A wind model: velocity in m/s at a position and time.
@@ -46,7 +46,12 @@ use crate::terrain::Terrain;
 /// Fields with state (fluid solvers) advance in [`WindField::advance`]; procedural fields are
 /// pure functions of `(position, time)` and leave `advance` empty. Either way, stepping a
 /// fresh field through frames `0..=n` gives the same field at frame `n`: wind is reproducible.
-pub trait WindField: Send + Sync {
+///
+/// Every technique reads a field through this trait alone. A technique that can use more of
+/// one model than its velocities (Perbet's receivers read [`PrimitiveSet::sample`]'s bending
+/// directions and posture indices) asks for that model by type: a field is [`std::any::Any`],
+/// so `(wind as &dyn Any).downcast_ref::<PrimitiveSet>()` finds it.
+pub trait WindField: Send + Sync + std::any::Any {
     /// Short name for result files and the UI.
     fn name(&self) -> &'static str;
 
@@ -55,13 +60,6 @@ pub trait WindField: Send + Sync {
 
     /// Wind velocity (m/s) at world position `p` at `time`.
     fn velocity(&self, p: Vec3, time: f32) -> Vec3;
-
-    /// The wind primitives behind this field, for techniques whose receivers read bending
-    /// directions and posture indices directly (Perbet & Cani Sec. 3.2); `None` for fields that
-    /// only give velocities.
-    fn primitives(&self) -> Option<&PrimitiveSet> {
-        None
-    }
 
     /// Whether the field depends only on `(position, time)` (no state to step).
     fn is_stateless(&self) -> bool {

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use grassbench::runner::Harness;
+use grassbench::runner::{FrameRecord, Harness};
 use grassbench::target::{Size, save_png};
 use grassbench::technique::GrassTechnique;
 use grassbench::{GpuContext, Scene};
@@ -58,11 +58,34 @@ pub fn render_with(
     technique: &mut dyn GrassTechnique,
     frame: u64,
 ) -> anyhow::Result<image::RgbaImage> {
+    Ok(render_record(harness, technique, frame)?.0)
+}
+
+/// [`render_with`], with the frame's record (the harness's counts: draw calls, timings).
+pub fn render_record(
+    harness: &mut Harness<'_>,
+    technique: &mut dyn GrassTechnique,
+    frame: u64,
+) -> anyhow::Result<(image::RgbaImage, FrameRecord)> {
     harness.catch_up(technique, 0, frame)?;
-    harness
-        .frame(technique, frame, true)?
-        .image
-        .context("no image captured")
+    let out = harness.frame(technique, frame, true)?;
+    Ok((out.image.context("no image captured")?, out.record))
+}
+
+/// Blades `technique` drew or stood for at its level `name` in its last frame; the error names
+/// the levels it has.
+pub fn level_blades(technique: &dyn GrassTechnique, name: &str) -> anyhow::Result<u64> {
+    let levels = technique.levels();
+    levels
+        .iter()
+        .find(|l| l.level == name)
+        .map(|l| l.blades)
+        .with_context(|| {
+            format!(
+                "`{}` has no level `{name}`; it has {levels:?}",
+                technique.info().id
+            )
+        })
 }
 
 /// Where failing tests write their actual and difference images.

@@ -8,7 +8,7 @@ use grassbench::metrics::{coverage_mask, downsample, flip, grass_coverage, mean_
 use grassbench::runner::Harness;
 use grassbench::target::Size;
 use grassbench::technique::NoGrass;
-use grassbench_tests::{TEST_SIZE, gpu, render_with, scene};
+use grassbench_tests::{TEST_SIZE, gpu, level_blades, render_with, scene};
 
 /// Patch density for tests: at the default 87 800 blades/m² the geometric band of a walker
 /// view submits several hundred thousand blades, too slow for a test on lavapipe.
@@ -23,7 +23,15 @@ fn overrides(blades_per_m2: f64) -> toml::Table {
 struct Frame {
     image: grassbench::image::RgbaImage,
     background: grassbench::image::RgbaImage,
-    lod: grassbench::technique::LodBlades,
+    lod: Lod,
+}
+
+/// Blades per level (Sec. 3.1's three), as boulanger reports them.
+#[derive(Debug)]
+struct Lod {
+    geometry: u64,
+    vertical_slices: u64,
+    horizontal_slices: u64,
 }
 
 fn render(
@@ -40,7 +48,11 @@ fn render(
     let entry = grassbench_cli::registry::find("boulanger")?;
     let mut t = harness.create(entry, params)?;
     let image = render_with(&mut harness, t.as_mut(), frame)?;
-    let lod = t.lod_blades().expect("boulanger reports blades per LOD");
+    let lod = Lod {
+        geometry: level_blades(t.as_ref(), "geometry")?,
+        vertical_slices: level_blades(t.as_ref(), "vertical_slices")?,
+        horizontal_slices: level_blades(t.as_ref(), "horizontal_slices")?,
+    };
     Ok(Frame {
         image,
         background,

@@ -2,28 +2,37 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use grassbench::gpu::GpuEstimate;
 use grassbench::runner::Harness;
 use grassbench::technique::{
-    FrameEncoder, GrassTechnique, TechniqueEntry, TechniqueInfo, TechniqueStats,
+    FrameEncoder, GrassTechnique, InitContext, NoParams, Technique, TechniqueEntry, TechniqueInfo,
+    TechniqueStats, Variants,
 };
-use grassbench::{FrameInputs, GpuContext, wgpu};
+use grassbench::{FrameInputs, GpuContext, Scene, wgpu};
 use grassbench_tests::{TEST_SIZE, gpu, scene};
 
-const INFO: TechniqueInfo = TechniqueInfo {
-    id: "broken",
-    name: "broken",
-    paper: "-",
-    gpu_state: false,
-    debug_views: &[],
-};
+/// A technique that draws with the pipeline it was given (none, or one whose shader reads a
+/// binding its layout does not have).
+struct BadDraw {
+    pipeline: Option<wgpu::RenderPipeline>,
+}
 
-/// A technique whose pipeline's shader reads a binding its layout does not have.
-const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
-    info: INFO,
-    variants: &[],
-    default_params: toml::Table::new,
-    estimate: |_, _| Ok(grassbench::gpu::GpuEstimate::default()),
-    create: |ctx, _| {
+impl Technique for BadDraw {
+    type Params = NoParams;
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "broken",
+        name: "broken",
+        paper: "-",
+        gpu_state: false,
+        debug_views: &[],
+    };
+    const VARIANTS: Variants = Variants {
+        finest: "",
+        others: &[],
+    };
+
+    /// Builds a pipeline whose shader reads a binding its layout does not have.
+    fn new(ctx: &InitContext<'_>, _params: NoParams) -> grassbench::Result<Self> {
         let device = &ctx.gpu.device;
         let module = grassbench::shaders::module(
             device,
@@ -54,24 +63,24 @@ const BAD_PIPELINE: TechniqueEntry = TechniqueEntry {
             multiview_mask: None,
             cache: None,
         });
-        Ok(Box::new(BadDraw {
+        Ok(BadDraw {
             pipeline: Some(pipeline),
-        }))
-    },
-};
+        })
+    }
 
-/// A technique that draws with a pipeline built for another target (no depth, wrong samples).
-struct BadDraw {
-    pipeline: Option<wgpu::RenderPipeline>,
+    fn estimate(_: &Scene, _: &NoParams) -> grassbench::Result<GpuEstimate> {
+        Ok(GpuEstimate::default())
+    }
+
+    fn params(&self) -> &NoParams {
+        &NoParams {}
+    }
 }
 
+/// A technique whose pipeline's shader reads a binding its layout does not have.
+const BAD_PIPELINE: TechniqueEntry = grassbench::technique::entry::<BadDraw>();
+
 impl GrassTechnique for BadDraw {
-    fn info(&self) -> TechniqueInfo {
-        INFO
-    }
-    fn params(&self) -> toml::Table {
-        toml::Table::new()
-    }
     fn update(&mut self, _: &FrameInputs<'_>) -> grassbench::Result<()> {
         Ok(())
     }

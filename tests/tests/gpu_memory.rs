@@ -13,7 +13,7 @@ fn estimates_bound_what_techniques_hold() -> anyhow::Result<()> {
         for entry in grassbench_cli::registry::TECHNIQUES {
             let id = entry.info.id;
             let params = scene.technique_overrides(id);
-            let estimate = (entry.estimate)(&scene, &params)?;
+            let estimate = entry.estimate(&scene, &params)?;
             let harness = Harness::new(&gpu, scene.clone(), TEST_SIZE, false)?;
             let technique = harness.create(entry, &toml::Table::new())?;
             let held = technique.stats().gpu_bytes;

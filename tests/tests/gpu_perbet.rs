@@ -4,30 +4,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::cell::Cell;
-
 use grassbench::glam::{Vec2, Vec3};
 use grassbench::metrics::{flip, grass_coverage};
 use grassbench::runner::Harness;
 use grassbench::target::save_png;
-use grassbench::technique::{NoGrass, TechniqueEntry};
+use grassbench::technique::{NoGrass, Technique as _};
 use grassbench_perbet::lod::{Level, PatchLod, Transition};
-use grassbench_tests::{TEST_SIZE, gpu, output_dir, render_with, scene};
-
-thread_local! {
-    /// The state [`FROZEN`] draws every patch in.
-    static STATE: Cell<Option<PatchLod>> = const { Cell::new(None) };
-}
-
-/// `perbet` with every visible patch frozen in [`STATE`].
-const FROZEN: TechniqueEntry = TechniqueEntry {
-    create: |ctx, overrides| {
-        let mut p = grassbench_perbet::Perbet::new(ctx, overrides)?;
-        p.freeze(STATE.with(Cell::get));
-        Ok(Box::new(p))
-    },
-    ..grassbench_perbet::ENTRY
-};
+use grassbench_tests::{TEST_SIZE, gpu, level_blades, output_dir, render_with, scene};
 
 fn table(text: &str) -> toml::Table {
     text.parse().unwrap()
@@ -54,9 +37,12 @@ fn render_from(
     let gpu = gpu()?;
     let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, TEST_SIZE, false)?;
     harness.camera_override = camera;
-    STATE.with(|s| s.set(state));
-    let mut t = harness.create(&FROZEN, &table(params))?;
-    render_with(&mut harness, t.as_mut(), frame)
+    // As `Harness::create` would make it (the scene's overrides, then these), then frozen.
+    let params = harness.scene.technique_params("perbet", &table(params));
+    let params = grassbench::params::resolve("perbet", &params)?;
+    let mut t = grassbench_perbet::Perbet::new(&harness.init_context(), params)?;
+    t.freeze(state);
+    render_with(&mut harness, &mut t, frame)
 }
 
 fn render(
@@ -75,13 +61,15 @@ fn draws_the_meadow_with_three_levels_far_to_near() -> anyhow::Result<()> {
     let entry = grassbench_cli::registry::find("perbet")?;
     let mut t = harness.create(entry, &toml::Table::new())?;
     let image = render_with(&mut harness, t.as_mut(), 20)?;
-    let lod = t.lod_blades().expect("perbet reports blades per level");
-    // A walker's view holds all three levels (medium preset: 3D within 1 patch, strips to 12).
-    assert!(
-        lod.geometry > 0 && lod.vertical_slices > 0 && lod.horizontal_slices > 0,
-        "{lod:?}"
+    let lod = t.levels();
+    let (geometry, strips, flat) = (
+        level_blades(t.as_ref(), "3d")?,
+        level_blades(t.as_ref(), "2_5d")?,
+        level_blades(t.as_ref(), "2d")?,
     );
-    assert!(lod.vertical_slices > lod.geometry, "{lod:?}");
+    // A walker's view holds all three levels (medium preset: 3D within 1 patch, strips to 12).
+    assert!(geometry > 0 && strips > 0 && flat > 0, "{lod:?}");
+    assert!(strips > geometry, "{lod:?}");
     // Grass covers the ground as the reference's does: 0.69 of the frame measured here for
     // perbet, 0.70 for the reference at the same frame (the sky is ~30 %). Holes between
     // levels or grass in the sky would move it out of this band.

@@ -57,7 +57,9 @@ fn the_blast_follows_the_scenes_flying_object() {
         .clone()
         .expect("meadow_primitives has an object");
     let wind = scene.wind().unwrap();
-    let set = wind.primitives().expect("a primitives wind");
+    let set = (wind.as_ref() as &dyn std::any::Any)
+        .downcast_ref::<grassbench::wind::PrimitiveSet>()
+        .expect("a primitives wind");
     for time in [0.0, 7.5, 20.0, 31.0] {
         // Next to the object the blast (highest priority) bends grass radially away from it.
         let under = object.ground_position(time);

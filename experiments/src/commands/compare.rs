@@ -107,7 +107,8 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
             let image = compare::render(&gpu, scene, entry, &toml::Table::new(), args.frame, size)
                 .with_context(|| format!("{id} on {name}"))?;
             save_png(&image, &dir.join(format!("{id}.png")))?;
-            if let Some(lod) = compare::lod_fidelity(&gpu, scene, entry, args.frame, size)? {
+            {
+                let lod = compare::lod_fidelity(&gpu, scene, entry, args.frame, size)?;
                 save_png(
                     &metrics::flip(&lod.finest_image, &lod.default_image)?.heatmap,
                     &dir.join(format!("lod_{id}_flip.png")),

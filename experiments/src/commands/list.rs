@@ -14,8 +14,17 @@ pub fn list() -> anyhow::Result<()> {
             "  {:<12} {} — {}",
             e.info.id, e.info.name, e.info.paper
         )?;
-        for (k, v) in (e.default_params)() {
-            writeln!(out, "      {k} = {v}")?;
+        for (k, v) in e.default_params() {
+            writeln!(out, "      {k} = {}", grassbench::params::format_value(&v))?;
+        }
+        for v in e.variants.iter() {
+            let sets = v.params.lines().collect::<Vec<_>>().join(", ");
+            let sets = if sets.is_empty() {
+                "(the defaults)"
+            } else {
+                &sets
+            };
+            writeln!(out, "    variant {:<15} {sets}", v.name)?;
         }
     }
     writeln!(out, "scenes:")?;

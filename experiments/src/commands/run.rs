@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use grassbench::metrics::grass_coverage;
 use grassbench::runner::{
-    self, FrameRecord, Harness, Provenance, RunOptions, RunSummary, write_atomic, write_csv,
+    self, FrameRecord, Harness, LevelRow, Provenance, RunOptions, RunSummary, write_atomic,
+    write_csv,
 };
 use grassbench::target::{Size, save_png};
 use grassbench::technique::NoGrass;
@@ -94,6 +95,13 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         .map(|n| scenes::load(n))
         .collect::<Result<Vec<_>, _>>()?;
     let overrides = param_table(&args.params)?;
+    for scene in &scenes {
+        for entry in &entries {
+            entry
+                .check(&scene.technique_params(entry.info.id, &overrides))
+                .with_context(|| format!("`{}` on scene `{}`", entry.info.id, scene.name()))?;
+        }
+    }
     let size = args.size.as_deref().map(Size::parse).transpose()?;
     if args.frames == 0 {
         bail!("--frames must be at least 1");
@@ -138,6 +146,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
             name: &name,
             backgrounds: &backgrounds,
             frames: Vec::new(),
+            levels: Vec::new(),
             runs: Vec::new(),
             images: Vec::new(),
             params: Vec::new(),
@@ -215,6 +224,7 @@ struct SceneOutput<'a> {
     /// Background-only frames (frame index, image): the baseline of grass coverage.
     backgrounds: &'a [(u64, image::RgbaImage)],
     frames: Vec<FrameRecord>,
+    levels: Vec<LevelRow>,
     runs: Vec<RunSummary>,
     images: Vec<ImageRow>,
     params: Vec<ParamRow>,
@@ -255,9 +265,11 @@ impl SceneOutput<'_> {
                 value: value.into(),
             });
         }
+        self.levels.extend(LevelRow::of(&result.frames));
         self.frames.extend(result.frames);
         self.runs.push(result.summary);
         write_csv(&dir.join("frames.csv"), &self.frames)?;
+        write_csv(&dir.join("levels.csv"), &self.levels)?;
         write_csv(&dir.join("runs.csv"), &self.runs)?;
         write_csv(&dir.join("images.csv"), &self.images)?;
         write_csv(&dir.join("params.csv"), &self.params)?;

@@ -73,52 +73,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let text = std::fs::read_to_string(&args.file)
         .with_context(|| format!("cannot read sweep file `{}`", args.file.display()))?;
     let spec = SweepSpec::from_toml(&text, &args.file)?;
-    let ids: Vec<&str> = if spec.techniques.iter().any(|t| t == "all") {
-        registry::ids()
-    } else {
-        spec.techniques
-            .iter()
-            .map(|t| registry::find(t).map(|e| e.info.id))
-            .collect::<Result<_, _>>()?
-    };
-    for (technique, grid) in &spec.params {
-        let entry = registry::find(technique)
-            .with_context(|| format!("[params.{technique}] in {}", args.file.display()))?;
-        let defaults = (entry.default_params)();
-        for key in grid
-            .as_table()
-            .map(|t| t.keys().collect::<Vec<_>>())
-            .unwrap_or_default()
-        {
-            if !defaults.contains_key(key) {
-                let valid: Vec<String> = defaults
-                    .keys()
-                    .map(|k| format!("{technique}.{k}"))
-                    .collect();
-                anyhow::bail!(
-                    "{}: unknown parameter `{technique}.{key}`; valid: {}",
-                    args.file.display(),
-                    valid.join(", ")
-                );
-            }
-        }
-    }
-    // Load every scene variant up front: a bad scene fails before hours of work, not after.
-    let plan = spec.expand(&ids)?;
-    let mut scene_cache: HashMap<String, Scene> = HashMap::new();
-    for run in &plan {
-        let key = scene_key(run);
-        if let std::collections::hash_map::Entry::Vacant(e) = scene_cache.entry(key) {
-            let base = scenes::load(&run.scene)?;
-            let mut config = apply_overrides(&base.config, &run.scene_overrides)?;
-            if let Some(seed) = spec.seed {
-                config.seed = seed;
-            }
-            let scene = Scene::from_config(config, base.base_dir.clone())
-                .with_context(|| format!("scene `{}` with {}", run.scene, run.scene_variant()))?;
-            e.insert(scene);
-        }
-    }
+    let (plan, scene_cache) = load_plan(&spec, &args.file)?;
     let (shard_i, shard_n) = args
         .shard
         .as_deref()
@@ -234,6 +189,64 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Expands a sweep into its runs and loads every scene variant they use, checking each run's
+/// technique parameters (the scene file's `[techniques.<id>]` overlaid with the grid point)
+/// through the technique's own check: a bad value anywhere in the grid refuses the file before
+/// anything is measured. `sweep` and `validate` both go through here.
+pub(crate) fn load_plan(
+    spec: &SweepSpec,
+    file: &std::path::Path,
+) -> anyhow::Result<(Vec<PlannedRun>, HashMap<String, Scene>)> {
+    let ids: Vec<&str> = if spec.techniques.iter().any(|t| t == "all") {
+        registry::ids()
+    } else {
+        spec.techniques
+            .iter()
+            .map(|t| registry::find(t).map(|e| e.info.id))
+            .collect::<Result<_, _>>()
+            .with_context(|| format!("{}: techniques", file.display()))?
+    };
+    for technique in spec.params.keys() {
+        registry::find(technique)
+            .with_context(|| format!("{}: [params.{technique}]", file.display()))?;
+    }
+    let plan = spec.expand(&ids)?;
+    let mut scenes: HashMap<String, Scene> = HashMap::new();
+    for run in &plan {
+        let key = scene_key(run);
+        if let std::collections::hash_map::Entry::Vacant(e) = scenes.entry(key.clone()) {
+            let base = scenes::load(&run.scene)?;
+            let mut config = apply_overrides(&base.config, &run.scene_overrides)
+                .with_context(|| format!("{}: scene `{}`", file.display(), run.scene))?;
+            if let Some(seed) = spec.seed {
+                config.seed = seed;
+            }
+            let scene = Scene::from_config(config, base.base_dir.clone()).with_context(|| {
+                format!(
+                    "{}: scene `{}` with {}",
+                    file.display(),
+                    run.scene,
+                    run.scene_variant()
+                )
+            })?;
+            e.insert(scene);
+        }
+        let overrides = scenes[&key].technique_params(&run.technique, &run.params);
+        registry::find(&run.technique)?
+            .check(&overrides)
+            .with_context(|| {
+                format!(
+                    "{}: run `{}` ({} on scene `{}`)",
+                    file.display(),
+                    run.id,
+                    run.technique,
+                    run.scene
+                )
+            })?;
+    }
+    Ok((plan, scenes))
+}
+
 fn scene_key(run: &PlannedRun) -> String {
     format!("{}|{}", run.scene, run.scene_variant())
 }
@@ -291,7 +304,7 @@ fn execute(
         )?;
     }
     let mut params: Vec<ParamRow> = technique
-        .params()
+        .param_table()
         .iter()
         .map(|(k, v)| ParamRow {
             run_id: run.id.clone(),

@@ -4,9 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context as _, bail};
 use grassbench::Scene;
-use grassbench::sweep::{SweepSpec, apply_overrides};
+use grassbench::sweep::SweepSpec;
 
-use crate::{registry, scenes};
+use crate::registry;
 
 /// Arguments of `validate`.
 #[derive(Clone, Debug, clap::Args)]
@@ -43,17 +43,9 @@ fn check(path: &std::path::Path) -> anyhow::Result<String> {
     if !is_sweep {
         let scene = Scene::from_toml(&text, path)?;
         for id in scene.config.techniques.keys() {
-            let entry = registry::find(id)
+            registry::find(id)
+                .and_then(|entry| entry.check(&scene.technique_overrides(id)))
                 .with_context(|| format!("{}: [techniques.{id}]", path.display()))?;
-            let defaults = (entry.default_params)();
-            for key in scene.technique_overrides(id).keys() {
-                if !defaults.contains_key(key) {
-                    bail!(
-                        "{}: unknown parameter `{id}.{key}` in [techniques.{id}]",
-                        path.display()
-                    );
-                }
-            }
         }
         return Ok(format!(
             "scene `{}`, {} blades",
@@ -62,40 +54,6 @@ fn check(path: &std::path::Path) -> anyhow::Result<String> {
         ));
     }
     let spec = SweepSpec::from_toml(&text, path)?;
-    let ids: Vec<&str> = if spec.techniques.iter().any(|t| t == "all") {
-        registry::ids()
-    } else {
-        spec.techniques
-            .iter()
-            .map(|t| registry::find(t).map(|e| e.info.id))
-            .collect::<Result<_, _>>()?
-    };
-    let plan = spec.expand(&ids)?;
-    for run in &plan {
-        let base = scenes::load(&run.scene)?;
-        let config = apply_overrides(&base.config, &run.scene_overrides)
-            .with_context(|| format!("{}: scene `{}`", path.display(), run.scene))?;
-        Scene::from_config(config, base.base_dir).with_context(|| {
-            format!(
-                "{}: scene `{}` with {}",
-                path.display(),
-                run.scene,
-                run.scene_variant()
-            )
-        })?;
-    }
-    for (technique, grid) in &spec.params {
-        let entry = registry::find(technique)?;
-        let defaults = (entry.default_params)();
-        for key in grid
-            .as_table()
-            .map(|t| t.keys().collect::<Vec<_>>())
-            .unwrap_or_default()
-        {
-            if !defaults.contains_key(key) {
-                bail!("{}: unknown parameter `{technique}.{key}`", path.display());
-            }
-        }
-    }
+    let (plan, _) = super::sweep::load_plan(&spec, path)?;
     Ok(format!("sweep `{}`, {} runs", spec.name, plan.len()))
 }

@@ -436,7 +436,7 @@ impl App {
                     pane.set_technique(id, f);
                 }
                 if let Some((info, params)) =
-                    pane.technique.as_ref().map(|t| (t.info(), t.params()))
+                    pane.technique.as_ref().map(|t| (t.info(), t.param_table()))
                 {
                     ui.small(info.paper);
                     let mut view = pane.harness.debug_view;

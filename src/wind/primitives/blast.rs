@@ -4,7 +4,7 @@
 //! to the mask contour."
 //!
 //! The mask here is a disc (rotation changes nothing). With `follow_object = true` its centre
-//! is the scene's moving object ([`crate::scene::ObjectConfig`]); otherwise its path comes from
+//! is the scene's moving object ([`crate::object::ObjectConfig`]); otherwise its path comes from
 //! the configuration.
 
 use glam::Vec2;
@@ -32,7 +32,7 @@ impl Blast {
     /// before the first and after the last), or `start + velocity · time` without any.
     pub(super) fn centre(&self, time: f32) -> Vec2 {
         let p = &self.params;
-        crate::scene::track(p.start, p.velocity, &p.keyframes, time)
+        crate::keyframes::track(p.start, p.velocity, &p.keyframes, time)
     }
 
     pub(super) fn mask(&self, xz: Vec2, time: f32) -> f32 {

@@ -360,7 +360,7 @@ impl PrimitiveConfig {
                 jitter(&key("jitter"), &p.jitter)
             }
             Self::Blast(p) => {
-                crate::scene::validate_track(prefix, p.start, p.velocity, &p.keyframes)?;
+                crate::keyframes::validate_track(prefix, p.start, p.velocity, &p.keyframes)?;
                 check(&key("radius"), p.radius, 0.01..=100_000.0)?;
                 check(&key("strength"), p.strength, 0.0..=1.0)?;
                 check(&key("feather"), p.feather, 0.0..=100_000.0)?;

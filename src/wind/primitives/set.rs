@@ -10,8 +10,8 @@ use super::breeze::Breeze;
 use super::gust::Gust;
 use super::whirlwind::Whirlwind;
 use super::{BlastParams, Mixing, PrimitiveConfig, PrimitivesConfig, WindSample};
+use crate::object::ObjectConfig;
 use crate::rng::hash;
-use crate::scene::ObjectConfig;
 use crate::wind::WindField;
 use crate::wind::posture::Postures;
 use crate::{Error, Result};
@@ -189,10 +189,6 @@ impl WindField for PrimitiveSet {
     }
 
     fn advance(&mut self, _time: f32, _dt: f32) {}
-
-    fn primitives(&self) -> Option<&PrimitiveSet> {
-        Some(self)
-    }
 
     /// Horizontal velocity `direction × index × reference_speed` at `p`'s ground point: the
     /// steady wind that would hold a blade near that posture (negative indices, a blade

@@ -7,7 +7,9 @@ use grassbench::{Error, InitContext, Result, bytemuck, shaders, target, wgpu};
 
 use crate::params::Mipmaps;
 use crate::texture::{GrassTexture, Level};
-use crate::{INFO, SHADER};
+
+/// The shader (without the prelude): the bend pass and the shells.
+pub const SHADER: &str = include_str!("../shaders/bakay.wgsl");
 
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
@@ -60,7 +62,7 @@ impl ShellGpu {
         let max = device.limits().max_storage_buffer_binding_size;
         if offset_bytes > max {
             return Err(Error::Technique {
-                technique: INFO.id.into(),
+                technique: "bakay".into(),
                 message: format!(
                     "{shells} shells over {vertex_count} ground vertices need {offset_bytes} bytes of offsets, more than this adapter's {max}-byte storage bindings; lower bakay.shells"
                 ),
@@ -244,8 +246,6 @@ impl ShellGpu {
         pass.set_index_buffer(indices, wgpu::IndexFormat::Uint32);
         // Instance k is shell k: instances are drawn in order, so shells go bottom to top.
         pass.draw_indexed(0..count, 0, 0..shells);
-        drop(pass);
-        encoder.count_draws(1);
     }
 }
 
@@ -298,4 +298,17 @@ fn upload(ctx: &InitContext<'_>, label: &str, levels: &[Level], color: bool) -> 
         );
     }
     texture.create_view(&Default::default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_mirror_matches_the_shader() {
+        assert_eq!(
+            shaders::struct_size(SHADER, "Params").unwrap() as usize,
+            std::mem::size_of::<ParamsUniform>()
+        );
+    }
 }

@@ -94,42 +94,62 @@ pub mod texture;
 pub mod wind;
 
 use grassbench::glam::Vec2;
-use grassbench::technique::TechniqueEntry;
+use grassbench::gpu::GpuEstimate;
+use grassbench::technique::{Technique, TechniqueEntry, Variants};
 use grassbench::terrain::{Terrain, covering};
 use grassbench::{
     FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, TechniqueInfo,
     TechniqueStats,
 };
 
-pub use gpu::ParamsUniform;
+pub use gpu::{ParamsUniform, SHADER};
 pub use params::{Lod, Mipmaps, Params, WindSource};
 
-/// The shader (without the prelude): the bend pass and the shells.
-pub const SHADER: &str = include_str!("../shaders/bakay.wgsl");
-
-const INFO: TechniqueInfo = TechniqueInfo {
-    id: "bakay",
-    name: "Bakay et al. 2002 (animated transparent shells)",
-    paper: "Bakay, Lalonde, Heidrich 2002, Real-Time Animated Grass",
-    gpu_state: false,
-    debug_views: &[],
-};
-
 /// The registry line for this technique.
-pub const ENTRY: TechniqueEntry = TechniqueEntry {
-    info: INFO,
+pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Bakay>();
+
+/// The shell technique.
+pub struct Bakay {
+    params: Params,
+    gpu: gpu::ShellGpu,
+    triangles_per_shell: u64,
+    blades: u64,
+}
+
+impl Technique for Bakay {
+    type Params = Params;
+
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "bakay",
+        name: "Bakay et al. 2002 (animated transparent shells)",
+        paper: "Bakay, Lalonde, Heidrich 2002, Real-Time Animated Grass",
+        gpu_state: false,
+        debug_views: &[],
+    };
+
     // Shells are drawn everywhere alike; the approximations are the number of shells (the
     // volume's vertical sampling, Sec. 3) and the texture's mip chain (Sec. 5), so the finest
     // representation is many shells sampling the base level at every distance.
-    variants: &[grassbench::technique::Variant {
-        name: grassbench::technique::FINEST,
-        params: "shells = 64\nmipmaps = \"none\"",
-    }],
-    default_params: || grassbench::params::to_table(&Params::default()),
-    create: |ctx, overrides| Ok(Box::new(Bakay::new(ctx, overrides)?)),
-    estimate: |scene, overrides| {
-        use grassbench::gpu::GpuEstimate;
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+    const VARIANTS: Variants = Variants {
+        finest: "shells = 64\nmipmaps = \"none\"",
+        others: &[],
+    };
+
+    /// Generates the grass texture and builds the passes.
+    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
+        let scene = ctx.scene;
+        let texture = texture::GrassTexture::new(&texture_spec(&params, scene), params.mipmaps);
+        let uniform = uniform(&params, scene, ctx.scene_gpu.terrain.ground_side);
+        let gpu = gpu::ShellGpu::new(ctx, &uniform, &texture, params.mipmaps, params.anisotropy)?;
+        Ok(Self {
+            blades: count_blades(&texture, params.tile_size, &scene.terrain),
+            triangles_per_shell: u64::from(ctx.scene_gpu.terrain.ground_index_count / 3),
+            params,
+            gpu,
+        })
+    }
+
+    fn estimate(scene: &grassbench::Scene, params: &Params) -> Result<GpuEstimate> {
         // The ground mesh's vertices, each with a wind vector and one offset per shell.
         let (nx, nz) = grassbench::terrain::TerrainGpu::ground_side_for(&scene.terrain);
         let vertices = u64::from(nx) * u64::from(nz);
@@ -144,31 +164,10 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
             .plus(GpuEstimate::buffer(
                 std::mem::size_of::<ParamsUniform>() as u64
             )))
-    },
-};
+    }
 
-/// The shell technique.
-pub struct Bakay {
-    params: Params,
-    gpu: gpu::ShellGpu,
-    triangles_per_shell: u64,
-    blades: u64,
-}
-
-impl Bakay {
-    /// Generates the grass texture and builds the passes.
-    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
-        let scene = ctx.scene;
-        let texture = texture::GrassTexture::new(&texture_spec(&params, scene), params.mipmaps);
-        let uniform = uniform(&params, scene, ctx.scene_gpu.terrain.ground_side);
-        let gpu = gpu::ShellGpu::new(ctx, &uniform, &texture, params.mipmaps, params.anisotropy)?;
-        Ok(Self {
-            blades: count_blades(&texture, params.tile_size, &scene.terrain),
-            triangles_per_shell: u64::from(ctx.scene_gpu.terrain.ground_index_count / 3),
-            params,
-            gpu,
-        })
+    fn params(&self) -> &Params {
+        &self.params
     }
 }
 
@@ -250,14 +249,6 @@ fn count_blades(texture: &texture::GrassTexture, tile: f32, terrain: &Terrain) -
 }
 
 impl GrassTechnique for Bakay {
-    fn info(&self) -> TechniqueInfo {
-        INFO
-    }
-
-    fn params(&self) -> toml::Table {
-        grassbench::params::to_table(&self.params)
-    }
-
     fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
         // Nothing on the CPU: wind vectors, intensities and offsets are computed on the GPU
         // from the time in the frame globals.
@@ -276,7 +267,6 @@ impl GrassTechnique for Bakay {
         TechniqueStats {
             blades: self.blades,
             triangles: self.triangles_per_shell * u64::from(self.params.shells),
-            draw_calls: 1,
             gpu_bytes: self.gpu.bytes,
         }
     }

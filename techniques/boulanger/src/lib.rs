@@ -202,7 +202,9 @@ pub mod vertical;
 
 use glam::{Vec2, Vec3};
 use grassbench::camera::Aabb;
-use grassbench::technique::{LodBlades, TechniqueEntry};
+use grassbench::technique::{
+    LevelBlades, RenderPass, Technique, TechniqueEntry, Variant, Variants,
+};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
@@ -220,36 +222,19 @@ use grassbench::shaders::{PipelineSpec, depth_less, render_pipeline};
 /// The blade, bake and slice shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/grass.wgsl");
 
-const INFO: TechniqueInfo = TechniqueInfo {
-    id: "boulanger",
-    name: "Boulanger et al. 2006 (geometry, slices, density thresholds)",
-    paper: "Boulanger, Pattanaik, Bouatouch 2006: Rendering Grass in Real Time with Dynamic Light Sources",
-    gpu_state: false,
-    debug_views: &[
-        "LOD false colours (Fig. 12): geometry red, vertical slices blue, horizontal slice green",
-        "patch orientation: one colour per mirrored version",
-    ],
-};
-
 /// The registry line for this technique.
-pub const ENTRY: TechniqueEntry = TechniqueEntry {
-    info: INFO,
-    variants: &[
-        // Geometry everywhere (Eq. 1-4 with every distance inside min_geom).
-        grassbench::technique::Variant {
-            name: grassbench::technique::FINEST,
-            params: "min_geom = 9000.0\nmax_geom = 9001.0\nmin_btf = 9001.0\nmax_btf = 9002.0",
-        },
-        // Eq. 5 with ω = 0: a hard threshold test, blades switch representation at once.
-        grassbench::technique::Variant {
-            name: grassbench::technique::NO_TRANSITIONS,
-            params: "omega = 0.0",
-        },
-    ],
-    default_params: || grassbench::params::to_table(&Params::default()),
-    create: |ctx, overrides| Ok(Box::new(Boulanger::new(ctx, overrides)?)),
-    estimate: Boulanger::estimate,
-};
+pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Boulanger>();
+
+/// Blades each of Sec. 3.1's three levels drew or stood for in the last frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BandBlades {
+    /// Blades drawn as geometry.
+    pub geometry: u64,
+    /// Blades represented by vertical (volume) slices.
+    pub vertical_slices: u64,
+    /// Blades represented by the horizontal slice.
+    pub horizontal_slices: u64,
+}
 
 /// Most cells (patches) on one terrain: the quadtree and orientation map are per cell.
 pub const MAX_CELLS: u64 = 4096 * 4096;
@@ -370,7 +355,7 @@ pub struct Boulanger {
     vcells: Vec<(CellUniform, f32)>,
     vcell_uniforms: Vec<CellUniform>,
     quad_groups: Vec<(u32, std::ops::Range<u32>)>,
-    lod_blades: LodBlades,
+    lod_blades: BandBlades,
     /// Opacity under which a blade is alpha-tested away whatever its texture (the shader's
     /// threshold).
     alpha_floor: f32,
@@ -379,16 +364,55 @@ pub struct Boulanger {
     reach_up: f32,
 }
 
+impl Technique for Boulanger {
+    type Params = Params;
+
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "boulanger",
+        name: "Boulanger et al. 2006 (geometry, slices, density thresholds)",
+        paper: "Boulanger, Pattanaik, Bouatouch 2006: Rendering Grass in Real Time with Dynamic Light Sources",
+        gpu_state: false,
+        debug_views: &[
+            "LOD false colours (Fig. 12): geometry red, vertical slices blue, horizontal slice green",
+            "patch orientation: one colour per mirrored version",
+        ],
+    };
+
+    const VARIANTS: Variants = Variants {
+        // Geometry everywhere (Eq. 1-4 with every distance inside min_geom).
+        finest: "min_geom = 9000.0\nmax_geom = 9001.0\nmin_btf = 9001.0\nmax_btf = 9002.0",
+        // Eq. 5 with ω = 0: a hard threshold test, blades switch representation at once.
+        others: &[Variant {
+            name: grassbench::technique::NO_TRANSITIONS,
+            params: "omega = 0.0",
+        }],
+    };
+
+    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
+        Self::build(ctx, params)
+    }
+
+    fn estimate(
+        scene: &grassbench::Scene,
+        params: &Params,
+    ) -> Result<grassbench::gpu::GpuEstimate> {
+        Self::estimate_memory(scene, params)
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
+    }
+}
+
 impl Boulanger {
     /// GPU memory `new` will allocate: the patch, the horizontal and vertical BTF arrays, the
     /// orientation map (one byte per cell), the blade texture and the per-frame buffers at
     /// their first size.
-    pub fn estimate(
+    fn estimate_memory(
         scene: &grassbench::Scene,
-        overrides: &toml::Table,
+        params: &Params,
     ) -> Result<grassbench::gpu::GpuEstimate> {
         use grassbench::gpu::GpuEstimate;
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
         let grid = CellGrid::new(&scene.terrain, params.patch_size);
         let density = params.effective_blades_per_m2(scene.config.grass.density);
         let strata = u64::from(Patch::strata_for(params.patch_size, density));
@@ -420,8 +444,7 @@ impl Boulanger {
     }
 
     /// Builds the patch, the quadtree and the pipelines, and bakes the horizontal slice.
-    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+    fn build(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         if params.transparency == Transparency::AlphaToCoverage && ctx.sample_count < 4 {
             return Err(Error::param(
                 "boulanger.transparency",
@@ -855,7 +878,7 @@ impl Boulanger {
             vcells: Vec::new(),
             vcell_uniforms: Vec::new(),
             quad_groups: Vec::new(),
-            lod_blades: LodBlades::default(),
+            lod_blades: BandBlades::default(),
             alpha_floor: uniform.lod[3],
             overhang,
             reach_up,
@@ -893,30 +916,26 @@ impl Boulanger {
     }
 
     /// Records this frame's geometric blades with the pass's pipeline (blade layout: the
-    /// cells in group 2, one dynamic offset per page); returns the draws.
-    fn draw_geometry(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
+    /// cells in group 2, one dynamic offset per page).
+    fn draw_geometry(&self, pass: &mut RenderPass<'_>) {
         let vertices = self.vertices_per_blade();
-        let mut draws = 0;
         for page in &self.pages {
             // In range: `prepare` refuses a buffer over 4 GiB.
             let offset = (u64::from(page.first_cell) * cells::CELL_BYTES) as u32;
             pass.set_bind_group(2, &self.cell_group, &[offset]);
             for r in &page.draws {
                 pass.draw(0..vertices, r.clone());
-                draws += 1;
             }
         }
-        draws
     }
 
     /// Records this frame's horizontal slice quads with the pass's pipeline (slice layout),
-    /// one draw per tessellation; returns the draws.
-    fn draw_quads(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
+    /// one draw per tessellation.
+    fn draw_quads(&self, pass: &mut RenderPass<'_>) {
         pass.set_vertex_buffer(0, self.quad_buffer.slice(..));
         for (tess, range) in &self.quad_groups {
             pass.draw(0..tess * tess * 6, range.clone());
         }
-        self.quad_groups.len() as u64
     }
 
     fn vertices_per_blade(&self) -> u32 {
@@ -1034,7 +1053,7 @@ impl Boulanger {
     /// The BTF cache keys (horizontal, vertical) `new` would use on `scene` with `overrides`
     /// (CPU only).
     pub fn bake_keys(scene: &grassbench::Scene, overrides: &toml::Table) -> Result<[u64; 2]> {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+        let params: Params = grassbench::params::resolve(Self::INFO.id, overrides)?;
         let patch = build_patch(&params, scene);
         let uniform = params_uniform(&params, &scene.config.grass);
         Ok(bake_keys_of(&params, &uniform, &patch))
@@ -1096,14 +1115,6 @@ fn vcell_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
 }
 
 impl GrassTechnique for Boulanger {
-    fn info(&self) -> TechniqueInfo {
-        INFO
-    }
-
-    fn params(&self) -> toml::Table {
-        grassbench::params::to_table(&self.params)
-    }
-
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         let camera = inputs.camera;
         let walk = Walk {
@@ -1233,7 +1244,7 @@ impl GrassTechnique for Boulanger {
             }
             start += n;
         }
-        self.lod_blades = LodBlades {
+        self.lod_blades = BandBlades {
             geometry: geometry_blades,
             vertical_slices: vertical_blades.round() as u64,
             horizontal_slices: slice_blades.round() as u64,
@@ -1247,7 +1258,7 @@ impl GrassTechnique for Boulanger {
             let capacity = self.paging.capacity(self.geometry.len());
             if capacity as u64 * cells::CELL_BYTES > u64::from(u32::MAX) {
                 return Err(Error::Technique {
-                    technique: INFO.id.to_owned(),
+                    technique: Self::INFO.id.to_owned(),
                     message: format!(
                         "{} geometry cells in one frame do not fit one buffer: lower max_geom or raise patch_size",
                         self.geometry.len()
@@ -1291,7 +1302,6 @@ impl GrassTechnique for Boulanger {
     }
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
-        let mut draws = 0;
         if let Some(shadows) = &self.ground_shadows
             && !(self.geometry.is_empty() && self.quads.is_empty())
         {
@@ -1301,15 +1311,14 @@ impl GrassTechnique for Boulanger {
             pass.set_bind_group(1, &self.group1, &[]);
             if !self.geometry.is_empty() {
                 pass.set_pipeline(&shadows.blades);
-                draws += self.draw_geometry(&mut pass);
+                self.draw_geometry(&mut pass);
                 pass.set_pipeline(&shadows.cover);
                 pass.draw(0..3, 0..1);
-                draws += 1;
             }
             if !self.quads.is_empty() {
                 pass.set_pipeline(&shadows.slices);
                 pass.set_bind_group(2, &self.slice_group, &[]);
-                draws += self.draw_quads(&mut pass);
+                self.draw_quads(&mut pass);
             }
         }
         if !self.quads.is_empty() {
@@ -1317,7 +1326,7 @@ impl GrassTechnique for Boulanger {
             pass.set_pipeline(&self.slice_pipeline);
             pass.set_bind_group(1, &self.group1, &[]);
             pass.set_bind_group(2, &self.slice_group, &[]);
-            draws += self.draw_quads(&mut pass);
+            self.draw_quads(&mut pass);
         }
         if !self.vcell_uniforms.is_empty() {
             let mut pass = encoder.render_pass("vertical_slices");
@@ -1329,15 +1338,13 @@ impl GrassTechnique for Boulanger {
                 0..12 * self.params.vertical_slices,
                 0..self.vcell_uniforms.len() as u32,
             );
-            draws += 1;
         }
         if !self.geometry.is_empty() {
             let mut pass = encoder.render_pass("geometry");
             pass.set_pipeline(&self.blade_pipeline);
             pass.set_bind_group(1, &self.group1, &[]);
-            draws += self.draw_geometry(&mut pass);
+            self.draw_geometry(&mut pass);
         }
-        encoder.count_draws(draws);
     }
 
     fn stats(&self) -> TechniqueStats {
@@ -1347,16 +1354,11 @@ impl GrassTechnique for Boulanger {
             .map(|q| 2 * (q.tess[0] as u64).pow(2))
             .sum();
         let blade_triangles = self.lod_blades.geometry * u64::from(2 * self.params.segments);
-        let blade_draws = self.pages.iter().map(|p| p.draws.len()).sum::<usize>() as u64;
-        let quad_draws = self.quad_groups.len() as u64;
         // Sec. 3.5's ground shadows draw the blades and the slices again, plus the cover.
-        let (shadow_triangles, shadow_draws) = match &self.ground_shadows {
-            Some(_) if !self.geometry.is_empty() => (
-                blade_triangles + 1 + quad_triangles,
-                blade_draws + 1 + quad_draws,
-            ),
-            Some(_) => (quad_triangles, quad_draws),
-            None => (0, 0),
+        let shadow_triangles = match &self.ground_shadows {
+            Some(_) if !self.geometry.is_empty() => blade_triangles + 1 + quad_triangles,
+            Some(_) => quad_triangles,
+            None => 0,
         };
         TechniqueStats {
             blades: self.lod_blades.geometry
@@ -1366,10 +1368,6 @@ impl GrassTechnique for Boulanger {
                 + quad_triangles
                 + self.vcell_uniforms.len() as u64 * u64::from(4 * self.params.vertical_slices)
                 + shadow_triangles,
-            draw_calls: blade_draws
-                + quad_draws
-                + u64::from(!self.vcell_uniforms.is_empty())
-                + shadow_draws,
             gpu_bytes: self.fixed_bytes
                 + self.cell_capacity as u64 * cells::CELL_BYTES
                 + (self.quad_capacity * std::mem::size_of::<SliceQuad>()) as u64
@@ -1377,8 +1375,17 @@ impl GrassTechnique for Boulanger {
         }
     }
 
-    fn lod_blades(&self) -> Option<LodBlades> {
-        Some(self.lod_blades)
+    /// Sec. 3.1's three levels.
+    fn levels(&self) -> Vec<LevelBlades> {
+        let l = &self.lod_blades;
+        [
+            ("geometry", l.geometry),
+            ("vertical_slices", l.vertical_slices),
+            ("horizontal_slices", l.horizontal_slices),
+        ]
+        .into_iter()
+        .map(|(level, blades)| LevelBlades { level, blades })
+        .collect()
     }
 }
 

@@ -359,26 +359,20 @@ impl Gpu {
     pub fn encode(&self, encoder: &mut FrameEncoder<'_>, draws: &Draws) {
         let mut pass = encoder.render_pass("prairie");
         pass.set_bind_group(1, &self.bind_group, &[]);
-        let mut count = 0;
         let [blade_vertices, strip_vertices, flat_vertices] = draws.vertices;
         let [blades, strips] = draws.per_entry;
         if draws.flat > 0 {
             pass.set_pipeline(&self.flat_pipeline);
             pass.draw(0..flat_vertices, 0..draws.flat);
-            count += 1;
         }
         if draws.strips > 0 {
             pass.set_pipeline(&self.strip_pipeline);
             pass.draw(0..strip_vertices, 0..draws.strips * strips);
-            count += 1;
         }
         if draws.geometry > 0 {
             pass.set_pipeline(&self.blade_pipeline);
             pass.draw(0..blade_vertices, 0..draws.geometry * blades);
-            count += 1;
         }
-        drop(pass);
-        encoder.count_draws(count);
     }
 }
 
@@ -570,4 +564,24 @@ fn upload_array(
         ..Default::default()
     });
     (view, bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gpu_structs_mirror_the_shader() {
+        for (name, size) in [
+            ("Params", std::mem::size_of::<ParamsUniform>()),
+            ("Entry", std::mem::size_of::<crate::frame::Entry>()),
+            ("Blade", std::mem::size_of::<BladeGpu>()),
+        ] {
+            assert_eq!(
+                grassbench::shaders::struct_size(SHADER, name).unwrap() as usize,
+                size,
+                "perbet {name}"
+            );
+        }
+    }
 }

@@ -102,7 +102,7 @@ pub mod tiling;
 
 use glam::{Vec2, Vec3};
 use grassbench::gpu::GpuEstimate;
-use grassbench::technique::{LodBlades, TechniqueEntry, Variant};
+use grassbench::technique::{LevelBlades, Technique, TechniqueEntry, Variant, Variants};
 use grassbench::wind::{BladeConfig, Postures, WindConfig};
 use grassbench::{
     FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
@@ -119,37 +119,11 @@ use patch::{Layout, Patch};
 use receiver::Receivers;
 use tiling::Tiling;
 
-const INFO: TechniqueInfo = TechniqueInfo {
-    id: "perbet",
-    name: "Perbet & Cani (3D / 2.5D / 2D patches, wind primitives)",
-    paper: "Perbet & Cani 2001, Animating Prairies in Real-Time (I3D)",
-    gpu_state: false,
-    debug_views: &["level of detail (red 3D, green 2.5D strips, blue 2D)"],
-};
-
 /// The registry line for this technique.
-pub const ENTRY: TechniqueEntry = TechniqueEntry {
-    info: INFO,
-    variants: &[
-        Variant {
-            name: grassbench::technique::FINEST,
-            params: "strip_range = [100000, 100000]",
-        },
-        Variant {
-            name: grassbench::technique::NO_TRANSITIONS,
-            params: "transition_steps = 0",
-        },
-    ],
-    default_params: || grassbench::params::to_table(&Params::default()),
-    create: |ctx, overrides| Ok(Box::new(Perbet::new(ctx, overrides)?)),
-    estimate: |scene, overrides| {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
-        Ok(Sizes::new(scene, &params, scene.config.grass.height[1]).estimate())
-    },
-};
+pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Perbet>();
 
-/// Counts that fix the technique's allocations (shared by [`ENTRY`]'s estimate and
-/// [`Perbet::new`]).
+/// Counts that fix the technique's allocations (shared by [`Technique::estimate`] and
+/// [`Technique::new`]).
 struct Sizes {
     blades: u64,
     segments: u64,
@@ -284,11 +258,28 @@ pub struct Perbet {
     blades_per_patch: u32,
 }
 
-impl Perbet {
+impl Technique for Perbet {
+    type Params = Params;
+
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "perbet",
+        name: "Perbet & Cani (3D / 2.5D / 2D patches, wind primitives)",
+        paper: "Perbet & Cani 2001, Animating Prairies in Real-Time (I3D)",
+        gpu_state: false,
+        debug_views: &["level of detail (red 3D, green 2.5D strips, blue 2D)"],
+    };
+
+    const VARIANTS: Variants = Variants {
+        finest: "strip_range = [100000, 100000]",
+        others: &[Variant {
+            name: grassbench::technique::NO_TRANSITIONS,
+            params: "transition_steps = 0",
+        }],
+    };
+
     /// Builds the patches, paints their strip and 2D textures, simulates the postures and
     /// creates the pipelines.
-    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         let scene = ctx.scene;
         let grass = &scene.config.grass;
         let precompute = Precomputed::new(scene, &params)?;
@@ -422,6 +413,16 @@ impl Perbet {
         })
     }
 
+    fn estimate(scene: &Scene, params: &Params) -> Result<GpuEstimate> {
+        Ok(Sizes::new(scene, params, scene.config.grass.height[1]).estimate())
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
+    }
+}
+
+impl Perbet {
     /// Draws every visible patch in `state` instead of its own level from the next `update` on
     /// (`None` goes back to the levels): a tool to inspect one level, or the whole view frozen
     /// at one step of a transition. The patches' own levels keep being updated underneath.
@@ -500,14 +501,6 @@ impl Precomputed {
 }
 
 impl GrassTechnique for Perbet {
-    fn info(&self) -> TechniqueInfo {
-        INFO
-    }
-
-    fn params(&self) -> toml::Table {
-        grassbench::params::to_table(&self.params)
-    }
-
     /// Levels, culling, far-to-near lists and the receivers' wind samples.
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         let camera = &inputs.camera;
@@ -625,18 +618,21 @@ impl GrassTechnique for Perbet {
             triangles: u64::from(d.geometry) * blades * (2 * n - 1)
                 + u64::from(d.strips) * strip_triangles
                 + u64::from(d.flat) * 2 * u64::from(gpu::FLAT_CELLS * gpu::FLAT_CELLS),
-            draw_calls: u64::from(d.geometry > 0) + u64::from(d.strips > 0) + u64::from(d.flat > 0),
             gpu_bytes: self.gpu.bytes(),
         }
     }
 
-    fn lod_blades(&self) -> Option<LodBlades> {
+    fn levels(&self) -> Vec<LevelBlades> {
         let blades = u64::from(self.blades_per_patch);
-        Some(LodBlades {
-            geometry: u64::from(self.draws.geometry) * blades,
-            vertical_slices: u64::from(self.draws.strips) * blades,
-            horizontal_slices: u64::from(self.draws.flat) * blades,
-        })
+        let level = |level, patches: u32| LevelBlades {
+            level,
+            blades: u64::from(patches) * blades,
+        };
+        vec![
+            level("3d", self.draws.geometry),
+            level("2_5d", self.draws.strips),
+            level("2d", self.draws.flat),
+        ]
     }
 
     fn counters(&self) -> Vec<(&'static str, f64)> {

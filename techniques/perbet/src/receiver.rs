@@ -27,7 +27,7 @@ impl<'a> Receivers<'a> {
     pub fn new(wind: &'a dyn WindField, speed: f32, time: f32) -> Self {
         Self {
             wind,
-            primitives: wind.primitives(),
+            primitives: (wind as &dyn std::any::Any).downcast_ref::<PrimitiveSet>(),
             speed: speed.max(1e-3),
             time,
         }

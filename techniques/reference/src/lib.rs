@@ -41,11 +41,12 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
 use grassbench::glam::Vec3;
+use grassbench::gpu::GpuEstimate;
 use grassbench::params::{TechniqueParams, check, check_int};
-use grassbench::technique::{TechniqueEntry, Variant};
+use grassbench::technique::{Technique, TechniqueEntry, Variants};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
-    Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
+    Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
     TechniqueInfo, TechniqueStats, bytemuck, shaders, wgpu,
 };
 use serde::{Deserialize, Serialize};
@@ -53,36 +54,8 @@ use serde::{Deserialize, Serialize};
 /// The blade shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
 
-const INFO: TechniqueInfo = TechniqueInfo {
-    id: "reference",
-    name: "Reference (every blade as geometry)",
-    paper: "brute force; blade model after Bakay et al. 2002 Sec. 3 and Zhang 2006 Ch. 3",
-    gpu_state: false,
-    debug_views: &["wind speed (blue calm → red strong)", "bend amount"],
-};
-
 /// The registry line for this technique.
-pub const ENTRY: TechniqueEntry = TechniqueEntry {
-    info: INFO,
-    // No levels of detail: the default is already the finest representation.
-    variants: &[Variant {
-        name: grassbench::technique::FINEST,
-        params: "",
-    }],
-    default_params: || grassbench::params::to_table(&Params::default()),
-    create: |ctx, overrides| Ok(Box::new(Reference::new(ctx, overrides)?)),
-    estimate: |scene, overrides| {
-        let _: Params = grassbench::params::resolve(INFO.id, overrides)?;
-        // At most one instance per candidate (fewer where the density map thins them).
-        let candidates = scene.blades.candidate_count(&scene.terrain);
-        Ok(grassbench::gpu::GpuEstimate::buffer(
-            candidates.saturating_mul(std::mem::size_of::<BladeInstance>() as u64),
-        )
-        .plus(grassbench::gpu::GpuEstimate::buffer(
-            std::mem::size_of::<ParamsUniform>() as u64,
-        )))
-    },
-};
+pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Reference>();
 
 /// Parameters (`[techniques.reference]` in scene files, `--param` on the command line).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -170,10 +143,25 @@ pub struct Reference {
     gpu_bytes: u64,
 }
 
-impl Reference {
+impl Technique for Reference {
+    type Params = Params;
+
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "reference",
+        name: "Reference (every blade as geometry)",
+        paper: "brute force; blade model after Bakay et al. 2002 Sec. 3 and Zhang 2006 Ch. 3",
+        gpu_state: false,
+        debug_views: &["wind speed (blue calm → red strong)", "bend amount"],
+    };
+
+    // No levels of detail: the default is already the finest representation.
+    const VARIANTS: Variants = Variants {
+        finest: "",
+        others: &[],
+    };
+
     /// Generates every blade of the scene and builds the pipeline.
-    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         let device = &ctx.gpu.device;
         let scene = ctx.scene;
         let blades = scene.blades.all_blades(&scene.terrain);
@@ -189,7 +177,7 @@ impl Reference {
         let max = device.limits().max_buffer_size;
         if bytes > max {
             return Err(Error::Technique {
-                technique: INFO.id.into(),
+                technique: Self::INFO.id.into(),
                 message: format!(
                     "{} blades need {bytes} bytes of instance data but this adapter allows buffers of {max} bytes; lower grass.density",
                     blades.len()
@@ -279,6 +267,23 @@ impl Reference {
         })
     }
 
+    fn estimate(scene: &Scene, _params: &Params) -> Result<GpuEstimate> {
+        // At most one instance per candidate (fewer where the density map thins them).
+        let candidates = scene.blades.candidate_count(&scene.terrain);
+        Ok(GpuEstimate::buffer(
+            candidates.saturating_mul(std::mem::size_of::<BladeInstance>() as u64),
+        )
+        .plus(GpuEstimate::buffer(
+            std::mem::size_of::<ParamsUniform>() as u64
+        )))
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
+    }
+}
+
+impl Reference {
     /// Vertices per blade strip.
     fn vertices_per_blade(&self) -> u32 {
         2 * self.params.segments + 1
@@ -286,14 +291,6 @@ impl Reference {
 }
 
 impl GrassTechnique for Reference {
-    fn info(&self) -> TechniqueInfo {
-        INFO
-    }
-
-    fn params(&self) -> toml::Table {
-        grassbench::params::to_table(&self.params)
-    }
-
     fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
         // Nothing to do on the CPU: blades are static, the wind is read on the GPU.
         Ok(())
@@ -312,16 +309,26 @@ impl GrassTechnique for Reference {
         pass.set_bind_group(1, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, self.instances.slice(..));
         pass.draw(0..self.vertices_per_blade(), 0..self.blade_count);
-        drop(pass);
-        encoder.count_draws(1);
     }
 
     fn stats(&self) -> TechniqueStats {
         TechniqueStats {
             blades: u64::from(self.blade_count),
             triangles: u64::from(self.blade_count) * u64::from(2 * self.params.segments - 1),
-            draw_calls: u64::from(self.blade_count > 0),
             gpu_bytes: self.gpu_bytes,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_mirror_matches_the_shader() {
+        assert_eq!(
+            shaders::struct_size(SHADER, "Params").unwrap() as usize,
+            std::mem::size_of::<ParamsUniform>()
+        );
     }
 }

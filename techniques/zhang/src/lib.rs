@@ -232,7 +232,8 @@ pub mod textures;
 pub mod wing_trim;
 
 use grassbench::glam::{IVec2, Vec3};
-use grassbench::technique::{LodBlades, TechniqueEntry};
+use grassbench::gpu::GpuEstimate;
+use grassbench::technique::{LevelBlades, RenderPass, Technique, TechniqueEntry, Variants};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
@@ -250,69 +251,8 @@ pub const BILLBOARD_SHADER: &str = include_str!("../shaders/billboard.wgsl");
 /// The tree and stone shader (without the prelude).
 pub const PROPS_SHADER: &str = include_str!("../shaders/props.wgsl");
 
-const INFO: TechniqueInfo = TechniqueInfo {
-    id: "zhang",
-    name: "Zhang 2006 (Navier-Stokes wind, Bezier blades, flowers)",
-    paper: "Zhang Xia 2006, Physically Based Animation and Fast Rendering of Large-Scale Prairie",
-    gpu_state: false,
-    debug_views: &[],
-};
-
 /// The registry line for this technique.
-pub const ENTRY: TechniqueEntry = TechniqueEntry {
-    info: INFO,
-    // Single plants everywhere (level of detail off, Sec. 5.2). No `no_transitions` variant:
-    // `fade_radius = 0` switches without fading, but the comparison suite's popping check
-    // (a 0.25 m/frame dolly) cannot see zhang's switch under the parallax of near blades and
-    // sees more change with the fade band's two layers (peak 8.3 against 7.7 measured); the
-    // switch itself is measured by `gpu_zhang`'s crossing test instead.
-    variants: &[grassbench::technique::Variant {
-        name: grassbench::technique::FINEST,
-        params: "lod = false",
-    }],
-    default_params: || grassbench::params::to_table(&Params::default()),
-    create: |ctx, overrides| Ok(Box::new(Zhang::new(ctx, overrides)?)),
-    estimate: |scene, overrides| {
-        use grassbench::gpu::GpuEstimate;
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
-        // At most one blade per lattice point; each carries a flower with probability
-        // `flower_fraction`: the expected count plus four standard deviations (and the 64 bytes
-        // an empty buffer keeps).
-        let side = u64::from(params.grids) * u64::from(params.blades_per_side);
-        let blades = side * side;
-        let (n, f) = (blades as f64, f64::from(params.flower_fraction));
-        let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
-        let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
-        // Billboard wings: at most six per billboard of the finest step in every grid.
-        let (wings, layers) = if params.lod {
-            let steps = billboard::steps(params.blades_per_side, params.grids);
-            let per_side = u64::from(lod::billboards_per_side(params.blades_per_side, 5));
-            let grids = u64::from(params.grids).pow(2);
-            (6 * per_side * per_side * grids, steps.len() as u32)
-        } else {
-            (1, 0)
-        };
-        let sorted = if params.sorting == params::Sorting::Sort {
-            sorted_capacity(&params, blades)
-        } else {
-            0
-        };
-        Ok(size(blades, std::mem::size_of::<BladeStatic>())
-            .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
-            .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
-            .plus(size(
-                sorted.max(1),
-                std::mem::size_of::<gpu::BladeDynamic>(),
-            ))
-            .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
-            .plus(size(wings, std::mem::size_of::<WingInstance>()))
-            .plus(size(
-                prop_vertices(&params, &scene.terrain),
-                std::mem::size_of::<PropVertex>(),
-            ))
-            .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
-    },
-};
+pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Zhang>();
 
 /// The technique.
 pub struct Zhang {
@@ -382,10 +322,72 @@ fn buffer(
     })
 }
 
-impl Zhang {
+impl Technique for Zhang {
+    type Params = Params;
+
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "zhang",
+        name: "Zhang 2006 (Navier-Stokes wind, Bezier blades, flowers)",
+        paper: "Zhang Xia 2006, Physically Based Animation and Fast Rendering of Large-Scale Prairie",
+        gpu_state: false,
+        debug_views: &[],
+    };
+
+    // Single plants everywhere (level of detail off, Sec. 5.2). No `no_transitions` variant:
+    // `fade_radius = 0` switches without fading, but the comparison suite's popping check
+    // (a 0.25 m/frame dolly) cannot see zhang's switch under the parallax of near blades and
+    // sees more change with the fade band's two layers (peak 8.3 against 7.7 measured); the
+    // switch itself is measured by `gpu_zhang`'s crossing test instead.
+    const VARIANTS: Variants = Variants {
+        finest: "lod = false",
+        others: &[],
+    };
+
+    fn estimate(scene: &grassbench::Scene, params: &Params) -> Result<GpuEstimate> {
+        // At most one blade per lattice point; each carries a flower with probability
+        // `flower_fraction`: the expected count plus four standard deviations (and the 64 bytes
+        // an empty buffer keeps).
+        let side = u64::from(params.grids) * u64::from(params.blades_per_side);
+        let blades = side * side;
+        let (n, f) = (blades as f64, f64::from(params.flower_fraction));
+        let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
+        let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
+        // Billboard wings: at most six per billboard of the finest step in every grid.
+        let (wings, layers) = if params.lod {
+            let steps = billboard::steps(params.blades_per_side, params.grids);
+            let per_side = u64::from(lod::billboards_per_side(params.blades_per_side, 5));
+            let grids = u64::from(params.grids).pow(2);
+            (6 * per_side * per_side * grids, steps.len() as u32)
+        } else {
+            (1, 0)
+        };
+        let sorted = if params.sorting == params::Sorting::Sort {
+            sorted_capacity(&params, blades)
+        } else {
+            0
+        };
+        Ok(size(blades, std::mem::size_of::<BladeStatic>())
+            .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
+            .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
+            .plus(size(
+                sorted.max(1),
+                std::mem::size_of::<gpu::BladeDynamic>(),
+            ))
+            .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
+            .plus(size(wings, std::mem::size_of::<WingInstance>()))
+            .plus(size(
+                prop_vertices(&params, &scene.terrain),
+                std::mem::size_of::<PropVertex>(),
+            ))
+            .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
+    }
+
     /// Plants the prairie, builds the animation state, textures and pipelines.
-    pub fn new(ctx: &InitContext<'_>, overrides: &toml::Table) -> Result<Self> {
-        let params: Params = grassbench::params::resolve(INFO.id, overrides)?;
+    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         let sort = params.sorting == params::Sorting::Sort;
         let scene = ctx.scene;
         let grass = &scene.config.grass;
@@ -404,7 +406,7 @@ impl Zhang {
         let max = device.limits().max_buffer_size;
         if per_frame > max {
             return Err(Error::Technique {
-                technique: INFO.id.into(),
+                technique: Self::INFO.id.into(),
                 message: format!(
                     "{} blades need {per_frame} bytes of instance data but this adapter allows buffers of {max} bytes; lower zhang.blades_per_side or zhang.grids",
                     planted.len()
@@ -581,7 +583,9 @@ impl Zhang {
             sort_ms: 0.0,
         })
     }
+}
 
+impl Zhang {
     /// The animation state (for inspection).
     pub fn animation(&self) -> &Animation {
         &self.animation
@@ -589,14 +593,6 @@ impl Zhang {
 }
 
 impl GrassTechnique for Zhang {
-    fn info(&self) -> TechniqueInfo {
-        INFO
-    }
-
-    fn params(&self) -> toml::Table {
-        grassbench::params::to_table(&self.params)
-    }
-
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         let p = &self.params;
         let frustum = inputs.camera.frustum();
@@ -748,7 +744,7 @@ impl GrassTechnique for Zhang {
             pass.set_vertex_buffer(0, self.props.slice(..));
             pass.draw(0..self.prop_count, 0..1);
         }
-        let flowers = |pass: &mut wgpu::RenderPass<'_>| {
+        let flowers = |pass: &mut RenderPass<'_>| {
             if !v.flowers.is_empty() {
                 pass.set_pipeline(&self.pipelines.flowers);
                 pass.set_vertex_buffer(0, self.flowers.slice(..));
@@ -790,8 +786,6 @@ impl GrassTechnique for Zhang {
                 flowers(&mut pass);
             }
         }
-        drop(pass);
-        encoder.count_draws(self.draw_calls());
     }
 
     /// Grass grids drawn and culled (Sec. 5.3), single plants drawn, billboards drawn by
@@ -828,18 +822,22 @@ impl GrassTechnique for Zhang {
                 + 2 * flowers
                 + 2 * self.wings.len() as u64
                 + u64::from(self.prop_count / 3),
-            draw_calls: self.draw_calls(),
             gpu_bytes: self.gpu_bytes,
         }
     }
 
-    /// Single plants as geometry, billboards as vertical slices.
-    fn lod_blades(&self) -> Option<LodBlades> {
-        Some(LodBlades {
-            geometry: self.blade_count(),
-            vertical_slices: self.plan.billboard_blades,
-            horizontal_slices: 0,
-        })
+    /// Single plants (Bezier blades) and the blades the billboards stand for.
+    fn levels(&self) -> Vec<LevelBlades> {
+        vec![
+            LevelBlades {
+                level: "single_plants",
+                blades: self.blade_count(),
+            },
+            LevelBlades {
+                level: "billboards",
+                blades: self.plan.billboard_blades,
+            },
+        ]
     }
 }
 
@@ -864,17 +862,6 @@ impl Zhang {
         self.sorting
             .as_ref()
             .map_or(self.plan.blade_count(), |s| s.order.len() as u64)
-    }
-
-    fn draw_calls(&self) -> u64 {
-        let blades = match &self.sorting {
-            Some(s) => usize::from(!s.order.is_empty()),
-            None => self.plan.blades.len(),
-        };
-        (blades
-            + self.plan.flowers.len()
-            + usize::from(!self.wings.is_empty())
-            + usize::from(self.prop_count > 0)) as u64
     }
 }
 

@@ -1,7 +1,7 @@
 //! Steps per second of the 3D Stam solver (Zhang Ch. 2) for N = 8, 16, 32, 64, default
 //! parameters (consistent projection, 20 Gauss–Seidel sweeps). Throughput is reported in
 //! interior cells (N³) per second; the time per iteration is one `step` (sources + vel_step +
-//! dens_step). Run: `cargo bench -p grassbench --bench stam`.
+//! dens_step). Run: `cargo bench -p grassbench-cli --bench stam`.
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -14,9 +14,9 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
+use crate::Result;
 use crate::params::check;
 use crate::terrain::Terrain;
-use crate::{Error, Result};
 
 /// `[object]` in a scene file.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -47,54 +47,17 @@ impl Default for ObjectConfig {
     }
 }
 
-/// A ground position along a path: piecewise linear through `keyframes` (`[time, x, z]`,
-/// held before the first and after the last), or `start + velocity · time` without any.
-pub fn track(start: [f32; 2], velocity: [f32; 2], keyframes: &[[f32; 3]], time: f32) -> Vec2 {
-    super::keyframes::sample(keyframes, time, |k| (k[0], Vec3::new(k[1], 0.0, k[2])))
-        .map_or(Vec2::from(start) + Vec2::from(velocity) * time, |p| {
-            Vec2::new(p.x, p.z)
-        })
-}
-
-/// Checks a path's numbers; errors name `prefix.<key>`.
-pub fn validate_track(
-    prefix: &str,
-    start: [f32; 2],
-    velocity: [f32; 2],
-    keyframes: &[[f32; 3]],
-) -> Result<()> {
-    for (c, v) in start.iter().enumerate() {
-        check(&format!("{prefix}.start[{c}]"), *v, -1e6..=1e6)?;
-    }
-    for (c, v) in velocity.iter().enumerate() {
-        check(&format!("{prefix}.velocity[{c}]"), *v, -1e4..=1e4)?;
-    }
-    for (k, f) in keyframes.iter().enumerate() {
-        for (c, v) in f.iter().enumerate() {
-            check(&format!("{prefix}.keyframes[{k}][{c}]"), *v, -1e6..=1e6)?;
-        }
-        if k > 0 && f[0] <= keyframes[k - 1][0] {
-            return Err(Error::param(
-                format!("{prefix}.keyframes[{k}][0]"),
-                f[0],
-                "times that increase from one keyframe to the next",
-            ));
-        }
-    }
-    Ok(())
-}
-
 impl ObjectConfig {
     /// Rejects NaN, negative or absurd sizes and paths whose times do not increase.
     pub fn validate(&self) -> Result<()> {
         check("object.radius", self.radius, 0.01..=100.0)?;
         check("object.height", self.height, -100.0..=1000.0)?;
-        validate_track("object", self.start, self.velocity, &self.keyframes)
+        crate::keyframes::validate_track("object", self.start, self.velocity, &self.keyframes)
     }
 
     /// Ground position (x, z) of the object at `time`.
     pub fn ground_position(&self, time: f32) -> Vec2 {
-        track(self.start, self.velocity, &self.keyframes, time)
+        crate::keyframes::track(self.start, self.velocity, &self.keyframes, time)
     }
 
     /// Centre of the sphere at `time`, `height` above the ground of `terrain`.
@@ -107,18 +70,6 @@ impl ObjectConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn tracks_follow_keyframes_or_a_velocity() {
-        let keys = [[0.0, 0.0, 0.0], [10.0, 10.0, -20.0]];
-        assert_eq!(track([0.0; 2], [0.0; 2], &keys, -1.0), Vec2::ZERO);
-        assert_eq!(track([0.0; 2], [0.0; 2], &keys, 5.0), Vec2::new(5.0, -10.0));
-        assert_eq!(
-            track([0.0; 2], [0.0; 2], &keys, 99.0),
-            Vec2::new(10.0, -20.0)
-        );
-        assert_eq!(track([1.0, 2.0], [3.0, 0.0], &[], 2.0), Vec2::new(7.0, 2.0));
-    }
 
     #[test]
     fn the_centre_flies_above_the_ground() {

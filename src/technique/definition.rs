@@ -1,0 +1,332 @@
+//! What a technique *is* — its parameter type, identity, variants, how it is made and what it
+//! will allocate — written once per technique crate as a [`Technique`] impl, and turned into
+//! the registry's object-safe [`TechniqueEntry`] by one generic function, [`entry`].
+//!
+//! A technique crate therefore writes no registration code of its own: no closures, no
+//! parameter resolution, no `fn info` / `fn params` by hand. Parameters are resolved (defaults,
+//! overrides, unknown keys, types, ranges) in exactly one place, [`TechniqueEntry::check`],
+//! which `run`, `sweep`, `validate`, the window and the tests all use.
+
+use super::{GrassTechnique, InitContext, TechniqueInfo};
+use crate::gpu::GpuEstimate;
+use crate::params::{TechniqueParams, resolve, to_table};
+use crate::{Error, Result, Scene};
+
+/// A real-time grass technique, typed: implement this (and [`GrassTechnique`] for the
+/// per-frame work), then register `technique::entry::<YourTechnique>()`.
+pub trait Technique: Sized + 'static {
+    /// Its parameter struct (`[techniques.<id>]` in scene files, `--param` on the command line).
+    type Params: TechniqueParams;
+
+    /// Id, name and paper.
+    const INFO: TechniqueInfo;
+
+    /// Named parameter sets the comparison suite and the command line can ask for. `finest` is
+    /// a field, so a technique that forgets it does not compile.
+    const VARIANTS: Variants;
+
+    /// Creates the technique with resolved, validated parameters.
+    fn new(ctx: &InitContext<'_>, params: Self::Params) -> Result<Self>;
+
+    /// What [`Technique::new`] with these parameters will allocate on the GPU, computed from
+    /// the same numbers without any GPU work; the harness checks it against the adapter
+    /// ([`crate::gpu::memory`]) before creating anything.
+    fn estimate(scene: &Scene, params: &Self::Params) -> Result<GpuEstimate>;
+
+    /// The parameters in use.
+    fn params(&self) -> &Self::Params;
+}
+
+/// Identity and parameters of a live technique, for the harness and result files. Implemented
+/// for every [`Technique`]; a supertrait of [`GrassTechnique`], so `dyn GrassTechnique` has it.
+pub trait Describe {
+    /// Id, name and paper.
+    fn info(&self) -> TechniqueInfo;
+
+    /// The parameters in use, as recorded in result files.
+    fn param_table(&self) -> toml::Table;
+}
+
+impl<T: Technique> Describe for T {
+    fn info(&self) -> TechniqueInfo {
+        T::INFO
+    }
+
+    fn param_table(&self) -> toml::Table {
+        to_table(Technique::params(self))
+    }
+}
+
+/// A named set of parameter overrides a technique offers to the comparison suite.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Variant {
+    /// The variant's name, e.g. [`NO_TRANSITIONS`].
+    pub name: &'static str,
+    /// Parameter overrides, in TOML (`"shells = 128"`).
+    pub params: &'static str,
+}
+
+/// A technique's variants. `finest` is a required field, so a technique without one does not
+/// compile:
+///
+/// ```compile_fail
+/// const V: grassbench::technique::Variants = grassbench::technique::Variants { others: &[] };
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Variants {
+    /// Overrides that force the technique's finest representation everywhere (for LOD
+    /// fidelity); `""` when the defaults already are the finest.
+    pub finest: &'static str,
+    /// Further variants (e.g. [`NO_TRANSITIONS`]).
+    pub others: &'static [Variant],
+}
+
+impl Variants {
+    /// Every variant, [`FINEST`] first.
+    pub fn iter(&self) -> impl Iterator<Item = Variant> + '_ {
+        std::iter::once(Variant {
+            name: FINEST,
+            params: self.finest,
+        })
+        .chain(self.others.iter().copied())
+    }
+
+    /// The overrides of variant `name`, if there is one.
+    pub fn get(&self, name: &str) -> Option<&'static str> {
+        self.iter().find(|v| v.name == name).map(|v| v.params)
+    }
+}
+
+/// Name of the variant that forces a technique's finest representation everywhere.
+pub const FINEST: &str = "finest";
+/// Name of the variant that switches levels of detail without transitions.
+pub const NO_TRANSITIONS: &str = "no_transitions";
+
+/// One line of the registry: a [`Technique`] behind function pointers, so techniques of
+/// different types sit in one table. Made by [`entry`], never by hand.
+#[derive(Clone, Copy)]
+pub struct TechniqueEntry {
+    /// Id, name and paper.
+    pub info: TechniqueInfo,
+    /// Parameter variants for the comparison suite (see [`FINEST`], [`NO_TRANSITIONS`]).
+    pub variants: Variants,
+    defaults: fn() -> toml::Table,
+    check: fn(&toml::Table) -> Result<toml::Table>,
+    create: fn(&InitContext<'_>, &toml::Table) -> Result<Box<dyn GrassTechnique>>,
+    estimate: fn(&Scene, &toml::Table) -> Result<GpuEstimate>,
+}
+
+/// The registry line of technique `T`.
+pub const fn entry<T: Technique + GrassTechnique>() -> TechniqueEntry {
+    TechniqueEntry {
+        info: T::INFO,
+        variants: T::VARIANTS,
+        defaults: defaults_of::<T>,
+        check: check_of::<T>,
+        create: create_of::<T>,
+        estimate: estimate_of::<T>,
+    }
+}
+
+fn defaults_of<T: Technique>() -> toml::Table {
+    to_table(&T::Params::default())
+}
+
+fn check_of<T: Technique>(overrides: &toml::Table) -> Result<toml::Table> {
+    resolve::<T::Params>(T::INFO.id, overrides).map(|p| to_table(&p))
+}
+
+fn create_of<T: Technique + GrassTechnique>(
+    ctx: &InitContext<'_>,
+    overrides: &toml::Table,
+) -> Result<Box<dyn GrassTechnique>> {
+    let params = resolve::<T::Params>(T::INFO.id, overrides)?;
+    Ok(Box::new(T::new(ctx, params)?))
+}
+
+fn estimate_of<T: Technique>(scene: &Scene, overrides: &toml::Table) -> Result<GpuEstimate> {
+    T::estimate(scene, &resolve::<T::Params>(T::INFO.id, overrides)?)
+}
+
+impl TechniqueEntry {
+    /// The defaults of its parameter struct.
+    pub fn default_params(&self) -> toml::Table {
+        (self.defaults)()
+    }
+
+    /// The one parameter check: the defaults overlaid with `overrides`, every key known, every
+    /// value of the right type and in range. Returns the full table the technique would run
+    /// with; the error names the key and what would be accepted.
+    pub fn check(&self, overrides: &toml::Table) -> Result<toml::Table> {
+        (self.check)(overrides)
+    }
+
+    /// Creates the technique with `overrides` (checked as by [`Self::check`]).
+    pub fn create(
+        &self,
+        ctx: &InitContext<'_>,
+        overrides: &toml::Table,
+    ) -> Result<Box<dyn GrassTechnique>> {
+        (self.create)(ctx, overrides)
+    }
+
+    /// What [`Self::create`] with `overrides` will allocate on the GPU (no GPU work).
+    pub fn estimate(&self, scene: &Scene, overrides: &toml::Table) -> Result<GpuEstimate> {
+        (self.estimate)(scene, overrides)
+    }
+
+    /// The overrides of variant `name`, if the technique offers it.
+    pub fn variant(&self, name: &str) -> Option<Result<toml::Table>> {
+        self.variants
+            .get(name)
+            .map(|params| self.parse_variant(name, params))
+    }
+
+    /// The overrides of its [`FINEST`] variant (every technique has one).
+    pub fn finest(&self) -> Result<toml::Table> {
+        self.parse_variant(FINEST, self.variants.finest)
+    }
+
+    fn parse_variant(&self, name: &str, params: &str) -> Result<toml::Table> {
+        params.parse::<toml::Table>().map_err(|e| Error::Technique {
+            technique: self.info.id.to_owned(),
+            message: format!("variant `{name}` is not valid TOML: {e}"),
+        })
+    }
+}
+
+impl std::fmt::Debug for TechniqueEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TechniqueEntry")
+            .field("info", &self.info)
+            .field("variants", &self.variants)
+            .finish_non_exhaustive()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::{check, check_int};
+    use crate::technique::{FrameEncoder, TechniqueStats};
+    use crate::{FrameInputs, GpuContext};
+    use serde::{Deserialize, Serialize};
+
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Knobs {
+        shells: u32,
+        bend: f32,
+    }
+
+    impl Default for Knobs {
+        fn default() -> Self {
+            Self {
+                shells: 8,
+                bend: 0.5,
+            }
+        }
+    }
+
+    impl TechniqueParams for Knobs {
+        fn validate(&self) -> Result<()> {
+            check_int("toy.shells", self.shells, 1..=64)?;
+            check("toy.bend", self.bend, 0.0..=1.0)
+        }
+    }
+
+    struct Toy(Knobs);
+
+    impl Technique for Toy {
+        type Params = Knobs;
+        const INFO: TechniqueInfo = TechniqueInfo {
+            id: "toy",
+            name: "toy",
+            paper: "-",
+            gpu_state: false,
+            debug_views: &[],
+        };
+        const VARIANTS: Variants = Variants {
+            finest: "shells = 64",
+            others: &[Variant {
+                name: NO_TRANSITIONS,
+                params: "bend = 0.0",
+            }],
+        };
+        fn new(_ctx: &InitContext<'_>, params: Knobs) -> Result<Self> {
+            Ok(Self(params))
+        }
+        fn estimate(_scene: &Scene, params: &Knobs) -> Result<GpuEstimate> {
+            Ok(GpuEstimate::buffer(u64::from(params.shells) * 100))
+        }
+        fn params(&self) -> &Knobs {
+            &self.0
+        }
+    }
+
+    impl GrassTechnique for Toy {
+        fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
+            Ok(())
+        }
+        fn prepare(&mut self, _gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
+            Ok(())
+        }
+        fn encode(&self, _encoder: &mut FrameEncoder<'_>) {}
+        fn stats(&self) -> TechniqueStats {
+            TechniqueStats::default()
+        }
+    }
+
+    const TOY: TechniqueEntry = entry::<Toy>();
+
+    fn table(text: &str) -> toml::Table {
+        text.parse().unwrap()
+    }
+
+    #[test]
+    fn the_entry_checks_defaults_overrides_keys_types_and_ranges_in_one_place() {
+        assert_eq!(TOY.info.id, "toy");
+        assert_eq!(TOY.default_params(), table("shells = 8\nbend = 0.5"));
+        assert_eq!(
+            TOY.check(&table("shells = 12")).unwrap(),
+            table("shells = 12\nbend = 0.5")
+        );
+        let unknown = TOY.check(&table("shelz = 12")).unwrap_err().to_string();
+        assert!(
+            unknown.contains("toy.shelz") && unknown.contains("toy.shells"),
+            "{unknown}"
+        );
+        let range = TOY.check(&table("shells = -4")).unwrap_err().to_string();
+        assert!(range.contains("toy"), "{range}");
+        let nan = TOY.check(&table("bend = nan")).unwrap_err().to_string();
+        assert!(nan.contains("toy.bend"), "{nan}");
+        let kind = TOY
+            .check(&table("bend = \"much\""))
+            .unwrap_err()
+            .to_string();
+        assert!(kind.contains("toy"), "{kind}");
+    }
+
+    #[test]
+    fn the_estimate_sees_the_same_resolved_parameters() {
+        let scene = Scene::from_toml("", std::path::Path::new("toy.toml")).unwrap();
+        assert_eq!(TOY.estimate(&scene, &table("")).unwrap().bytes, 800);
+        assert_eq!(
+            TOY.estimate(&scene, &table("shells = 2")).unwrap().bytes,
+            200
+        );
+        assert!(TOY.estimate(&scene, &table("shells = 0")).is_err());
+    }
+
+    #[test]
+    fn variants_list_finest_first_and_parse() {
+        let names: Vec<_> = TOY.variants.iter().map(|v| v.name).collect();
+        assert_eq!(names, [FINEST, NO_TRANSITIONS]);
+        assert_eq!(TOY.finest().unwrap(), table("shells = 64"));
+        assert_eq!(
+            TOY.variant(NO_TRANSITIONS).unwrap().unwrap(),
+            table("bend = 0.0")
+        );
+        assert!(TOY.variant("paper").is_none());
+    }
+}

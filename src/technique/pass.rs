@@ -1,0 +1,133 @@
+//! The passes a [`super::FrameEncoder`] hands out: wgpu's render and compute passes behind a
+//! thin wrapper that counts every draw and dispatch as it is recorded, so the work a frame
+//! submits is measured by the harness for every technique alike, never reported by the
+//! technique about itself.
+//!
+//! Only the recording calls techniques use are forwarded; the wrapper deliberately has no
+//! `Deref` to the wgpu pass, so a draw cannot bypass the count.
+
+use std::ops::Range;
+
+/// What the passes of one frame recorded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PassCounts {
+    /// Draw calls (direct, indexed and indirect).
+    pub draws: u64,
+    /// Compute dispatches (direct and indirect).
+    pub dispatches: u64,
+}
+
+/// A render pass opened through the frame encoder (target attached, bind group 0 set).
+pub struct RenderPass<'p> {
+    pass: wgpu::RenderPass<'p>,
+    counts: &'p mut PassCounts,
+}
+
+impl<'p> RenderPass<'p> {
+    pub(super) fn new(pass: wgpu::RenderPass<'p>, counts: &'p mut PassCounts) -> Self {
+        Self { pass, counts }
+    }
+
+    /// See [`wgpu::RenderPass::set_pipeline`].
+    pub fn set_pipeline(&mut self, pipeline: &wgpu::RenderPipeline) {
+        self.pass.set_pipeline(pipeline);
+    }
+
+    /// See [`wgpu::RenderPass::set_bind_group`].
+    pub fn set_bind_group(&mut self, index: u32, bind_group: &wgpu::BindGroup, offsets: &[u32]) {
+        self.pass.set_bind_group(index, bind_group, offsets);
+    }
+
+    /// See [`wgpu::RenderPass::set_vertex_buffer`].
+    pub fn set_vertex_buffer(&mut self, slot: u32, buffer_slice: wgpu::BufferSlice<'_>) {
+        self.pass.set_vertex_buffer(slot, buffer_slice);
+    }
+
+    /// See [`wgpu::RenderPass::set_index_buffer`].
+    pub fn set_index_buffer(
+        &mut self,
+        buffer_slice: wgpu::BufferSlice<'_>,
+        index_format: wgpu::IndexFormat,
+    ) {
+        self.pass.set_index_buffer(buffer_slice, index_format);
+    }
+
+    /// See [`wgpu::RenderPass::set_stencil_reference`].
+    pub fn set_stencil_reference(&mut self, reference: u32) {
+        self.pass.set_stencil_reference(reference);
+    }
+
+    /// See [`wgpu::RenderPass::set_viewport`].
+    pub fn set_viewport(&mut self, x: f32, y: f32, w: f32, h: f32, min_depth: f32, max_depth: f32) {
+        self.pass.set_viewport(x, y, w, h, min_depth, max_depth);
+    }
+
+    /// See [`wgpu::RenderPass::set_scissor_rect`].
+    pub fn set_scissor_rect(&mut self, x: u32, y: u32, width: u32, height: u32) {
+        self.pass.set_scissor_rect(x, y, width, height);
+    }
+
+    /// See [`wgpu::RenderPass::draw`]; counted.
+    pub fn draw(&mut self, vertices: Range<u32>, instances: Range<u32>) {
+        self.counts.draws += 1;
+        self.pass.draw(vertices, instances);
+    }
+
+    /// See [`wgpu::RenderPass::draw_indexed`]; counted.
+    pub fn draw_indexed(&mut self, indices: Range<u32>, base_vertex: i32, instances: Range<u32>) {
+        self.counts.draws += 1;
+        self.pass.draw_indexed(indices, base_vertex, instances);
+    }
+
+    /// See [`wgpu::RenderPass::draw_indirect`]; counted.
+    pub fn draw_indirect(&mut self, indirect_buffer: &wgpu::Buffer, indirect_offset: u64) {
+        self.counts.draws += 1;
+        self.pass.draw_indirect(indirect_buffer, indirect_offset);
+    }
+
+    /// See [`wgpu::RenderPass::draw_indexed_indirect`]; counted.
+    pub fn draw_indexed_indirect(&mut self, indirect_buffer: &wgpu::Buffer, indirect_offset: u64) {
+        self.counts.draws += 1;
+        self.pass
+            .draw_indexed_indirect(indirect_buffer, indirect_offset);
+    }
+}
+
+/// A compute pass opened through the frame encoder (bind group 0 set).
+pub struct ComputePass<'p> {
+    pass: wgpu::ComputePass<'p>,
+    counts: &'p mut PassCounts,
+}
+
+impl<'p> ComputePass<'p> {
+    pub(super) fn new(pass: wgpu::ComputePass<'p>, counts: &'p mut PassCounts) -> Self {
+        Self { pass, counts }
+    }
+
+    /// See [`wgpu::ComputePass::set_pipeline`].
+    pub fn set_pipeline(&mut self, pipeline: &wgpu::ComputePipeline) {
+        self.pass.set_pipeline(pipeline);
+    }
+
+    /// See [`wgpu::ComputePass::set_bind_group`].
+    pub fn set_bind_group(&mut self, index: u32, bind_group: &wgpu::BindGroup, offsets: &[u32]) {
+        self.pass.set_bind_group(index, bind_group, offsets);
+    }
+
+    /// See [`wgpu::ComputePass::dispatch_workgroups`]; counted.
+    pub fn dispatch_workgroups(&mut self, x: u32, y: u32, z: u32) {
+        self.counts.dispatches += 1;
+        self.pass.dispatch_workgroups(x, y, z);
+    }
+
+    /// See [`wgpu::ComputePass::dispatch_workgroups_indirect`]; counted.
+    pub fn dispatch_workgroups_indirect(
+        &mut self,
+        indirect_buffer: &wgpu::Buffer,
+        indirect_offset: u64,
+    ) {
+        self.counts.dispatches += 1;
+        self.pass
+            .dispatch_workgroups_indirect(indirect_buffer, indirect_offset);
+    }
+}
