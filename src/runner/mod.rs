@@ -17,7 +17,7 @@ mod stats;
 use std::time::Instant;
 
 pub use output::{write_atomic, write_csv};
-pub use provenance::{Provenance, WGPU_VERSION};
+pub use provenance::{Provenance, WGPU_VERSION, command_line};
 pub use record::{FrameRecord, RunSummary};
 pub use stats::Percentiles;
 
