@@ -26,8 +26,18 @@ pub const BUILT_IN: &[(&str, &str)] = &[
     ),
 ];
 
-/// The scenes the default comparison runs.
+/// The scenes the default comparison runs (`--scene default`).
 pub const DEFAULT_SCENES: &[&str] = &["meadow", "football_field", "prairie_flyover"];
+
+/// Loads the scenes a `--scene` argument names: `default` for [`DEFAULT_SCENES`], otherwise
+/// comma-separated built-in names or paths.
+pub fn select(list: &str) -> Result<Vec<Scene>> {
+    if list.trim() == "default" {
+        DEFAULT_SCENES.iter().map(|n| load(n)).collect()
+    } else {
+        list.split(',').map(|n| load(n.trim())).collect()
+    }
+}
 
 /// Folder holding the built-in scene files (maps they name are resolved against it).
 pub fn scenes_dir() -> PathBuf {
@@ -53,4 +63,28 @@ pub fn load(name_or_path: &str) -> Result<Scene> {
 /// Names of the built-in scenes.
 pub fn names() -> Vec<&'static str> {
     BUILT_IN.iter().map(|(n, _)| *n).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_names_the_default_comparison_and_lists_are_split() {
+        let names = |list: &str| -> Vec<String> {
+            select(list)
+                .unwrap()
+                .iter()
+                .map(|s| s.name().to_owned())
+                .collect()
+        };
+        assert_eq!(names("default"), DEFAULT_SCENES);
+        assert_eq!(names(" default "), DEFAULT_SCENES);
+        assert_eq!(
+            names("meadow, football_field"),
+            ["meadow", "football_field"]
+        );
+        let e = select("meadow,nowhere").unwrap_err().to_string();
+        assert!(e.contains("nowhere"), "{e}");
+    }
 }

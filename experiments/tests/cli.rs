@@ -308,6 +308,18 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
         meta.contains("revision") && meta.contains("[adapter]"),
         "{meta}"
     );
+    // The command names the program, not the path it was started from.
+    assert!(
+        meta.contains("command = \"grassbench run -t reference -s football_field "),
+        "{meta}"
+    );
+    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+    assert!(
+        readme.contains("Command: `grassbench run -t reference -s football_field ")
+            && readme.contains("Measured on `")
+            && !readme.contains(env!("CARGO_BIN_EXE_grassbench")),
+        "{readme}"
+    );
     let params = std::fs::read_to_string(out.join("football_field/params.csv")).unwrap();
     assert!(params.contains("segments,3"), "{params}");
     // A second run into the same folder is refused without --force.

@@ -16,7 +16,7 @@ mod stats;
 use std::time::Instant;
 
 pub use crate::files::{write_atomic, write_csv};
-pub use provenance::{Provenance, WGPU_VERSION};
+pub use provenance::{Provenance, WGPU_VERSION, command_line};
 pub use record::{FrameRecord, LevelRow, RunSummary};
 pub use stats::Percentiles;
 

@@ -1,4 +1,6 @@
-//! What made a result: written as `meta.toml` next to every CSV.
+//! What made a result: written as `meta.toml` next to every CSV, and as a paragraph of
+//! Markdown ([`Provenance::to_markdown`]) at the top of the README of `grassbench run` and the
+//! report of a sweep.
 
 use crate::gpu::AdapterSummary;
 
@@ -8,7 +10,8 @@ pub const WGPU_VERSION: &str = "30.0.1";
 /// Command, adapter, revision, build and machine behind a set of figures.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize, PartialEq)]
 pub struct Provenance {
-    /// The command line that produced the results.
+    /// The command line that produced the results, the program by its name
+    /// (`grassbench run ...`, not the path it was started from).
     pub command: String,
     /// `git describe`-like revision of the working tree (`+dirty` when sources outside `results/`
     /// are modified), or `unknown`.
@@ -35,7 +38,7 @@ impl Provenance {
     /// Collects everything for `adapter` and the current process.
     pub fn collect(adapter: &AdapterSummary) -> Self {
         Self {
-            command: std::env::args().collect::<Vec<_>>().join(" "),
+            command: command_line(std::env::args()),
             revision: git_revision(),
             build_profile: if cfg!(debug_assertions) {
                 "debug"
@@ -57,6 +60,47 @@ impl Provenance {
     pub fn to_toml(&self) -> String {
         toml::to_string_pretty(self).unwrap_or_default()
     }
+
+    /// As a Markdown paragraph: adapter, CPU, revision and date, then the command followed by
+    /// `after_command` (e.g. `; shard: all`). Ends with a newline.
+    pub fn to_markdown(&self, after_command: &str) -> String {
+        let a = &self.adapter;
+        format!(
+            "Measured on `{}` ({}, {}; driver {} {}), CPU {} x{}, revision `{}` ({} build), {}.  \n\
+             Command: `{}`{after_command}.\n",
+            a.name,
+            a.backend,
+            a.device_type,
+            a.driver,
+            a.driver_info,
+            self.cpu,
+            self.cpu_count,
+            self.revision,
+            self.build_profile,
+            self.date,
+            self.command,
+        )
+    }
+}
+
+/// A command line as recorded: the program by its file name without the platform's suffix
+/// (`grassbench`, wherever it was built or installed), then the arguments.
+pub fn command_line(args: impl IntoIterator<Item = String>) -> String {
+    let mut args = args.into_iter();
+    let program = args.next().map(|p| {
+        let name = std::path::Path::new(&p)
+            .file_name()
+            .map_or_else(|| p.clone(), |n| n.to_string_lossy().into_owned());
+        match name.strip_suffix(std::env::consts::EXE_SUFFIX) {
+            Some(stem) if !stem.is_empty() => stem.to_owned(),
+            _ => name,
+        }
+    });
+    program
+        .into_iter()
+        .chain(args)
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 fn git_revision() -> String {
@@ -120,4 +164,69 @@ fn utc_now() -> String {
         rem % 3600 / 60,
         rem % 60
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(a: &[&str]) -> Vec<String> {
+        a.iter().map(|s| (*s).to_owned()).collect()
+    }
+
+    #[test]
+    fn the_command_names_the_program_not_its_path() {
+        assert_eq!(
+            command_line(args(&[
+                "/work/lead-target/release/grassbench",
+                "run",
+                "-o",
+                "/tmp/x"
+            ])),
+            "grassbench run -o /tmp/x"
+        );
+        assert_eq!(
+            command_line(args(&["./grassbench", "report", "results/a"])),
+            "grassbench report results/a"
+        );
+        assert_eq!(command_line(args(&["grassbench"])), "grassbench");
+        let exe = format!("target/release/grassbench{}", std::env::consts::EXE_SUFFIX);
+        assert_eq!(command_line(args(&[&exe, "list"])), "grassbench list");
+        assert_eq!(command_line(Vec::new()), "");
+    }
+
+    #[test]
+    fn markdown_names_adapter_revision_and_command() {
+        let adapter = AdapterSummary {
+            name: "llvmpipe".into(),
+            backend: "Vulkan".into(),
+            device_type: "Cpu".into(),
+            driver: "llvmpipe".into(),
+            driver_info: "Mesa 22.3.6".into(),
+            timestamps: false,
+            timestamp_period_ns: 1.0,
+        };
+        let p = Provenance {
+            command: "grassbench sweep s.toml".into(),
+            revision: "abc".into(),
+            build_profile: "release".into(),
+            grassbench_version: "0.1.0".into(),
+            wgpu_version: WGPU_VERSION.into(),
+            cpu: "EPYC".into(),
+            cpu_count: 2,
+            os: "linux x86_64".into(),
+            date: "2026-12-02T00:00:00Z".into(),
+            adapter,
+        };
+        assert_eq!(
+            p.to_markdown("; shard: all"),
+            "Measured on `llvmpipe` (Vulkan, Cpu; driver llvmpipe Mesa 22.3.6), CPU EPYC x2, \
+             revision `abc` (release build), 2026-12-02T00:00:00Z.  \n\
+             Command: `grassbench sweep s.toml`; shard: all.\n"
+        );
+        assert!(
+            p.to_markdown("")
+                .ends_with("Command: `grassbench sweep s.toml`.\n")
+        );
+    }
 }

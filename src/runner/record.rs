@@ -1,13 +1,20 @@
 //! Rows of `frames.csv` and `runs.csv`: flat structs (the csv crate cannot flatten), with
 //! technique parameters recorded separately in long format.
+//!
+//! Both are read back by name (`report`, `merge`), including files written by older builds:
+//! columns added since (`run_id`, `repetition`, `status`, `error`, `scene_variant`,
+//! `counters`, the levels of detail, the comparisons with the reference) are optional there,
+//! and a `runs.csv` row without `status` is a run that finished (older builds wrote no rows
+//! for failed runs).
 
 use super::Percentiles;
 use crate::technique::LevelBlades;
 
 /// One measured frame (a row of `frames.csv`).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FrameRecord {
     /// Run this frame belongs to (empty outside sweeps).
+    #[serde(default)]
     pub run_id: String,
     /// Technique id.
     pub technique: String,
@@ -50,6 +57,7 @@ pub struct FrameRecord {
     /// The technique's own counts ([`GrassTechnique::counters`]), `name=value;...`.
     ///
     /// [`GrassTechnique::counters`]: crate::GrassTechnique::counters
+    #[serde(default)]
     pub counters: String,
     /// Blades per level of detail, in the technique's own levels (written to `levels.csv` in
     /// long format, not to `frames.csv`).
@@ -101,17 +109,22 @@ pub fn format_counters(counters: &[(&'static str, f64)]) -> String {
 }
 
 /// A run summarised (a row of `runs.csv`).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunSummary {
     /// Run id (`<configuration>-r<repetition>` in sweeps, empty otherwise).
+    #[serde(default)]
     pub run_id: String,
     /// Repetition, from 0.
+    #[serde(default)]
     pub repetition: u32,
     /// `ok`, or `failed` (then `error` says why and the figures are zero).
+    #[serde(default = "status_ok")]
     pub status: String,
     /// Why the run failed.
+    #[serde(default)]
     pub error: String,
     /// Scene overrides of this configuration (`key=value;...`).
+    #[serde(default)]
     pub scene_variant: String,
     /// Technique id.
     pub technique: String,
@@ -173,7 +186,17 @@ pub struct RunSummary {
     pub efficiency: Option<f64>,
 }
 
+/// The status of a finished run, and of a row written before runs had a status.
+fn status_ok() -> String {
+    "ok".to_owned()
+}
+
 impl RunSummary {
+    /// Whether the run finished (its figures are measurements, not zeros).
+    pub fn is_ok(&self) -> bool {
+        self.status == "ok"
+    }
+
     /// Summarises measured frames (at least one).
     pub fn from_frames(frames: &[FrameRecord], params: &toml::Table) -> Self {
         let pct = |f: &dyn Fn(&FrameRecord) -> f64| {
@@ -191,7 +214,7 @@ impl RunSummary {
         Self {
             run_id: first.map(|r| r.run_id.clone()).unwrap_or_default(),
             repetition: 0,
-            status: "ok".to_owned(),
+            status: status_ok(),
             error: String::new(),
             scene_variant: String::new(),
             technique: first.map(|r| r.technique.clone()).unwrap_or_default(),
@@ -239,5 +262,109 @@ impl RunSummary {
         row.status = "failed".to_owned();
         row.error = error.to_owned();
         row
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use super::*;
+
+    /// Every file under `dir` whose name ends with `suffix`, sorted.
+    fn files(dir: &Path, suffix: &str) -> Vec<PathBuf> {
+        let mut found = Vec::new();
+        let mut stack = vec![dir.to_owned()];
+        while let Some(d) = stack.pop() {
+            for entry in std::fs::read_dir(&d).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    stack.push(path);
+                } else if path.to_string_lossy().ends_with(suffix) {
+                    found.push(path);
+                }
+            }
+        }
+        found.sort();
+        found
+    }
+
+    /// The committed result files named `*<suffix>`, and the test fixtures'.
+    fn committed(suffix: &str) -> Vec<PathBuf> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut all = files(&root.join("results"), suffix);
+        all.extend(files(&root.join("experiments/tests/fixtures"), suffix));
+        all
+    }
+
+    /// Reads `path` into typed rows, checks none is lost, and, when the file has today's
+    /// columns, that writing the rows again gives back the file byte for byte.
+    fn read_back<T: serde::Serialize + serde::de::DeserializeOwned>(path: &Path) -> Vec<T> {
+        let bytes = std::fs::read(path).unwrap();
+        let rows: Vec<T> = csv::Reader::from_reader(bytes.as_slice())
+            .deserialize()
+            .collect::<Result<_, _>>()
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let records = csv::Reader::from_reader(bytes.as_slice()).records().count();
+        assert_eq!(rows.len(), records, "{}", path.display());
+        let mut w = csv::Writer::from_writer(Vec::new());
+        for row in &rows {
+            w.serialize(row).unwrap();
+        }
+        let again = w.into_inner().unwrap();
+        let header = |b: &[u8]| b.split(|&c| c == b'\n').next().map(<[u8]>::to_vec);
+        if !rows.is_empty() && header(&again) == header(&bytes) {
+            assert!(
+                again == bytes,
+                "{} changes when read and written",
+                path.display()
+            );
+        }
+        rows
+    }
+
+    #[test]
+    fn every_committed_runs_csv_reads_back_into_its_type() {
+        let paths = committed("runs.csv");
+        assert!(!paths.is_empty());
+        for path in &paths {
+            let rows: Vec<RunSummary> = read_back(path);
+            assert!(!rows.is_empty(), "{}", path.display());
+        }
+        // Today's columns, from a sweep.
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
+        let rows: Vec<RunSummary> = read_back(&root.join("zhang_target/runs.csv"));
+        let (reference, zhang) = (&rows[0], &rows[1]);
+        assert_eq!(
+            (reference.technique.as_str(), reference.gpu_wall_ms_median),
+            ("reference", 819.534429)
+        );
+        assert_eq!(reference.gpu_wall_ratio_to_reference, Some(1.0));
+        assert_eq!(reference.gpu_ts_compute_ms_median, None);
+        assert_eq!(zhang.run_id, "4bf71ea71ee3-r0");
+        assert_eq!(zhang.technique, "zhang");
+        assert!(zhang.is_ok());
+        // The oldest columns: no run id, status, levels of detail or comparisons.
+        let rows: Vec<RunSummary> = read_back(&root.join("bakay_vs_reference/runs.csv"));
+        assert_eq!(rows[1].technique, "bakay");
+        assert!(rows[1].is_ok() && rows[1].run_id.is_empty() && rows[1].repetition == 0);
+        assert_eq!(rows[1].gpu_wall_ratio_to_reference, None);
+        assert!(rows[1].params.contains("lod=\"minor_axis\""));
+    }
+
+    #[test]
+    fn every_committed_frames_csv_reads_back_into_its_type() {
+        let paths = committed("frames.csv");
+        assert!(!paths.is_empty());
+        for path in &paths {
+            let _: Vec<FrameRecord> = read_back(path);
+        }
+    }
+
+    #[test]
+    fn failed_rows_are_not_ok() {
+        let row = RunSummary::failed("x-r0", "reference", "meadow", "boom");
+        assert!(!row.is_ok());
+        assert!(RunSummary::from_frames(&[], &toml::Table::new()).is_ok());
     }
 }

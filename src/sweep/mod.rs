@@ -5,9 +5,15 @@
 //! Order matters for honest timing: within a repetition every configuration runs once, and
 //! techniques are interleaved (A B C A B C …) so slow drifts of the machine (thermal, other
 //! jobs) spread evenly over the techniques instead of biasing whichever ran last.
+//!
+//! Every run is measured against the `reference` run of its group ([`ratio_to_reference`]),
+//! by the sweep as the run finishes and by the report for runs that could not be
+//! ([`fill_ratios`]).
 
+mod reference;
 mod spec;
 mod store;
 
-pub use spec::{PlannedRun, SweepSpec, apply_overrides};
-pub use store::{ParamRow, SweepStore, append_rows, read_column};
+pub use reference::{REFERENCE, fill_ratios, ratio_to_reference};
+pub use spec::{PlannedRun, SweepSpec, apply_overrides, config_id_of, sweep_key};
+pub use store::{ParamRow, SweepStore, append_rows, image_path, read_column, read_rows};

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::REFERENCE;
 use crate::target::Size;
 use crate::{Error, Result};
 
@@ -243,7 +244,7 @@ impl SweepSpec {
                                     let config_id = format!("{:012x}", fnv(&config_key) >> 16);
                                     runs.push(PlannedRun {
                                         index: runs.len(),
-                                        id: format!("{config_id}-r{repetition}"),
+                                        id: run_id(&config_id, repetition),
                                         config_id,
                                         group: format!(
                                             "{:012x}-r{repetition}",
@@ -268,8 +269,23 @@ impl SweepSpec {
     }
 }
 
-/// The technique every other is measured against (ratio and FLIP in a sweep's `runs.csv`).
-const REFERENCE: &str = "reference";
+/// The id of repetition `repetition` of configuration `config_id`.
+fn run_id(config_id: &str, repetition: u32) -> String {
+    format!("{config_id}-r{repetition}")
+}
+
+/// The configuration of a run id (the id itself when it is not `<configuration>-r<repetition>`).
+pub fn config_id_of(run_id: &str) -> &str {
+    run_id
+        .rsplit_once("-r")
+        .map_or(run_id, |(config, _)| config)
+}
+
+/// The key a results folder records its sweep file by: a hash of the file's text, so a folder
+/// holds one version of one sweep.
+pub fn sweep_key(text: &str) -> String {
+    format!("{:016x}", fnv(text))
+}
 
 /// Every combination of a table of `key = [values…]` (a scalar counts as one value), in key
 /// order; one empty combination for an empty table.
@@ -384,6 +400,9 @@ k = [1, 2, 3]
         for group in with_reference.chunk_by(|a, b| a.group == b.group) {
             assert_eq!(group[0].technique, "reference", "{group:?}");
             assert_eq!(group[1].technique, "y");
+        }
+        for run in &runs {
+            assert_eq!(config_id_of(&run.id), run.config_id);
         }
         let mut ids: Vec<_> = runs.iter().map(|r| r.id.clone()).collect();
         ids.sort();

@@ -3,7 +3,8 @@
 //!
 //! Files: `runs.csv` (one row per run, written last), `frames.csv` (one row per measured
 //! frame), `params.csv` (long format: run id, key, value), `meta.toml` (provenance, the sweep
-//! file, calibration). A run counts as finished when its `runs.csv` row is complete; on
+//! file, calibration), `images/<configuration>.png` (the last frame of repetition 0,
+//! [`image_path`]). [`read_rows`] reads the CSV files back into their row types. A run counts as finished when its `runs.csv` row is complete; on
 //! reopening, a torn last line is cut off and frames and parameters of unfinished runs are
 //! dropped, so the files hold exactly the finished runs.
 
@@ -151,6 +152,28 @@ pub fn append_rows<T: serde::Serialize>(path: &Path, rows: &[T]) -> Result<()> {
     file.write_all(&bytes)
         .and_then(|()| file.sync_data())
         .map_err(|e| Error::io("cannot append to", path, e))
+}
+
+/// The rows of a CSV file, by column name (empty when the file does not exist).
+pub fn read_rows<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Vec<T>> {
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let csv_err = |e: csv::Error| Error::Csv {
+        path: path.to_owned(),
+        message: e.to_string(),
+    };
+    csv::Reader::from_path(path)
+        .map_err(csv_err)?
+        .deserialize()
+        .collect::<std::result::Result<_, _>>()
+        .map_err(csv_err)
+}
+
+/// Where a results folder keeps the last frame of configuration `config_id`, relative to the
+/// folder (with `/`, so it is also the image's Markdown link).
+pub fn image_path(config_id: &str) -> String {
+    format!("images/{config_id}.png")
 }
 
 /// The values of one column of a CSV file (empty when the file does not exist).

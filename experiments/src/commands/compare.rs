@@ -11,6 +11,7 @@ use grassbench::target::{Size, save_png};
 use grassbench::technique::{NO_TRANSITIONS, NoGrass};
 
 use super::GpuArgs;
+use super::out_dir::prepare_out_dir;
 use crate::{registry, scenes};
 
 /// Arguments of `compare`.
@@ -68,20 +69,9 @@ pub const MOTIONS: [CameraMotion; 2] = [CameraMotion::Dolly(0.25), CameraMotion:
 /// Runs the comparisons.
 pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
     let entries = registry::select(&args.technique)?;
-    let names: Vec<String> = if args.scene == "default" {
-        scenes::DEFAULT_SCENES
-            .iter()
-            .map(|s| (*s).to_owned())
-            .collect()
-    } else {
-        args.scene.split(',').map(|s| s.trim().to_owned()).collect()
-    };
-    let scenes = names
-        .iter()
-        .map(|n| scenes::load(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scenes = scenes::select(&args.scene)?;
     let size = Size::parse(&args.size)?;
-    super::run::prepare_out_dir(&args.out, args.force)?;
+    prepare_out_dir(&args.out, args.force)?;
     let gpu = args.gpu.context()?;
     write_atomic(&args.out.join("meta.toml"), |f| {
         std::io::Write::write_all(f, Provenance::collect(&gpu.summary).to_toml().as_bytes())

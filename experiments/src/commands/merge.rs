@@ -1,11 +1,17 @@
-//! `grassbench merge`: joins the outputs of sweep shards into one results folder.
+//! `grassbench merge`: joins the outputs of sweep shards into one results folder. Rows are
+//! read into their types and written with today's columns, so shards written by an older build
+//! (fewer columns) merge too.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use grassbench::runner::write_atomic;
+use grassbench::runner::{FrameRecord, RunSummary, write_atomic, write_csv};
+use grassbench::sweep::{ParamRow, read_rows};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 
+use super::out_dir::prepare_out_dir;
 use super::sweep::SweepMeta;
 
 /// Arguments of `merge`.
@@ -37,19 +43,51 @@ fn read_meta(dir: &Path) -> anyhow::Result<SweepMeta> {
         .with_context(|| format!("`{}` is not a sweep's meta.toml", path.display()))
 }
 
-/// Header and records of a CSV file (none when missing).
-fn read_csv(path: &Path) -> anyhow::Result<Option<(csv::StringRecord, Vec<csv::StringRecord>)>> {
-    if !path.exists() {
-        return Ok(None);
+/// A row as `merge` compares it: its CSV text, as written.
+fn row_text<T: Serialize>(row: &T) -> anyhow::Result<String> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    w.serialize(row)?;
+    let bytes = w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
+    Ok(String::from_utf8(bytes)?)
+}
+
+/// Joins file `name` of every shard into `out`, rows in shard order. The same row twice (a
+/// shard run twice) is kept once; with `one_per_run` (runs.csv), two different rows of one run
+/// (one run with two results) are refused.
+fn merge_rows<T: Serialize + DeserializeOwned>(
+    shards: &[PathBuf],
+    out: &Path,
+    name: &str,
+    run_id: fn(&T) -> &str,
+    one_per_run: bool,
+) -> anyhow::Result<()> {
+    let mut rows: Vec<T> = Vec::new();
+    let mut seen: HashMap<String, HashSet<String>> = HashMap::new();
+    for dir in shards {
+        let path = dir.join(name);
+        for row in read_rows::<T>(&path).with_context(|| format!("reading {}", path.display()))? {
+            let text = row_text(&row)?;
+            let texts = seen.entry(run_id(&row).to_owned()).or_default();
+            if texts.contains(&text) {
+                continue;
+            }
+            if one_per_run && !texts.is_empty() {
+                bail!(
+                    "run {} has different results in two shards; refusing to merge",
+                    run_id(&row)
+                );
+            }
+            texts.insert(text);
+            rows.push(row);
+        }
     }
-    let mut r =
-        csv::Reader::from_path(path).with_context(|| format!("reading {}", path.display()))?;
-    let headers = r.headers()?.clone();
-    let records = r
-        .records()
-        .collect::<Result<Vec<_>, _>>()
-        .with_context(|| format!("reading {}", path.display()))?;
-    Ok(Some((headers, records)))
+    if rows.is_empty() {
+        return Ok(());
+    }
+    write_csv(&out.join(name), &rows)?;
+    Ok(())
 }
 
 /// Merges the shards.
@@ -89,69 +127,28 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<()> {
             }
         }
     }
-    if std::fs::read_dir(&args.out)
-        .map(|mut d| d.next().is_some())
-        .unwrap_or(false)
-    {
-        if !args.force {
-            bail!(
-                "output folder `{}` is not empty; choose another --out or pass --force",
-                args.out.display()
-            );
-        }
-        std::fs::remove_dir_all(&args.out)?;
-    }
-    for name in ["runs.csv", "frames.csv", "params.csv"] {
-        let mut header: Option<csv::StringRecord> = None;
-        let mut rows: Vec<csv::StringRecord> = Vec::new();
-        let mut seen: HashMap<(String, String), usize> = HashMap::new();
-        for dir in &args.shards {
-            let Some((h, records)) = read_csv(&dir.join(name))? else {
-                continue;
-            };
-            match &header {
-                Some(existing) if existing != &h => bail!(
-                    "`{}` has other columns than the first shard's",
-                    dir.join(name).display()
-                ),
-                _ => header = Some(h.clone()),
-            }
-            let id = h
-                .iter()
-                .position(|c| c == "run_id")
-                .context("no run_id column")?;
-            // Rows are keyed by run id plus the row's full text: the same row twice (a shard
-            // run twice) is kept once; runs.csv must not hold one run with two results.
-            for r in records {
-                let run = r.get(id).unwrap_or_default().to_owned();
-                let text = r.iter().collect::<Vec<_>>().join(",");
-                if name == "runs.csv" {
-                    if let Some(&k) = seen.get(&(run.clone(), String::new())) {
-                        if rows[k] != r {
-                            bail!(
-                                "run {run} has different results in two shards; refusing to merge"
-                            );
-                        }
-                        continue;
-                    }
-                    seen.insert((run, String::new()), rows.len());
-                } else if seen.insert((run, text), rows.len()).is_some() {
-                    continue;
-                }
-                rows.push(r);
-            }
-        }
-        let Some(header) = header else { continue };
-        let mut w = csv::Writer::from_writer(Vec::new());
-        w.write_record(&header)?;
-        for r in &rows {
-            w.write_record(r)?;
-        }
-        let bytes = w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
-        write_atomic(&args.out.join(name), |f| {
-            std::io::Write::write_all(f, &bytes)
-        })?;
-    }
+    prepare_out_dir(&args.out, args.force)?;
+    merge_rows(
+        &args.shards,
+        &args.out,
+        "runs.csv",
+        |r: &RunSummary| r.run_id.as_str(),
+        true,
+    )?;
+    merge_rows(
+        &args.shards,
+        &args.out,
+        "frames.csv",
+        |r: &FrameRecord| r.run_id.as_str(),
+        false,
+    )?;
+    merge_rows(
+        &args.shards,
+        &args.out,
+        "params.csv",
+        |r: &ParamRow| r.run_id.as_str(),
+        false,
+    )?;
     for dir in &args.shards {
         if let Ok(entries) = std::fs::read_dir(dir.join("images")) {
             for e in entries.flatten() {
@@ -175,4 +172,68 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<()> {
     })?;
     eprintln!("merged {} shards into {}", metas.len(), args.out.display());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp(name: &str) -> PathBuf {
+        let d =
+            std::env::temp_dir().join(format!("grassbench-merge-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    const FIXTURE: &str = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/report/runs.csv"
+    );
+
+    #[test]
+    fn rows_are_read_by_name_kept_once_and_written_with_todays_columns() {
+        let (a, b, out) = (temp("a"), temp("b"), temp("out"));
+        // The fixture has the old level-of-detail columns and lacks `efficiency`; the same
+        // run in two shards is kept once.
+        std::fs::copy(FIXTURE, a.join("runs.csv")).unwrap();
+        std::fs::copy(FIXTURE, b.join("runs.csv")).unwrap();
+        let shards = [a.clone(), b.clone()];
+        fn id(r: &RunSummary) -> &str {
+            &r.run_id
+        }
+        merge_rows(&shards, &out, "runs.csv", id, true).unwrap();
+        let merged: Vec<RunSummary> = read_rows(&out.join("runs.csv")).unwrap();
+        let original: Vec<RunSummary> = read_rows(Path::new(FIXTURE)).unwrap();
+        assert_eq!(merged, original);
+        let header = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+        assert!(
+            header.contains(",efficiency") && !header.contains("blades_geometry"),
+            "{header}"
+        );
+        // Nothing to merge: no file.
+        merge_rows(
+            &shards,
+            &out,
+            "frames.csv",
+            |r: &FrameRecord| r.run_id.as_str(),
+            false,
+        )
+        .unwrap();
+        assert!(!out.join("frames.csv").exists());
+        // One run with two results is refused.
+        let mut changed = original.clone();
+        changed[1].gpu_wall_ms_median += 1.0;
+        write_csv(&b.join("runs.csv"), &changed).unwrap();
+        let e = merge_rows(&shards, &out, "runs.csv", id, true)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("bbbbbbbbbbbb-r0") && e.contains("different results"),
+            "{e}"
+        );
+        for d in [a, b, out] {
+            std::fs::remove_dir_all(d).unwrap();
+        }
+    }
 }

@@ -4,6 +4,7 @@ mod calibrate;
 mod compare;
 mod list;
 mod merge;
+mod out_dir;
 mod render;
 mod report;
 mod run;

@@ -12,6 +12,7 @@ use grassbench::runner::{
 use grassbench::target::{Size, save_png};
 use grassbench::technique::NoGrass;
 
+use super::out_dir::prepare_out_dir;
 use super::{GpuArgs, param_table};
 use crate::{registry, scenes};
 
@@ -81,19 +82,8 @@ struct ParamRow {
 /// Runs every selected technique on every selected scene.
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     let entries = registry::select(&args.technique)?;
-    let scene_names: Vec<String> = if args.scene.trim() == "default" {
-        scenes::DEFAULT_SCENES
-            .iter()
-            .map(|s| (*s).to_owned())
-            .collect()
-    } else {
-        args.scene.split(',').map(|s| s.trim().to_owned()).collect()
-    };
     // Load (and so validate) everything before touching the GPU or the output folder.
-    let scenes = scene_names
-        .iter()
-        .map(|n| scenes::load(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scenes = scenes::select(&args.scene)?;
     let overrides = param_table(&args.params)?;
     for scene in &scenes {
         for entry in &entries {
@@ -277,24 +267,6 @@ impl SceneOutput<'_> {
     }
 }
 
-/// Refuses to mix new results into an old folder unless `force`.
-pub(crate) fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
-    let non_empty = std::fs::read_dir(dir)
-        .map(|mut d| d.next().is_some())
-        .unwrap_or(false);
-    if non_empty {
-        if !force {
-            bail!(
-                "output folder `{}` is not empty; choose another --out or pass --force to replace it",
-                dir.display()
-            );
-        }
-        std::fs::remove_dir_all(dir)
-            .with_context(|| format!("cannot clear `{}`", dir.display()))?;
-    }
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create `{}`", dir.display()))
-}
-
 fn progress_bar(total: u64, label: &str) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::new(total);
     if let Ok(style) = indicatif::ProgressStyle::with_template(
@@ -310,23 +282,7 @@ fn progress_bar(total: u64, label: &str) -> indicatif::ProgressBar {
 fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# grassbench results\n");
-    let _ = writeln!(s, "Made by `{}`  ", p.command);
-    let _ = writeln!(
-        s,
-        "at revision `{}` ({} build), {}  ",
-        p.revision, p.build_profile, p.date
-    );
-    let _ = writeln!(
-        s,
-        "on `{}` ({}, {}, driver {} {}), CPU {} x{}.\n",
-        p.adapter.name,
-        p.adapter.backend,
-        p.adapter.device_type,
-        p.adapter.driver,
-        p.adapter.driver_info,
-        p.cpu,
-        p.cpu_count
-    );
+    let _ = writeln!(s, "{}", p.to_markdown(""));
     let _ = writeln!(
         s,
         "GPU times are wall time from submit to the end of `poll(wait)` (the ground truth on software \

@@ -8,7 +8,10 @@ use anyhow::Context as _;
 use grassbench::calibration::{Calibration, calibrate};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
-use grassbench::sweep::{ParamRow, PlannedRun, SweepSpec, SweepStore, apply_overrides};
+use grassbench::sweep::{
+    ParamRow, PlannedRun, REFERENCE, SweepSpec, SweepStore, apply_overrides, image_path,
+    ratio_to_reference, sweep_key,
+};
 use grassbench::target::save_png;
 use grassbench::{GpuContext, Scene};
 
@@ -89,7 +92,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("results").join(&spec.name));
-    let sweep_key = format!("{:016x}", fnv(&text));
+    let sweep_key = sweep_key(&text);
     let mut store = SweepStore::open(&out, &sweep_key, args.force)?;
     let gpu = args.gpu.context()?;
     let calibration = if args.no_calibration {
@@ -147,8 +150,8 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     ) {
         bar.set_style(style.progress_chars("=> "));
     }
-    // Reference gpu time and last image per group, for ratios and FLIP.
-    let mut reference: HashMap<String, (f64, Option<image::RgbaImage>)> = HashMap::new();
+    // Reference run and last image per group, for ratios and FLIP.
+    let mut reference: HashMap<String, Reference> = HashMap::new();
     let mut failed = 0usize;
     for run in todo {
         bar.set_message(format!("{} on {}", run.technique, run.scene));
@@ -253,6 +256,9 @@ fn scene_key(run: &PlannedRun) -> String {
 
 type Executed = (RunSummary, Vec<runner::FrameRecord>, Vec<ParamRow>);
 
+/// A group's reference run and its last frame.
+type Reference = (RunSummary, Option<image::RgbaImage>);
+
 /// One run: measure, compare with the group's reference, save its last frame for repetition 0.
 fn execute(
     gpu: &GpuContext,
@@ -260,7 +266,7 @@ fn execute(
     scene: &Scene,
     run: &PlannedRun,
     calibration: Option<&Calibration>,
-    reference: &mut HashMap<String, (f64, Option<image::RgbaImage>)>,
+    reference: &mut HashMap<String, Reference>,
     dir: &std::path::Path,
 ) -> anyhow::Result<Executed> {
     let entry = registry::find(&run.technique)?;
@@ -279,11 +285,11 @@ fn execute(
     row.repetition = run.repetition;
     row.scene_variant = run.scene_variant();
     let image = result.images.into_iter().next().map(|(_, img)| img);
-    if run.technique == "reference" {
-        reference.insert(run.group.clone(), (row.gpu_wall_ms_median, image.clone()));
+    if run.technique == REFERENCE {
+        reference.insert(run.group.clone(), (row.clone(), image.clone()));
     }
-    if let Some((ref_ms, ref_img)) = reference.get(&run.group) {
-        row.gpu_wall_ratio_to_reference = Some(row.gpu_wall_ms_median / ref_ms);
+    if let Some((ref_row, ref_img)) = reference.get(&run.group) {
+        row.gpu_wall_ratio_to_reference = Some(ratio_to_reference(&row, ref_row));
         if let (Some(img), Some(ref_img)) = (&image, ref_img) {
             row.flip_vs_reference = Some(f64::from(flip(ref_img, img)?.mean));
             row.flip_vs_reference_quarter = Some(f64::from(
@@ -298,10 +304,7 @@ fn execute(
     if run.repetition == 0
         && let Some(img) = &image
     {
-        save_png(
-            img,
-            &dir.join("images").join(format!("{}.png", run.config_id)),
-        )?;
+        save_png(img, &dir.join(image_path(&run.config_id)))?;
     }
     let mut params: Vec<ParamRow> = technique
         .param_table()
@@ -332,11 +335,4 @@ fn execute(
         value: run.group.clone(),
     });
     Ok((row, result.frames, params))
-}
-
-/// FNV-1a of text.
-pub fn fnv(text: &str) -> u64 {
-    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
 }

@@ -1,0 +1,162 @@
+//! A sweep's `runs.csv` as the report sees it: one [`Config`] per configuration, its
+//! repetitions pooled.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::{Context as _, bail};
+use grassbench::runner::{Percentiles, RunSummary};
+use grassbench::sweep::{config_id_of, fill_ratios, image_path, read_rows};
+
+/// One configuration, its repetitions pooled.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Config {
+    /// Technique id.
+    pub(super) technique: String,
+    /// Scene name.
+    pub(super) scene: String,
+    /// Scene overrides (`key=value;...`).
+    pub(super) variant: String,
+    /// Target size, `WxH`.
+    pub(super) size: String,
+    /// 4x MSAA.
+    pub(super) msaa: bool,
+    /// Technique parameters, `key=value;...`.
+    pub(super) params: String,
+    /// The parameters that vary between configurations of the technique (`key=value ...`).
+    pub(super) label: String,
+    /// Median GPU wall time of each finished repetition, ms.
+    pub(super) gpu_wall: Vec<f64>,
+    /// Median frame time of each finished repetition, ms.
+    pub(super) frame: Vec<f64>,
+    /// Median CPU update of each repetition, ms.
+    pub(super) update: Vec<f64>,
+    /// Median CPU upload of each repetition, ms.
+    pub(super) upload: Vec<f64>,
+    /// Median CPU encode of each repetition, ms.
+    pub(super) encode: Vec<f64>,
+    /// GPU time over the group reference's, per repetition.
+    pub(super) ratio: Vec<f64>,
+    /// Mean FLIP against the reference, per repetition.
+    pub(super) flip: Vec<f64>,
+    /// Mean FLIP against the reference at 1/4 scale, per repetition.
+    pub(super) flip_quarter: Vec<f64>,
+    /// Raw blade cost over blade cost, per repetition.
+    pub(super) efficiency: Vec<f64>,
+    /// Blades represented (the last finished repetition's).
+    pub(super) blades: f64,
+    /// Triangles (the last finished repetition's).
+    pub(super) triangles: f64,
+    /// GPU memory held, MB (the last finished repetition's).
+    pub(super) gpu_mb: f64,
+    /// The last frame of repetition 0, relative to the results folder.
+    pub(super) image: Option<String>,
+    /// Repetitions that failed.
+    pub(super) failed: usize,
+}
+
+/// The median of a sample (`None` when empty).
+pub(super) fn median(v: &[f64]) -> Option<f64> {
+    Percentiles::of(v.iter().copied()).map(|p| p.median)
+}
+
+/// Reads runs.csv into configurations keyed by configuration id, repetitions pooled. A run
+/// written before its group's reference (another shard's, after `merge`) has no ratio in
+/// runs.csv, and gets it here.
+pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
+    let path = dir.join("runs.csv");
+    if !path.exists() {
+        bail!("`{}` has no runs.csv: run a sweep first", dir.display());
+    }
+    let mut rows: Vec<RunSummary> =
+        read_rows(&path).with_context(|| format!("reading {}", path.display()))?;
+    if rows.iter().any(|r| r.run_id.is_empty()) {
+        bail!(
+            "{} has runs without a run id: `report` reads a sweep's results (`grassbench sweep`)",
+            path.display()
+        );
+    }
+    fill_ratios(&mut rows);
+    let mut configs: BTreeMap<String, Config> = BTreeMap::new();
+    for r in &rows {
+        let config_id = config_id_of(&r.run_id);
+        let c = configs.entry(config_id.to_owned()).or_default();
+        c.technique.clone_from(&r.technique);
+        c.scene.clone_from(&r.scene);
+        c.variant.clone_from(&r.scene_variant);
+        c.size = format!("{}x{}", r.width, r.height);
+        c.msaa = r.msaa;
+        if !r.is_ok() {
+            c.failed += 1;
+            continue;
+        }
+        c.params.clone_from(&r.params);
+        c.gpu_wall.push(r.gpu_wall_ms_median);
+        c.frame.push(r.frame_ms_median);
+        c.update.push(r.update_ms_median);
+        c.upload.push(r.upload_ms_median);
+        c.encode.push(r.encode_ms_median);
+        c.ratio.extend(r.gpu_wall_ratio_to_reference);
+        c.flip.extend(r.flip_vs_reference);
+        c.flip_quarter.extend(r.flip_vs_reference_quarter);
+        c.efficiency.extend(r.efficiency);
+        c.blades = r.blades as f64;
+        c.triangles = r.triangles as f64;
+        c.gpu_mb = r.gpu_bytes as f64 / 1e6;
+        let image = image_path(config_id);
+        if dir.join(&image).exists() {
+            c.image = Some(image);
+        }
+    }
+    if configs.is_empty() {
+        bail!("{} has no runs", path.display());
+    }
+    // Labels show only the parameters that vary within a technique, not every default.
+    shorten_params(&mut configs);
+    Ok(configs)
+}
+
+/// Sets `label` of every configuration to the parameters that differ between configurations
+/// of the same technique.
+fn shorten_params(configs: &mut BTreeMap<String, Config>) {
+    let split = |p: &str| -> BTreeMap<String, String> {
+        p.split(';')
+            .filter_map(|kv| kv.split_once('='))
+            .map(|(k, v)| (k.to_owned(), v.to_owned()))
+            .collect()
+    };
+    let mut values: BTreeMap<(String, String), std::collections::BTreeSet<String>> =
+        BTreeMap::new();
+    for c in configs.values() {
+        for (k, v) in split(&c.params) {
+            values
+                .entry((c.technique.clone(), k))
+                .or_default()
+                .insert(v);
+        }
+    }
+    for c in configs.values_mut() {
+        c.label = split(&c.params)
+            .into_iter()
+            .filter(|(k, _)| {
+                values
+                    .get(&(c.technique.clone(), k.clone()))
+                    .is_some_and(|v| v.len() > 1)
+            })
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect::<Vec<_>>()
+            .join(" ");
+    }
+}
+
+/// The configuration's name in plots: technique, varying parameters, scene variant.
+pub(super) fn label(c: &Config) -> String {
+    let mut l = c.technique.clone();
+    for extra in [&c.label, &c.variant] {
+        if !extra.is_empty() {
+            l.push(' ');
+            l.push_str(&extra.replace(';', " "));
+        }
+    }
+    l
+}

@@ -1,0 +1,189 @@
+//! `grassbench report DIR`: `REPORT.md` with tables and SVG plots for a sweep's results.
+
+mod configs;
+mod plots;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use grassbench::runner::write_atomic;
+
+use super::sweep::SweepMeta;
+use configs::{Config, load, median};
+use plots::{frame_time_plot, pareto_plot, scaling_plot};
+
+/// Arguments of `report`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct ReportArgs {
+    /// A sweep's results folder.
+    pub dir: PathBuf,
+}
+
+/// `v` with `digits` decimals, or a dash when there is none.
+fn fmt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("–".to_owned(), |x| format!("{x:.digits$}"))
+}
+
+/// Writes REPORT.md and plots/*.svg.
+pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
+    let dir = &args.dir;
+    let configs = load(dir)?;
+    let meta: Option<SweepMeta> = std::fs::read_to_string(dir.join("meta.toml"))
+        .ok()
+        .and_then(|t| toml::from_str(&t).ok());
+    let plots = dir.join("plots");
+    std::fs::create_dir_all(&plots)?;
+    let mut md = String::new();
+    let title = meta
+        .as_ref()
+        .map_or("sweep".to_owned(), |m| m.sweep.clone());
+    let _ = writeln!(md, "# Report: {title}\n");
+    if let Some(m) = &meta {
+        let shard = format!("; shard: {}", m.shard);
+        let _ = writeln!(md, "{}", m.provenance.to_markdown(&shard));
+        if let Some(c) = &m.calibration {
+            let _ = writeln!(
+                md,
+                "Calibration ({}, {}): {:.1} M triangles/s, {:.1} M blended pixels/s, {:.2} GB/s buffer copy; raw cost of a reference blade's 9 triangles {:.0} ns.\n",
+                c.size,
+                c.clock,
+                c.triangles_per_s / 1e6,
+                c.fill_pixels_per_s / 1e6,
+                c.compute_bytes_per_s / 1e9,
+                c.raw_blade_cost_ns
+            );
+        }
+    }
+    let _ = writeln!(
+        md,
+        "All times are medians over repetitions of per-run medians; GPU = wall time from submit to the end of `poll(wait)`. Speed-up = reference time / technique time in the same configuration and repetition. FLIP is the mean FLIP of the last measured frame against the reference's, at full resolution and after 4x downsampling (blade placement differs between techniques by design, so the reduced scale is the fairer one).\n"
+    );
+
+    let _ = writeln!(md, "## Cost and quality\n");
+    let _ = writeln!(
+        md,
+        "| scene | variant | size | technique | params | GPU ms | frame ms | speed-up | FLIP | FLIP 1/4 | efficiency | blades | triangles | GPU MB | runs failed |"
+    );
+    let _ = writeln!(
+        md,
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    );
+    for c in configs.values() {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0} | {:.0} | {:.1} | {} |",
+            c.scene,
+            if c.variant.is_empty() {
+                "–"
+            } else {
+                &c.variant
+            },
+            c.size,
+            if c.msaa { " 4x" } else { "" },
+            c.technique,
+            c.label,
+            fmt(median(&c.gpu_wall), 1),
+            fmt(median(&c.frame), 1),
+            fmt(median(&c.ratio).map(|r| 1.0 / r), 2),
+            fmt(median(&c.flip), 3),
+            fmt(median(&c.flip_quarter), 3),
+            fmt(median(&c.efficiency), 2),
+            c.blades,
+            c.triangles,
+            c.gpu_mb,
+            c.failed
+        );
+    }
+    let _ = writeln!(md, "\n## CPU and GPU stages (ms)\n");
+    let _ = writeln!(
+        md,
+        "| scene | size | technique | params | CPU update | CPU upload | CPU encode | GPU wall |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    for c in configs.values() {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            c.scene,
+            c.size,
+            c.technique,
+            c.label,
+            fmt(median(&c.update), 3),
+            fmt(median(&c.upload), 3),
+            fmt(median(&c.encode), 3),
+            fmt(median(&c.gpu_wall), 1)
+        );
+    }
+
+    let ok: Vec<&Config> = configs
+        .values()
+        .filter(|c| !c.gpu_wall.is_empty())
+        .collect();
+    let _ = writeln!(md, "\n## Plots\n");
+    frame_time_plot(&ok, &plots.join("frame_time.svg"))?;
+    let _ = writeln!(
+        md,
+        "![GPU time per technique and scene](plots/frame_time.svg)\n"
+    );
+    if ok.iter().any(|c| !c.flip_quarter.is_empty()) {
+        pareto_plot(&ok, &plots.join("pareto.svg"))?;
+        let _ = writeln!(
+            md,
+            "![Quality against the reference versus cost](plots/pareto.svg)\n"
+        );
+    }
+    let distinct = |f: &dyn Fn(&Config) -> String| {
+        ok.iter()
+            .map(|c| f(c))
+            .collect::<std::collections::BTreeSet<_>>()
+            .len()
+    };
+    if distinct(&|c| c.variant.clone()) > 1 {
+        scaling_plot(
+            &ok,
+            &|c| c.blades,
+            "blades represented",
+            &plots.join("scaling_blades.svg"),
+        )?;
+        let _ = writeln!(md, "![GPU time versus blades](plots/scaling_blades.svg)\n");
+    }
+    if distinct(&|c| c.size.clone()) > 1 {
+        let pixels = |c: &Config| {
+            c.size
+                .split_once('x')
+                .and_then(|(w, h)| Some(w.parse::<f64>().ok()? * h.parse::<f64>().ok()?))
+                .unwrap_or(0.0)
+        };
+        scaling_plot(
+            &ok,
+            &pixels,
+            "pixels",
+            &plots.join("scaling_resolution.svg"),
+        )?;
+        let _ = writeln!(
+            md,
+            "![GPU time versus resolution](plots/scaling_resolution.svg)\n"
+        );
+    }
+    let images: Vec<&Config> = configs.values().filter(|c| c.image.is_some()).collect();
+    if !images.is_empty() {
+        let _ = writeln!(md, "## Last frames\n");
+        for c in images {
+            let _ = writeln!(
+                md,
+                "**{} / {} {} {}** {}\n\n![]({})\n",
+                c.scene,
+                c.technique,
+                c.size,
+                c.variant,
+                c.label,
+                c.image.as_deref().unwrap_or_default()
+            );
+        }
+    }
+    write_atomic(&dir.join("REPORT.md"), |f| {
+        std::io::Write::write_all(f, md.as_bytes())
+    })?;
+    eprintln!("wrote {}", dir.join("REPORT.md").display());
+    Ok(())
+}
