@@ -224,12 +224,13 @@ pub mod culling;
 pub mod fade;
 pub mod flower;
 pub mod frame;
-pub mod gpu;
 pub mod lod;
 pub mod order;
 pub mod params;
+pub mod pipelines;
 pub mod prairie;
 pub mod props;
+pub mod shader_data;
 pub mod textures;
 pub mod wing_trim;
 
@@ -242,15 +243,11 @@ use grassbench::{
 };
 
 pub use animate::Animation;
-pub use gpu::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance};
 pub use params::Params;
-
-/// The blade and flower shader (without the prelude).
-pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
-/// The billboard shader (without the prelude).
-pub const BILLBOARD_SHADER: &str = include_str!("../shaders/billboard.wgsl");
-/// The tree and stone shader (without the prelude).
-pub const PROPS_SHADER: &str = include_str!("../shaders/props.wgsl");
+pub use pipelines::{BILLBOARD_SHADER, PROPS_SHADER, SHADER};
+pub use shader_data::{
+    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
+};
 
 const INFO: TechniqueInfo = TechniqueInfo {
     id: "zhang",
@@ -300,19 +297,18 @@ pub const ENTRY: TechniqueEntry = TechniqueEntry {
             0
         };
         Ok(size(blades, std::mem::size_of::<BladeStatic>())
-            .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
+            .plus(size(blades, std::mem::size_of::<BladeDynamic>()))
             .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
-            .plus(size(
-                sorted.max(1),
-                std::mem::size_of::<gpu::BladeDynamic>(),
-            ))
-            .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
+            .plus(size(sorted.max(1), std::mem::size_of::<BladeDynamic>()))
+            .plus(size(flowers, std::mem::size_of::<FlowerInstance>()))
             .plus(size(wings, std::mem::size_of::<WingInstance>()))
             .plus(size(
                 prop_vertices(&params, &scene.terrain),
                 std::mem::size_of::<PropVertex>(),
             ))
-            .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
+            .plus(GpuEstimate::textures(pipelines::Pipelines::bytes(
+                layers.max(1),
+            ))))
     },
 };
 
@@ -321,7 +317,7 @@ pub struct Zhang {
     params: Params,
     layout: prairie::Layout,
     animation: Animation,
-    pipelines: gpu::Pipelines,
+    pipelines: pipelines::Pipelines,
     statics: wgpu::Buffer,
     dynamics: wgpu::Buffer,
     flowers: wgpu::Buffer,
@@ -505,7 +501,8 @@ impl Zhang {
             ],
             modes: [f32::from(u8::from(sort)), 0.0, 0.0, 0.0],
         };
-        let pipelines = gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
+        let pipelines =
+            pipelines::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
         let sorting = sort.then(|| {
             let n = layout.per_side;
             let mut slots = vec![u32::MAX; (layout.grids * layout.grids * n * n) as usize];
