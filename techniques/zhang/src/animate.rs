@@ -8,8 +8,8 @@ use grassbench::wind::WindField;
 
 use crate::blade::{BladeState, Dynamics};
 use crate::flower::FlowerState;
-use crate::gpu::{BladeDynamic, FlowerInstance};
 use crate::prairie::Planted;
+use crate::shader_data::{BladeDynamic, FlowerInstance};
 
 /// Longest Verlet step, s: longer frames are sub-stepped so the damped spring stays stable
 /// (`ω·dt` = 0.21 at the default spring and 30 fps).

@@ -5,9 +5,14 @@
 //! Each grid gets a conservative box: its roots' extent widened by the tallest blade (a blade
 //! bent flat by the wind reaches at most its height sideways) and raised by it. Every frame the
 //! grids whose box meets the view frustum are kept and their ranges merged where they touch,
-//! so a row of visible grids is one draw. The thesis then culls single plants inside the near
-//! grids as well; here the near grids are drawn whole (their blades are instanced, so a
-//! per-blade test would cost more CPU than the GPU time it saves).
+//! so a row of visible grids is one draw ([`frame::Plan::new`](crate::frame::Plan::new)). The
+//! thesis then culls single plants inside the near grids as well. Here that depends on the
+//! sorting: with `sorting = "sort"` every single plant of the near grids is visited anyway to
+//! be ordered far to near, and those whose bounding sphere (centred half-way up the blade,
+//! radius its height) misses the frustum are left out
+//! ([`frame::sorted_blades`](crate::frame::sorted_blades)); with `"alpha_to_coverage"` the
+//! near grids are drawn whole, as the merged instance ranges above. `culling = false` draws
+//! every grid and every plant.
 
 use std::ops::Range;
 

@@ -17,10 +17,10 @@ use grassbench::technique::ranges::push_merged;
 use crate::billboard::Billboards;
 use crate::culling::GridIndex;
 use crate::fade::Transition;
-use crate::gpu::{BladeDynamic, WingInstance};
 use crate::lod::{Level, grid_coords, grid_offset};
 use crate::order::{self, BlockOrders, line_order, section};
 use crate::prairie::Layout;
+use crate::shader_data::{BladeDynamic, WingInstance};
 
 /// A grid drawn as single plants this frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -421,7 +421,7 @@ mod tests {
         let (layout, planted) = plant(&params, &grass, &terrain, 3);
         let index = GridIndex::new(&planted);
         let billboards = Billboards::new(&layout, &params, &grass, &terrain, 3);
-        let mut anchors = crate::Animation::new(&billboards.anchors, params.flower_mass);
+        let mut anchors = crate::animate::Animation::new(&billboards.anchors, params.flower_mass);
         let rest: Vec<Vec3> = anchors
             .blade_out
             .iter()

@@ -1,407 +1,348 @@
-//! GPU side: instance layouts, the parameter uniform, the procedural textures, the blade,
-//! flower and billboard pipelines (group 1 = uniform + blade texture + petal texture array +
-//! sampler + billboard texture array).
+//! What the technique keeps on the GPU and how a frame uses it: the blades' static and
+//! per-frame instance buffers, the flowers', the wings', the far-to-near copies of the single
+//! plants (with sorting, Sec. 5.4), the trees and stones (Sec. 5.5.2), and the
+//! [`Pipelines`] with their textures and uniform. Set up once; `prepare` uploads what the
+//! frame animated ([`PrairieGpu::upload`]), `encode` draws it ([`PrairieGpu::encode`]).
 
+use std::ops::Range;
+
+use grassbench::glam::Vec3;
+use grassbench::gpu::GpuEstimate;
+use grassbench::technique::RenderPass;
+use grassbench::terrain::Terrain;
 use grassbench::wgpu::util::DeviceExt as _;
-use grassbench::{InitContext, bytemuck, shaders, wgpu};
+use grassbench::{FrameEncoder, GpuContext, InitContext, bytemuck, wgpu};
 
-use crate::billboard_texture;
-use crate::prairie::PETAL_TEXTURES;
-use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
-
-/// Static per-blade data (vertex buffer 0 of the blade pipeline, instance step).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct BladeStatic {
-    /// Root `P0` xyz, facing angle (width axis, radians around y).
-    pub root_facing: [f32; 4],
-    /// Height, width, colour variation, unused.
-    pub shape: [f32; 4],
-}
-
-/// Per-frame per-blade data (vertex buffer 1, instance step): the moving control points.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct BladeDynamic {
-    /// `P1` xyz; w = rotation θ of the top segment points (Sec. 3.2.5).
-    pub p1_rotation: [f32; 4],
-    /// `P2` xyz; w = how far the blade has faded out (Sec. 6.1; 0 = opaque).
-    pub p2: [f32; 4],
-    /// `P3` xyz; w unused.
-    pub p3: [f32; 4],
-}
-
-/// Per-frame per-flower data (instance step).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct FlowerInstance {
-    /// Petal centre xyz; w = spin around the petal normal.
-    pub pos_spin: [f32; 4],
-    /// Petal normal (the stalk direction) xyz; w = petal texture layer.
-    pub axis_layer: [f32; 4],
-}
-
-/// Per-frame data of one wing (instance step): a rectangle of a billboard (Sec. 4.1-4.2), or
-/// the part of it [`crate::wing_trim`] keeps. "Centre" is its edge towards the billboard's
-/// middle line, "outer" the other.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct WingInstance {
-    /// Root (ground point) of the edge towards the middle line xyz; w = texture `u` there.
-    pub centre_root: [f32; 4],
-    /// Root of the outer edge xyz; w = texture `u` there.
-    pub outer_root: [f32; 4],
-    /// The whole wing's top above `centre_root` xyz; w = billboard texture layer.
-    pub centre_top: [f32; 4],
-    /// The whole wing's top above `outer_root` xyz; w = kept fraction of the texture's blades
-    /// (the density).
-    pub outer_top: [f32; 4],
-    /// x = the grid's fade alpha (Sec. 6.1; 1 unless fading); y = the cut's height as a
-    /// fraction of the wing's (texture `v` at its top edge); zw unused.
-    pub fade: [f32; 4],
-}
-
-/// One vertex of the trees and stones (Sec. 5.5.2; vertex step, a triangle list).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct PropVertex {
-    /// Position xyz; w = 1.
-    pub position: [f32; 4],
-    /// Face normal xyz; w unused.
-    pub normal: [f32; 4],
-    /// Albedo rgb; w unused.
-    pub color: [f32; 4],
-}
-
-/// Mirror of the shader's `Params` uniform.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct ParamsUniform {
-    /// Root colour; w = colour variation.
-    pub color_root: [f32; 4],
-    /// Tip colour; w = translucency.
-    pub color_tip: [f32; 4],
-    /// Backbone points, alpha cut-off, petal size (m), billboard height (m).
-    pub shape: [f32; 4],
-    /// x: 1 when blending (a fading blade's alpha scales its output alpha), 0 otherwise (a
-    /// fading blade dissolves); yzw unused.
-    pub modes: [f32; 4],
-}
-
-const BLADE_LAYOUTS: [wgpu::VertexBufferLayout<'static>; 2] = [
-    wgpu::VertexBufferLayout {
-        array_stride: std::mem::size_of::<BladeStatic>() as u64,
-        step_mode: wgpu::VertexStepMode::Instance,
-        attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
-    },
-    wgpu::VertexBufferLayout {
-        array_stride: std::mem::size_of::<BladeDynamic>() as u64,
-        step_mode: wgpu::VertexStepMode::Instance,
-        attributes: &wgpu::vertex_attr_array![2 => Float32x4, 3 => Float32x4, 4 => Float32x4],
-    },
-];
-
-const FLOWER_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: std::mem::size_of::<FlowerInstance>() as u64,
-    step_mode: wgpu::VertexStepMode::Instance,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
+use crate::animate::Animation;
+use crate::frame_plan::FramePlan;
+use crate::params::{Params, Sorting};
+use crate::pipelines::Pipelines;
+use crate::plants::{BillboardTexels, Plants, blade_static};
+use crate::prairie::Planted;
+use crate::shader_data::{
+    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
 };
+use crate::{billboard, lod, props};
 
-const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: std::mem::size_of::<WingInstance>() as u64,
-    step_mode: wgpu::VertexStepMode::Instance,
-    attributes: &wgpu::vertex_attr_array![
-        0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4
-    ],
-};
-
-const PROP_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: std::mem::size_of::<PropVertex>() as u64,
-    step_mode: wgpu::VertexStepMode::Vertex,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4],
-};
-
-/// Blending of Eq. (10): `C = S·S_a + D·(1 − S_a)` for colour and alpha alike.
-const EQ10: wgpu::BlendComponent = wgpu::BlendComponent {
-    src_factor: wgpu::BlendFactor::SrcAlpha,
-    dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
-    operation: wgpu::BlendOperation::Add,
-};
-
-/// The harness's colour target blended with Eq. (10) (Sec. 5.4).
-const BLENDED_TARGETS: &[Option<wgpu::ColorTargetState>] = &[Some(wgpu::ColorTargetState {
-    format: grassbench::target::COLOR_FORMAT,
-    blend: Some(wgpu::BlendState {
-        color: EQ10,
-        alpha: EQ10,
-    }),
-    write_mask: wgpu::ColorWrites::ALL,
-})];
-
-/// The technique's pipelines and group-1 resources.
-pub struct Pipelines {
-    /// Blade strips.
-    pub blades: wgpu::RenderPipeline,
-    /// Petal quads.
-    pub flowers: wgpu::RenderPipeline,
-    /// Billboard wings, lit by the ambient and the sun (per vertex).
-    pub wings: wgpu::RenderPipeline,
-    /// Billboard wings with the point light added per pixel, for frames that have one.
-    pub wings_point_lit: wgpu::RenderPipeline,
-    /// Trees and stones (Sec. 5.5.2).
-    pub props: wgpu::RenderPipeline,
-    /// Group 1.
-    pub bind_group: wgpu::BindGroup,
-    /// Bytes of textures and uniform.
+/// Pipelines, textures, uniform and every buffer the technique draws from.
+pub struct PrairieGpu {
+    pipelines: Pipelines,
+    /// Every blade's static instance data.
+    statics: wgpu::Buffer,
+    /// Every blade's control points (the drawn ones rewritten each frame).
+    dynamics: wgpu::Buffer,
+    /// Every flower's petal (the animated ones rewritten each frame).
+    flowers: wgpu::Buffer,
+    /// The frame's wings (room for the most a frame can draw).
+    wings: wgpu::Buffer,
+    /// The trees and stones (Sec. 5.5.2) and their vertex count.
+    props: wgpu::Buffer,
+    prop_count: u32,
+    /// With sorting: the frame's single plants far to near (static data, control points).
+    sorted: Option<(wgpu::Buffer, wgpu::Buffer)>,
+    /// GPU memory held, bytes.
     pub bytes: u64,
 }
 
-fn texture(
+/// A vertex buffer holding `bytes`.
+fn buffer(
     device: &wgpu::Device,
-    queue: &wgpu::Queue,
     label: &str,
-    (width, height, layers): (u32, u32, u32),
-    texels: &[[u8; 4]],
-) -> wgpu::Texture {
-    device.create_texture_with_data(
-        queue,
-        &wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(texels),
-    )
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    // An empty buffer cannot be bound: keep 64 zero bytes (drawn with 0 instances).
+    let zeros = [0u8; 64];
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: if bytes.is_empty() { &zeros } else { bytes },
+        usage,
+    })
 }
 
-impl Pipelines {
-    /// GPU memory of the textures and the uniform, with `layers` billboard texture layers.
-    pub const fn bytes(layers: u32) -> u64 {
-        (BLADE_SIZE.0 * BLADE_SIZE.1 * 4) as u64
-            + (PETAL_SIZE * PETAL_SIZE * 4 * PETAL_TEXTURES) as u64
-            + (billboard_texture::SIZE.0 * billboard_texture::SIZE.1 * 4) as u64 * layers as u64
-            + std::mem::size_of::<ParamsUniform>() as u64
+/// Writes the `ranges` of `data` to the same places of `buffer`.
+fn upload<T: bytemuck::Pod>(
+    gpu: &GpuContext,
+    buffer: &wgpu::Buffer,
+    data: &[T],
+    ranges: &[Range<u32>],
+) {
+    let each = std::mem::size_of::<T>() as u64;
+    for r in ranges {
+        let r = (r.start as usize).min(data.len())..(r.end as usize).min(data.len());
+        if !r.is_empty() {
+            let bytes = bytemuck::cast_slice(&data[r.clone()]);
+            gpu.queue.write_buffer(buffer, r.start as u64 * each, bytes);
+        }
     }
+}
 
-    /// Creates textures, uniform, bind group and the pipelines; `billboard` holds `layers`
-    /// layers of the billboard texture ([`billboard_texture::billboard_texture`]). With
-    /// `blend`, blades and wings are blended with Eq. (10) (drawn far to near, Sec. 5.4);
-    /// without, they are alpha-tested (alpha to coverage under MSAA). Petals are always
-    /// alpha-tested (drawn first, they need no order).
+/// The shaders' uniform for `params` on `scene`.
+fn uniform(params: &Params, scene: &grassbench::Scene, billboard_height: f32) -> ParamsUniform {
+    let grass = &scene.config.grass;
+    ParamsUniform {
+        color_root: Vec3::from(grass.color_root)
+            .extend(grass.color_variation)
+            .to_array(),
+        color_tip: Vec3::from(grass.color_tip)
+            .extend(params.translucency)
+            .to_array(),
+        shape: [
+            params.backbone_points as f32,
+            params.effective_alpha_cutoff(),
+            params.petal_size,
+            billboard_height,
+        ],
+        modes: [
+            f32::from(u8::from(params.sorting == Sorting::Sort)),
+            0.0,
+            0.0,
+            0.0,
+        ],
+    }
+}
+
+impl PrairieGpu {
+    /// Uploads the blades `planted` and `plants`' animation at rest, allocates the per-frame
+    /// buffers, builds the trees and stones and the pipelines with the billboard `texture`.
     pub fn new(
         ctx: &InitContext<'_>,
-        uniform: &ParamsUniform,
-        seed: u64,
-        (billboard, layers): (&[[u8; 4]], u32),
-        blend: bool,
+        params: &Params,
+        plants: &Plants,
+        planted: &[Planted],
+        texture: &BillboardTexels,
     ) -> Self {
+        let scene = ctx.scene;
         let device = &ctx.gpu.device;
-        let queue = &ctx.gpu.queue;
-        let blade_tex = texture(
+        let sort = params.sorting == Sorting::Sort;
+        let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        let statics: Vec<BladeStatic> = planted.iter().map(blade_static).collect();
+        let statics = buffer(
             device,
-            queue,
-            "zhang blade texture",
-            (BLADE_SIZE.0, BLADE_SIZE.1, 1),
-            &blade_texture(seed),
+            "zhang blades (static)",
+            bytemuck::cast_slice(&statics),
+            usage,
         );
-        let petal_tex = texture(
+        let blades: &Animation = &plants.blades;
+        let dynamics = buffer(
             device,
-            queue,
-            "zhang petal textures",
-            (PETAL_SIZE, PETAL_SIZE, PETAL_TEXTURES),
-            &petal_textures(),
+            "zhang blades (control points)",
+            bytemuck::cast_slice(&blades.blade_out),
+            usage,
         );
-        let billboard_tex = texture(
+        let flowers = buffer(
             device,
-            queue,
-            "zhang billboard texture",
-            (billboard_texture::SIZE.0, billboard_texture::SIZE.1, layers),
-            billboard,
-        );
-        let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("zhang params"),
-            contents: bytemuck::bytes_of(uniform),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("zhang textures"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        let tex_entry = |binding, dim| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: dim,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("zhang (group 1)"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                tex_entry(1, wgpu::TextureViewDimension::D2),
-                tex_entry(2, wgpu::TextureViewDimension::D2Array),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-                tex_entry(4, wgpu::TextureViewDimension::D2Array),
-            ],
-        });
-        let blade_view = blade_tex.create_view(&Default::default());
-        let petal_view = petal_tex.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
-        let billboard_view = billboard_tex.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("zhang (group 1)"),
-            layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: uniform_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&blade_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&petal_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::TextureView(&billboard_view),
-                },
-            ],
-        });
-        let module = shaders::module(device, "zhang", crate::SHADER);
-        let billboard_module = shaders::module(device, "zhang billboards", crate::BILLBOARD_SHADER);
-        let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
-        let pipeline = |label,
-                        module: &wgpu::ShaderModule,
-                        (vs, fs),
-                        blended: bool,
-                        buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
-            let spec = shaders::PipelineSpec::new(
-                label,
-                &pipeline_layout,
-                module,
-                (vs, fs),
-                buffers,
-                ctx.sample_count,
-            );
-            shaders::render_pipeline(
-                device,
-                &shaders::PipelineSpec {
-                    multisample: wgpu::MultisampleState {
-                        // With MSAA the texture's alpha also drives coverage (smoother
-                        // cut-outs); the alpha test still discards the clear part.
-                        alpha_to_coverage_enabled: ctx.sample_count > 1 && !blended,
-                        ..spec.multisample
-                    },
-                    targets: if blended {
-                        BLENDED_TARGETS
-                    } else {
-                        spec.targets
-                    },
-                    ..spec
-                },
-            )
-        };
-        let blades = pipeline(
-            "zhang blades",
-            &module,
-            ("vs_blade", "fs_blade"),
-            blend,
-            &[
-                Some(BLADE_LAYOUTS[0].clone()),
-                Some(BLADE_LAYOUTS[1].clone()),
-            ],
-        );
-        let flowers = pipeline(
             "zhang flowers",
-            &module,
-            ("vs_flower", "fs_flower"),
-            false,
-            &[Some(FLOWER_LAYOUT.clone())],
+            bytemuck::cast_slice(&blades.flower_out),
+            usage,
         );
-        let wings = pipeline(
-            "zhang billboard wings",
-            &billboard_module,
-            ("vs_wing", "fs_wing"),
-            blend,
-            &[Some(WING_LAYOUT.clone())],
-        );
-        let wings_point_lit = pipeline(
-            "zhang billboard wings (point light)",
-            &billboard_module,
-            ("vs_wing", "fs_wing_point_lit"),
-            blend,
-            &[Some(WING_LAYOUT.clone())],
-        );
-        let props_module = shaders::module(device, "zhang props", crate::PROPS_SHADER);
-        let props_buffers = [Some(PROP_LAYOUT.clone())];
-        let props_spec = shaders::PipelineSpec::new(
-            "zhang trees and stones",
-            &pipeline_layout,
-            &props_module,
-            ("vs_prop", "fs_prop"),
-            &props_buffers,
-            ctx.sample_count,
-        );
-        let props = shaders::render_pipeline(
+        let wing_count = plants.billboards.max_wings();
+        let wings = buffer(
             device,
-            &shaders::PipelineSpec {
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    cull_mode: Some(wgpu::Face::Back),
-                    ..Default::default()
-                },
-                ..props_spec
-            },
+            "zhang billboard wings",
+            bytemuck::cast_slice(&vec![WingInstance::default(); wing_count]),
+            usage,
         );
+        let prop_vertices = if params.props {
+            props::meshes(&scene.terrain, scene.config.seed)
+        } else {
+            Vec::new()
+        };
+        let props = buffer(
+            device,
+            "zhang trees and stones",
+            bytemuck::cast_slice(&prop_vertices),
+            wgpu::BufferUsages::VERTEX,
+        );
+        let uniform = uniform(params, scene, plants.billboard_height);
+        let pipelines = Pipelines::new(
+            ctx,
+            &uniform,
+            scene.config.seed,
+            (&texture.texels, texture.layers),
+            sort,
+        );
+        let sorted = sort.then(|| {
+            let capacity = sorted_capacity(params, planted.len() as u64) as usize;
+            (
+                buffer(
+                    device,
+                    "zhang blades far to near (static)",
+                    bytemuck::cast_slice(&vec![BladeStatic::default(); capacity]),
+                    usage,
+                ),
+                buffer(
+                    device,
+                    "zhang blades far to near (control points)",
+                    bytemuck::cast_slice(&vec![BladeDynamic::default(); capacity]),
+                    usage,
+                ),
+            )
+        });
+        let bytes = statics.size()
+            + dynamics.size()
+            + flowers.size()
+            + wings.size()
+            + props.size()
+            + sorted.as_ref().map_or(0, |(s, d)| s.size() + d.size())
+            + pipelines.bytes;
         Self {
-            blades,
+            pipelines,
+            statics,
+            dynamics,
             flowers,
             wings,
-            wings_point_lit,
             props,
-            bind_group,
-            bytes: Self::bytes(layers),
+            prop_count: prop_vertices.len() as u32,
+            sorted,
+            bytes,
         }
+    }
+
+    /// Uploads what `frame` animated: the blades and flowers of the grids up to two away (all
+    /// of them without LOD) from `blades`, the far grids' wings and, with sorting, the single
+    /// plants in draw order.
+    pub fn upload(&self, gpu: &GpuContext, frame: &FramePlan, blades: &Animation) {
+        let plan = &frame.plan;
+        upload(gpu, &self.dynamics, &blades.blade_out, &plan.animate_blades);
+        upload(
+            gpu,
+            &self.flowers,
+            &blades.flower_out,
+            &plan.animate_flowers,
+        );
+        let wings = 0..frame.wings.len() as u32;
+        upload(gpu, &self.wings, &frame.wings, std::slice::from_ref(&wings));
+        if let (Some(s), Some((statics, dynamics))) = (&frame.sorted, &self.sorted) {
+            let all = 0..s.order.len() as u32;
+            let all = std::slice::from_ref(&all);
+            upload(gpu, statics, &s.statics, all);
+            upload(gpu, dynamics, &s.dynamics, all);
+        }
+    }
+
+    /// Draws `frame` with blades of `backbone_points` backbone points. Trees and stones
+    /// first (opaque). Without sorting: wings, then the near grids' blade ranges, then petals
+    /// (all alpha-tested). Sorting (Sec. 5.4): petals first (alpha-tested, they need no
+    /// order), then the wings and the single plants far to near, blended (Eq. 10).
+    pub fn encode(&self, encoder: &mut FrameEncoder<'_>, frame: &FramePlan, backbone_points: u32) {
+        let v = &frame.plan;
+        let blades = frame.blade_count();
+        if blades == 0 && v.flowers.is_empty() && frame.wings.is_empty() && self.prop_count == 0 {
+            return;
+        }
+        let mut pass = encoder.render_pass("plants");
+        pass.set_bind_group(1, &self.pipelines.bind_group, &[]);
+        // Trees and stones first: opaque, they need no order.
+        if self.prop_count > 0 {
+            pass.set_pipeline(&self.pipelines.props);
+            pass.set_vertex_buffer(0, self.props.slice(..));
+            pass.draw(0..self.prop_count, 0..1);
+        }
+        let flowers = |pass: &mut RenderPass<'_>| {
+            if !v.flowers.is_empty() {
+                pass.set_pipeline(&self.pipelines.flowers);
+                pass.set_vertex_buffer(0, self.flowers.slice(..));
+                for r in &v.flowers {
+                    pass.draw(0..4, r.clone());
+                }
+            }
+        };
+        if frame.sorted.is_some() {
+            flowers(&mut pass);
+        }
+        if !frame.wings.is_empty() {
+            pass.set_pipeline(if frame.point_lit {
+                &self.pipelines.wings_point_lit
+            } else {
+                &self.pipelines.wings
+            });
+            pass.set_vertex_buffer(0, self.wings.slice(..));
+            pass.draw(0..4, 0..frame.wings.len() as u32);
+        }
+        let strip = 0..2 * backbone_points;
+        match (&frame.sorted, &self.sorted) {
+            (Some(s), Some((statics, dynamics))) if !s.order.is_empty() => {
+                pass.set_pipeline(&self.pipelines.blades);
+                pass.set_vertex_buffer(0, statics.slice(..));
+                pass.set_vertex_buffer(1, dynamics.slice(..));
+                pass.draw(strip, 0..s.order.len() as u32);
+            }
+            (Some(_), _) => {}
+            (None, _) => {
+                if !v.blades.is_empty() {
+                    pass.set_pipeline(&self.pipelines.blades);
+                    pass.set_vertex_buffer(0, self.statics.slice(..));
+                    pass.set_vertex_buffer(1, self.dynamics.slice(..));
+                    for r in &v.blades {
+                        pass.draw(strip.clone(), r.clone());
+                    }
+                }
+                flowers(&mut pass);
+            }
+        }
+    }
+
+    /// Triangles of the trees and stones.
+    pub fn prop_triangles(&self) -> u64 {
+        u64::from(self.prop_count / 3)
+    }
+}
+
+/// An upper bound on the GPU memory of `params` on `terrain` (the registry's estimate).
+pub fn estimate(params: &Params, terrain: &Terrain) -> GpuEstimate {
+    // At most one blade per lattice point; each carries a flower with probability
+    // `flower_fraction`: the expected count plus four standard deviations (and the 64 bytes
+    // an empty buffer keeps).
+    let side = u64::from(params.grids) * u64::from(params.blades_per_side);
+    let blades = side * side;
+    let (n, f) = (blades as f64, f64::from(params.flower_fraction));
+    let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
+    let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
+    // Billboard wings: at most six per billboard of the finest step in every grid.
+    let (wings, layers) = if params.lod {
+        let steps = billboard::steps(params.blades_per_side, params.grids);
+        let per_side = u64::from(lod::billboards_per_side(params.blades_per_side, 5));
+        let grids = u64::from(params.grids).pow(2);
+        (6 * per_side * per_side * grids, steps.len() as u32)
+    } else {
+        (1, 0)
+    };
+    let sorted = if params.sorting == Sorting::Sort {
+        sorted_capacity(params, blades)
+    } else {
+        0
+    };
+    size(blades, std::mem::size_of::<BladeStatic>())
+        .plus(size(blades, std::mem::size_of::<BladeDynamic>()))
+        .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
+        .plus(size(sorted.max(1), std::mem::size_of::<BladeDynamic>()))
+        .plus(size(flowers, std::mem::size_of::<FlowerInstance>()))
+        .plus(size(wings, std::mem::size_of::<WingInstance>()))
+        .plus(size(
+            prop_vertices(params, terrain),
+            std::mem::size_of::<PropVertex>(),
+        ))
+        .plus(GpuEstimate::textures(Pipelines::bytes(layers.max(1))))
+}
+
+/// Vertices of the trees and stones (Sec. 5.5.2; at least one: an empty buffer keeps 64 bytes).
+fn prop_vertices(params: &Params, terrain: &Terrain) -> u64 {
+    let (trees, stones) = if params.props {
+        props::count(terrain)
+    } else {
+        (0, 0)
+    };
+    ((trees * props::TREE_VERTICES + stones * props::STONE_VERTICES) as u64).max(2)
+}
+
+/// Instances of the far-to-near blade buffers. With LOD, single plants are drawn in the grids
+/// next to the camera grid or, fading near a border corner (Sec. 6.1), next to any of the
+/// 2 x 2 camera grids around the corner: at most 4 x 4 grids. Without, every blade.
+fn sorted_capacity(params: &Params, blades: u64) -> u64 {
+    if params.lod {
+        blades.min(16 * u64::from(params.blades_per_side).pow(2))
+    } else {
+        blades
     }
 }

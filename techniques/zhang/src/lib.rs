@@ -124,7 +124,9 @@
 //!   upright blade's wind direction is undefined).
 //! - The Bezier evaluation and the segment points are computed in the vertex shader from the
 //!   control points (the thesis does it on the CPU): same geometry, 48 instead of `24·n`
-//!   bytes of upload per blade. `blade::bezier` is the CPU mirror used by the tests.
+//!   bytes of upload per blade. `blade::bezier` writes Eq. (5) on the CPU; nothing draws or
+//!   animates with it, and only its own property test (the curve passes through `P0` and
+//!   `P3`) calls it: no test compares it with the shader's `bezier`.
 //! - The ground under a blade is the plane through its root; flowers attach to a blade
 //!   position rather than being sprinkled independently.
 //! - Sec. 4.2 raises the *velocity* of far billboards with distance; we scale their top
@@ -211,6 +213,15 @@
 //!   with fades it stays at 3.1) and a grid turning into view shows it either way.
 //! - With the tiled fluid wind the same motion repeats every grass grid (offset per grid,
 //!   Sec. 5.1); the thesis accepts this.
+//!
+//! ## Code
+//! This file holds the registry entry and the [`GrassTechnique`] impl, which delegate to:
+//! [`plants`] (what persists between frames: the planted grids, the blades' and anchors'
+//! animation, the billboards, the lookups of sorting), [`frame_plan`] (what `update` works out
+//! for a frame and the buffers it reuses), [`gpu`] (the buffers, upload and draw calls) and
+//! [`pipelines`] (the shaders, textures and pipelines). [`shader_data`] holds the plain
+//! records the shaders read and imports nothing of the crate; the remaining modules are the
+//! thesis' pieces named above.
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
@@ -222,34 +233,32 @@ pub mod culling;
 pub mod fade;
 pub mod flower;
 pub mod frame;
+pub mod frame_plan;
 pub mod gpu;
 pub mod lod;
 pub mod order;
 pub mod params;
+pub mod pipelines;
+pub mod plants;
 pub mod prairie;
 pub mod props;
+pub mod shader_data;
 pub mod textures;
 pub mod wing_trim;
 
-use grassbench::glam::{IVec2, Vec3};
 use grassbench::gpu::GpuEstimate;
-use grassbench::technique::{LevelBlades, RenderPass, Technique, TechniqueEntry, Variants};
-use grassbench::wgpu::util::DeviceExt as _;
+use grassbench::technique::{LevelBlades, Technique, TechniqueEntry, Variants};
 use grassbench::{
-    Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result,
-    TechniqueInfo, TechniqueStats, bytemuck, wgpu,
+    Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
+    TechniqueInfo, TechniqueStats,
 };
 
 pub use animate::Animation;
-pub use gpu::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance};
 pub use params::Params;
-
-/// The blade and flower shader (without the prelude).
-pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
-/// The billboard shader (without the prelude).
-pub const BILLBOARD_SHADER: &str = include_str!("../shaders/billboard.wgsl");
-/// The tree and stone shader (without the prelude).
-pub const PROPS_SHADER: &str = include_str!("../shaders/props.wgsl");
+pub use pipelines::{BILLBOARD_SHADER, PROPS_SHADER, SHADER};
+pub use shader_data::{
+    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
+};
 
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Zhang>();
@@ -257,69 +266,12 @@ pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Zhang>();
 /// The technique.
 pub struct Zhang {
     params: Params,
-    layout: prairie::Layout,
-    animation: Animation,
-    pipelines: gpu::Pipelines,
-    statics: wgpu::Buffer,
-    dynamics: wgpu::Buffer,
-    flowers: wgpu::Buffer,
-    wing_buffer: wgpu::Buffer,
-    /// The trees and stones (Sec. 5.5.2) and their vertex count.
-    props: wgpu::Buffer,
-    prop_count: u32,
-    gpu_bytes: u64,
-    /// The grass grids' blade and flower ranges and bounds (Sec. 5.3).
-    grids: culling::GridIndex,
-    /// Every grid's billboards at every step and their anchor plants (Sec. 4.1-4.2).
-    billboards: billboard::Billboards,
-    /// The anchors' animation (only `P3` is drawn) and their top points at rest.
-    anchors: Animation,
-    anchor_rest: Vec<Vec3>,
-    /// Height of the billboard texture (the tallest blade), m.
-    billboard_height: f32,
-    /// This frame's plan (`update` → `prepare`, `encode`).
-    plan: frame::Plan,
-    /// This frame's wings (`update` → `prepare`).
-    wings: Vec<WingInstance>,
-    /// Whether this frame has a point light (`update` → `encode`: the wings' pipeline).
-    point_lit: bool,
-    /// Scratch for [`frame::wings`].
-    wing_scratch: frame::WingScratch,
-    /// Sorting (Sec. 5.4): the pre-computed billboard orders of the nine sections, each
-    /// blade's root and height, the blade at each lattice point (`grid·n² + cell`), the
-    /// frame's single plants far to near and their instance data in that order.
-    sorting: Option<Sorted>,
-    /// CPU time of this frame's far-to-near ordering, ms (a statistic).
-    sort_ms: f64,
-}
-
-/// What sorting (Sec. 5.4) keeps.
-struct Sorted {
-    orders: order::BlockOrders,
-    statics: Vec<BladeStatic>,
-    plants: Vec<[f32; 4]>,
-    slots: Vec<u32>,
-    order: Vec<u32>,
-    scratch: Vec<u32>,
-    statics_out: Vec<BladeStatic>,
-    dynamics_out: Vec<BladeDynamic>,
-    statics_buf: wgpu::Buffer,
-    dynamics_buf: wgpu::Buffer,
-}
-
-fn buffer(
-    device: &wgpu::Device,
-    label: &str,
-    bytes: &[u8],
-    usage: wgpu::BufferUsages,
-) -> wgpu::Buffer {
-    // An empty buffer cannot be bound: keep 64 zero bytes (drawn with 0 instances).
-    let zeros = [0u8; 64];
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: if bytes.is_empty() { &zeros } else { bytes },
-        usage,
-    })
+    /// The prairie between frames: grids, animation, billboards.
+    plants: plants::Plants,
+    /// Buffers, textures and pipelines.
+    gpu: gpu::PrairieGpu,
+    /// This frame's plan (`update` → `prepare`, `encode`, the statistics).
+    frame: frame_plan::FramePlan,
 }
 
 impl Technique for Zhang {
@@ -343,67 +295,14 @@ impl Technique for Zhang {
         others: &[],
     };
 
-    fn estimate(scene: &grassbench::Scene, params: &Params) -> Result<GpuEstimate> {
-        // At most one blade per lattice point; each carries a flower with probability
-        // `flower_fraction`: the expected count plus four standard deviations (and the 64 bytes
-        // an empty buffer keeps).
-        let side = u64::from(params.grids) * u64::from(params.blades_per_side);
-        let blades = side * side;
-        let (n, f) = (blades as f64, f64::from(params.flower_fraction));
-        let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
-        let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
-        // Billboard wings: at most six per billboard of the finest step in every grid.
-        let (wings, layers) = if params.lod {
-            let steps = billboard::steps(params.blades_per_side, params.grids);
-            let per_side = u64::from(lod::billboards_per_side(params.blades_per_side, 5));
-            let grids = u64::from(params.grids).pow(2);
-            (6 * per_side * per_side * grids, steps.len() as u32)
-        } else {
-            (1, 0)
-        };
-        let sorted = if params.sorting == params::Sorting::Sort {
-            sorted_capacity(&params, blades)
-        } else {
-            0
-        };
-        Ok(size(blades, std::mem::size_of::<BladeStatic>())
-            .plus(size(blades, std::mem::size_of::<gpu::BladeDynamic>()))
-            .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
-            .plus(size(
-                sorted.max(1),
-                std::mem::size_of::<gpu::BladeDynamic>(),
-            ))
-            .plus(size(flowers, std::mem::size_of::<gpu::FlowerInstance>()))
-            .plus(size(wings, std::mem::size_of::<WingInstance>()))
-            .plus(size(
-                prop_vertices(&params, &scene.terrain),
-                std::mem::size_of::<PropVertex>(),
-            ))
-            .plus(GpuEstimate::textures(gpu::Pipelines::bytes(layers.max(1)))))
-    }
-
-    fn params(&self) -> &Params {
-        &self.params
-    }
-
     /// Plants the prairie, builds the animation state, textures and pipelines.
     fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
-        let sort = params.sorting == params::Sorting::Sort;
         let scene = ctx.scene;
         let grass = &scene.config.grass;
-        let seed = scene.config.seed;
-        let (layout, planted) = prairie::plant(&params, grass, &scene.terrain, seed);
-        let animation = Animation::new(&planted, params.flower_mass);
-        let statics: Vec<BladeStatic> = planted
-            .iter()
-            .map(|p| BladeStatic {
-                root_facing: p.root.extend(p.facing).to_array(),
-                shape: [p.height, p.width, p.variation, 0.0],
-            })
-            .collect();
-        let device = &ctx.gpu.device;
-        let per_frame = std::mem::size_of_val(animation.blade_out.as_slice()) as u64;
-        let max = device.limits().max_buffer_size;
+        let (layout, planted) = prairie::plant(&params, grass, &scene.terrain, scene.config.seed);
+        // The per-frame control points of every blade must fit in one buffer.
+        let per_frame = (planted.len() * std::mem::size_of::<BladeDynamic>()) as u64;
+        let max = ctx.gpu.device.limits().max_buffer_size;
         if per_frame > max {
             return Err(Error::Technique {
                 technique: Self::INFO.id.into(),
@@ -413,317 +312,43 @@ impl Technique for Zhang {
                 ),
             });
         }
-        // Billboards (Ch. 4): anchors, wings and the start-up texture of Fig. 11.
-        let billboard_height = grass.height[1];
-        let mut billboards = if params.lod {
-            billboard::Billboards::new(&layout, &params, grass, &scene.terrain, seed)
-        } else {
-            billboard::Billboards::empty()
-        };
-        let mut anchors = Animation::new(&billboards.anchors, params.flower_mass);
-        anchors.set_rotations(false);
-        let anchor_rest = anchors
-            .blade_out
-            .iter()
-            .map(|d| Vec3::from_slice(&d.p3[..3]))
-            .collect();
-        let look = billboard_texture::Look {
-            grass,
-            spacing: layout.spacing().min_element(),
-            flower_fraction: params.flower_fraction,
-            petal_size: params.petal_size,
-        };
-        let layers = billboards.steps.len().max(1) as u32;
-        let mut billboard_texels =
-            billboard_texture::billboard_texture(&look, &billboards.steps, seed);
-        billboard_texels.resize(
-            (billboard_texture::SIZE.0 * billboard_texture::SIZE.1 * layers) as usize,
-            [0; 4],
-        );
-        let alpha_cutoff = if sort {
-            params.alpha_cutoff.min(BLEND_CUTOFF)
-        } else {
-            params.alpha_cutoff
-        };
-        if params.trim_wings {
-            let skyline = wing_trim::Skyline::new(
-                &billboard_texels,
-                billboard_texture::SIZE,
-                layers,
-                alpha_cutoff,
-            );
-            billboards.cut_wings(&skyline);
-        }
-        let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
-        let statics_buf = buffer(
-            device,
-            "zhang blades (static)",
-            bytemuck::cast_slice(&statics),
-            usage,
-        );
-        let dynamics = buffer(
-            device,
-            "zhang blades (control points)",
-            bytemuck::cast_slice(&animation.blade_out),
-            usage,
-        );
-        let flowers = buffer(
-            device,
-            "zhang flowers",
-            bytemuck::cast_slice(&animation.flower_out),
-            usage,
-        );
-        let wing_buffer = buffer(
-            device,
-            "zhang billboard wings",
-            bytemuck::cast_slice(&vec![WingInstance::default(); billboards.max_wings()]),
-            usage,
-        );
-        let prop_vertices = if params.props {
-            props::meshes(&scene.terrain, seed)
-        } else {
-            Vec::new()
-        };
-        let props_buf = buffer(
-            device,
-            "zhang trees and stones",
-            bytemuck::cast_slice(&prop_vertices),
-            wgpu::BufferUsages::VERTEX,
-        );
-        let uniform = ParamsUniform {
-            color_root: Vec3::from(grass.color_root)
-                .extend(grass.color_variation)
-                .to_array(),
-            color_tip: Vec3::from(grass.color_tip)
-                .extend(params.translucency)
-                .to_array(),
-            shape: [
-                params.backbone_points as f32,
-                alpha_cutoff,
-                params.petal_size,
-                billboard_height,
-            ],
-            modes: [f32::from(u8::from(sort)), 0.0, 0.0, 0.0],
-        };
-        let pipelines = gpu::Pipelines::new(ctx, &uniform, seed, (&billboard_texels, layers), sort);
-        let sorting = sort.then(|| {
-            let n = layout.per_side;
-            let mut slots = vec![u32::MAX; (layout.grids * layout.grids * n * n) as usize];
-            for (b, p) in planted.iter().enumerate() {
-                slots[(p.grid * n * n + p.cell) as usize] = b as u32;
-            }
-            let capacity = sorted_capacity(&params, planted.len() as u64) as usize;
-            Sorted {
-                orders: order::BlockOrders::new(&billboards.per_side(n)),
-                plants: planted
-                    .iter()
-                    .map(|p| p.root.extend(p.height).to_array())
-                    .collect(),
-                slots,
-                order: Vec::new(),
-                scratch: Vec::new(),
-                statics_out: Vec::new(),
-                dynamics_out: Vec::new(),
-                statics_buf: buffer(
-                    device,
-                    "zhang blades far to near (static)",
-                    bytemuck::cast_slice(&vec![BladeStatic::default(); capacity]),
-                    usage,
-                ),
-                dynamics_buf: buffer(
-                    device,
-                    "zhang blades far to near (control points)",
-                    bytemuck::cast_slice(&vec![BladeDynamic::default(); capacity]),
-                    usage,
-                ),
-                statics: statics.clone(),
-            }
-        });
-        let gpu_bytes = statics_buf.size()
-            + dynamics.size()
-            + flowers.size()
-            + wing_buffer.size()
-            + props_buf.size()
-            + sorting
-                .as_ref()
-                .map_or(0, |s| s.statics_buf.size() + s.dynamics_buf.size())
-            + pipelines.bytes;
-        let mut grids = culling::GridIndex::new(&planted);
-        grids.include(&billboards.anchors, billboard_height);
-        let plan = frame::Plan::new(
-            &layout,
-            &grids,
-            &billboards,
-            &fade::Transition::none(IVec2::MIN),
-            None,
-            (false, false),
-        );
+        let (plants, texture) = plants::Plants::new(&params, scene, layout, &planted);
+        let gpu = gpu::PrairieGpu::new(ctx, &params, &plants, &planted, &texture);
+        let frame = frame_plan::FramePlan::new(&params, &plants);
         Ok(Self {
-            plan,
-            grids,
-            layout,
             params,
-            animation,
-            pipelines,
-            statics: statics_buf,
-            dynamics,
-            flowers,
-            wing_buffer,
-            props: props_buf,
-            prop_count: prop_vertices.len() as u32,
-            gpu_bytes,
-            billboards,
-            anchors,
-            anchor_rest,
-            billboard_height,
-            wings: Vec::new(),
-            point_lit: false,
-            wing_scratch: frame::WingScratch::default(),
-            sorting,
-            sort_ms: 0.0,
+            plants,
+            gpu,
+            frame,
         })
+    }
+
+    fn estimate(scene: &Scene, params: &Params) -> Result<GpuEstimate> {
+        Ok(gpu::estimate(params, &scene.terrain))
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
     }
 }
 
 impl Zhang {
     /// The animation state (for inspection).
     pub fn animation(&self) -> &Animation {
-        &self.animation
+        &self.plants.blades
     }
 }
 
 impl GrassTechnique for Zhang {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
-        let p = &self.params;
-        let frustum = inputs.camera.frustum();
-        let frustum = p.culling.then_some(&frustum);
-        let eye = inputs.camera.eye;
-        let radius = if p.lod { p.fade_radius } else { 0.0 };
-        let transition = fade::Transition::new(&self.layout, eye, radius);
-        // Sorting time is a statistic (the `sort_ms` counter), not an input of the frame.
-        let sort_start = std::time::Instant::now();
-        self.plan = frame::Plan::new(
-            &self.layout,
-            &self.grids,
-            &self.billboards,
-            &transition,
-            frustum,
-            (p.lod, self.sorting.is_some()),
-        );
-        let mut sort_time = sort_start.elapsed();
-        let k = (p.wind_response, p.spring, p.damping);
-        let plan = &self.plan;
-        self.point_lit = inputs.lights().at(inputs.time).point.is_some();
-        // Sec. 6.2: the scene's moving object is the interaction sphere.
-        self.animation.set_sphere(inputs.object());
-        // Blades and anchors share one set of threads.
-        let blades = animate::StepRanges {
-            drawn: &plan.animate_blades,
-            hidden: &plan.hidden_blades,
-            flowers: &plan.animate_flowers,
-        };
-        let anchors = animate::StepRanges {
-            drawn: &plan.animate_anchors,
-            hidden: &plan.hidden_anchors,
-            flowers: &[],
-        };
-        animate::step_together(
-            inputs.wind,
-            inputs.time,
-            inputs.dt,
-            k,
-            &mut [(&mut self.animation, blades), (&mut self.anchors, anchors)],
-        );
-        frame::wings(
-            plan,
-            &self.billboards,
-            self.sorting.as_ref().map(|s| &s.orders),
-            &self.anchors.blade_out,
-            &self.anchor_rest,
-            (self.billboard_height, p.billboard_sway),
-            &mut self.wing_scratch,
-            &mut self.wings,
-        );
-        // Fading single plants (Sec. 6.1): `P2.w` carries how far each has faded out.
-        for near in &plan.near {
-            let out = &mut self.animation.blade_out;
-            let r = self.grids.blades(near.k);
-            for d in &mut out[r.start as usize..r.end as usize] {
-                d.p2[3] = 1.0 - near.alpha;
-            }
-        }
-        if let Some(s) = &mut self.sorting {
-            let start = std::time::Instant::now();
-            let look = frame::BladeLookup {
-                layout: &self.layout,
-                index: &self.grids,
-                slots: &s.slots,
-                plants: &s.plants,
-            };
-            frame::sorted_blades(plan, &look, eye, frustum, &mut s.scratch, &mut s.order);
-            sort_time += start.elapsed();
-            s.statics_out.clear();
-            s.statics_out
-                .extend(s.order.iter().map(|&b| s.statics[b as usize]));
-            s.dynamics_out.clear();
-            s.dynamics_out.extend(
-                s.order
-                    .iter()
-                    .map(|&b| self.animation.blade_out[b as usize]),
-            );
-        }
-        self.sort_ms = if self.sorting.is_some() {
-            sort_time.as_secs_f64() * 1e3
-        } else {
-            0.0
-        };
+        self.frame.update(&self.params, &mut self.plants, inputs);
         Ok(())
     }
 
     /// Uploads what this frame animated: the blades and flowers of the grids up to two away
     /// (all of them without LOD) and the far grids' wings.
     fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
-        fn upload<T: bytemuck::Pod>(
-            gpu: &GpuContext,
-            buffer: &wgpu::Buffer,
-            data: &[T],
-            ranges: &[std::ops::Range<u32>],
-        ) {
-            let each = std::mem::size_of::<T>() as u64;
-            for r in ranges {
-                let r = (r.start as usize).min(data.len())..(r.end as usize).min(data.len());
-                if !r.is_empty() {
-                    let bytes = bytemuck::cast_slice(&data[r.clone()]);
-                    gpu.queue.write_buffer(buffer, r.start as u64 * each, bytes);
-                }
-            }
-        }
-        let plan = &self.plan;
-        upload(
-            gpu,
-            &self.dynamics,
-            &self.animation.blade_out,
-            &plan.animate_blades,
-        );
-        upload(
-            gpu,
-            &self.flowers,
-            &self.animation.flower_out,
-            &plan.animate_flowers,
-        );
-        let wings = 0..self.wings.len() as u32;
-        upload(
-            gpu,
-            &self.wing_buffer,
-            &self.wings,
-            std::slice::from_ref(&wings),
-        );
-        if let Some(s) = &self.sorting {
-            let all = 0..s.order.len() as u32;
-            let all = std::slice::from_ref(&all);
-            upload(gpu, &s.statics_buf, &s.statics_out, all);
-            upload(gpu, &s.dynamics_buf, &s.dynamics_out, all);
-        }
+        self.gpu.upload(gpu, &self.frame, &self.plants.blades);
         Ok(())
     }
 
@@ -731,111 +356,59 @@ impl GrassTechnique for Zhang {
     /// alpha-tested). Sorting (Sec. 5.4): petals first (alpha-tested, they need no order),
     /// then the wings and the single plants far to near, blended (Eq. 10).
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
-        let v = &self.plan;
-        let blades = self.blade_count();
-        if blades == 0 && v.flowers.is_empty() && self.wings.is_empty() && self.prop_count == 0 {
-            return;
-        }
-        let mut pass = encoder.render_pass("plants");
-        pass.set_bind_group(1, &self.pipelines.bind_group, &[]);
-        // Trees and stones first: opaque, they need no order.
-        if self.prop_count > 0 {
-            pass.set_pipeline(&self.pipelines.props);
-            pass.set_vertex_buffer(0, self.props.slice(..));
-            pass.draw(0..self.prop_count, 0..1);
-        }
-        let flowers = |pass: &mut RenderPass<'_>| {
-            if !v.flowers.is_empty() {
-                pass.set_pipeline(&self.pipelines.flowers);
-                pass.set_vertex_buffer(0, self.flowers.slice(..));
-                for r in &v.flowers {
-                    pass.draw(0..4, r.clone());
-                }
-            }
-        };
-        if self.sorting.is_some() {
-            flowers(&mut pass);
-        }
-        if !self.wings.is_empty() {
-            pass.set_pipeline(if self.point_lit {
-                &self.pipelines.wings_point_lit
-            } else {
-                &self.pipelines.wings
-            });
-            pass.set_vertex_buffer(0, self.wing_buffer.slice(..));
-            pass.draw(0..4, 0..self.wings.len() as u32);
-        }
-        let strip = 0..2 * self.params.backbone_points;
-        match &self.sorting {
-            Some(s) if !s.order.is_empty() => {
-                pass.set_pipeline(&self.pipelines.blades);
-                pass.set_vertex_buffer(0, s.statics_buf.slice(..));
-                pass.set_vertex_buffer(1, s.dynamics_buf.slice(..));
-                pass.draw(strip, 0..s.order.len() as u32);
-            }
-            Some(_) => {}
-            None => {
-                if !v.blades.is_empty() {
-                    pass.set_pipeline(&self.pipelines.blades);
-                    pass.set_vertex_buffer(0, self.statics.slice(..));
-                    pass.set_vertex_buffer(1, self.dynamics.slice(..));
-                    for r in &v.blades {
-                        pass.draw(strip.clone(), r.clone());
-                    }
-                }
-                flowers(&mut pass);
-            }
-        }
+        self.gpu
+            .encode(encoder, &self.frame, self.params.backbone_points);
     }
 
     /// Grass grids drawn and culled (Sec. 5.3), single plants drawn, billboards drawn by
     /// length `l'` (Eq. 8).
     fn counters(&self) -> Vec<(&'static str, f64)> {
+        let plan = &self.frame.plan;
+        let billboards = &self.plants.billboards;
         let mut c = vec![
-            ("grids_drawn", self.plan.grids as f64),
-            ("grids_culled", self.plan.culled as f64),
-            ("single_plants", self.blade_count() as f64),
+            ("grids_drawn", plan.grids as f64),
+            ("grids_culled", plan.culled as f64),
+            ("single_plants", self.frame.blade_count() as f64),
         ];
-        let mut by_level = vec![0u64; self.billboards.steps.len()];
-        for f in &self.plan.far {
-            by_level[f.level] +=
-                u64::from(self.billboards.grids[f.grid as usize][f.level].billboards);
+        let mut by_level = vec![0u64; billboards.steps.len()];
+        for f in &plan.far {
+            by_level[f.level] += u64::from(billboards.grids[f.grid as usize][f.level].billboards);
         }
-        for (&step, n) in self.billboards.steps.iter().zip(by_level) {
+        for (&step, n) in billboards.steps.iter().zip(by_level) {
             c.push((billboard_counter(step), n as f64));
         }
-        c.push(("wings", self.wings.len() as f64));
-        c.push(("fading_grids", self.plan.fading as f64));
-        if self.sorting.is_some() {
-            c.push(("sort_ms", self.sort_ms));
+        c.push(("wings", self.frame.wings.len() as f64));
+        c.push(("fading_grids", plan.fading as f64));
+        if self.frame.sorted.is_some() {
+            c.push(("sort_ms", self.frame.sort_ms));
         }
         c
     }
 
     /// Blades represented: drawn as single plants or standing in the billboards drawn.
     fn stats(&self) -> TechniqueStats {
-        let blades = self.blade_count();
-        let flowers = self.plan.flower_count();
+        let blades = self.frame.blade_count();
+        let flowers = self.frame.plan.flower_count();
         TechniqueStats {
-            blades: blades + self.plan.billboard_blades,
+            blades: blades + self.frame.plan.billboard_blades,
             triangles: blades * u64::from(2 * (self.params.backbone_points - 1))
                 + 2 * flowers
-                + 2 * self.wings.len() as u64
-                + u64::from(self.prop_count / 3),
-            gpu_bytes: self.gpu_bytes,
+                + 2 * self.frame.wings.len() as u64
+                + self.gpu.prop_triangles(),
+            gpu_bytes: self.gpu.bytes,
         }
     }
 
-    /// Single plants (Bezier blades) and the blades the billboards stand for.
+    /// Single plants (Bezier blades) and the blades the billboards drawn stand for.
     fn levels(&self) -> Vec<LevelBlades> {
         vec![
             LevelBlades {
                 level: "single_plants",
-                blades: self.blade_count(),
+                blades: self.frame.blade_count(),
             },
             LevelBlades {
                 level: "billboards",
-                blades: self.plan.billboard_blades,
+                blades: self.frame.plan.billboard_blades,
             },
         ]
     }
@@ -853,38 +426,5 @@ fn billboard_counter(step: u32) -> &'static str {
         256 => "billboards_l257",
         512 => "billboards_l513",
         _ => "billboards_other",
-    }
-}
-
-impl Zhang {
-    /// Single plants drawn (with sorting, after culling single plants, Sec. 5.3).
-    fn blade_count(&self) -> u64 {
-        self.sorting
-            .as_ref()
-            .map_or(self.plan.blade_count(), |s| s.order.len() as u64)
-    }
-}
-
-/// Vertices of the trees and stones (Sec. 5.5.2; at least one: an empty buffer keeps 64 bytes).
-fn prop_vertices(params: &Params, terrain: &grassbench::terrain::Terrain) -> u64 {
-    let (trees, stones) = if params.props {
-        props::count(terrain)
-    } else {
-        (0, 0)
-    };
-    ((trees * props::TREE_VERTICES + stones * props::STONE_VERTICES) as u64).max(2)
-}
-
-/// Alpha cut-off while blending (Sec. 5.4): only the clear part of the textures is discarded.
-const BLEND_CUTOFF: f32 = 0.05;
-
-/// Instances of the far-to-near blade buffers. With LOD, single plants are drawn in the grids
-/// next to the camera grid or, fading near a border corner (Sec. 6.1), next to any of the
-/// 2 x 2 camera grids around the corner: at most 4 x 4 grids. Without, every blade.
-fn sorted_capacity(params: &Params, blades: u64) -> u64 {
-    if params.lod {
-        blades.min(16 * u64::from(params.blades_per_side).pow(2))
-    } else {
-        blades
     }
 }

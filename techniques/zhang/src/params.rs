@@ -98,6 +98,21 @@ impl Default for Params {
     }
 }
 
+/// Alpha cut-off while blending (Sec. 5.4): only the clear part of the textures is discarded.
+pub const BLEND_CUTOFF: f32 = 0.05;
+
+impl Params {
+    /// The alpha cut-off the shaders and the wing trim use: `alpha_cutoff`, at most
+    /// [`BLEND_CUTOFF`] when sorting blends (Sec. 5.4).
+    pub fn effective_alpha_cutoff(&self) -> f32 {
+        if self.sorting == Sorting::Sort {
+            self.alpha_cutoff.min(BLEND_CUTOFF)
+        } else {
+            self.alpha_cutoff
+        }
+    }
+}
+
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
         check_int("zhang.grids", self.grids, 1..=256)?;

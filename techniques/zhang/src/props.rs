@@ -9,7 +9,7 @@ use grassbench::glam::{EulerRot, Quat, Vec2, Vec3};
 use grassbench::rng::hash_f32;
 use grassbench::terrain::{Terrain, covering};
 
-use crate::gpu::PropVertex;
+use crate::shader_data::PropVertex;
 
 /// Sides of a trunk and of a crown.
 const TRUNK_SIDES: usize = 6;
