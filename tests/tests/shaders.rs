@@ -96,7 +96,7 @@ fn uniform_mirrors_match_wgsl_layouts() {
     );
     assert_eq!(
         wgsl_size(&boulanger, "Cell") as usize,
-        std::mem::size_of::<grassbench_boulanger::CellUniform>()
+        std::mem::size_of::<grassbench_boulanger::CellRecord>()
     );
     assert_eq!(
         wgsl_size(&boulanger, "Blade") as usize,
