@@ -10,7 +10,9 @@ use crate::cache;
 use crate::params::Params;
 use crate::patch::Patch;
 use crate::shader::ParamsUniform;
-use crate::{shadow, slice, vertical};
+use crate::shadow;
+use crate::slice;
+use crate::vertical;
 
 /// The shadow mask (Sec. 3.5): a one-layer bake of the slab around the patch's centre. `inputs`
 /// draws without a shadow mask.

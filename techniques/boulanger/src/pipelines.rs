@@ -12,10 +12,11 @@
 use grassbench::shaders::{self, PipelineSpec, depth_less, render_pipeline};
 use grassbench::{InitContext, target, wgpu};
 
+use crate::btf;
+use crate::cells;
 use crate::ground_shadow::GroundShadows;
 use crate::params::{Params, Transparency};
 use crate::shader::{CellRecord, SHADER, SliceQuad};
-use crate::{btf, cells};
 
 /// The bind group layouts of groups 1 to 3.
 pub struct Layouts {
