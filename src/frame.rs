@@ -137,3 +137,16 @@ pub struct FrameGlobals {
     /// The point light's intensity; w = 1 when there is one, 0 otherwise.
     pub point_color: [f32; 4],
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn globals_mirror_the_prelude() {
+        assert_eq!(
+            crate::shaders::struct_size("", "Globals").unwrap() as usize,
+            std::mem::size_of::<FrameGlobals>()
+        );
+    }
+}

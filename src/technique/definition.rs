@@ -309,7 +309,7 @@ mod tests {
 
     #[test]
     fn the_estimate_sees_the_same_resolved_parameters() {
-        let scene = Scene::from_toml("", std::path::Path::new("toy.toml")).unwrap();
+        let scene = Scene::from_toml("name = \"toy\"", std::path::Path::new("toy.toml")).unwrap();
         assert_eq!(TOY.estimate(&scene, &table("")).unwrap().bytes, 800);
         assert_eq!(
             TOY.estimate(&scene, &table("shells = 2")).unwrap().bytes,

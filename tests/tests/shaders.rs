@@ -54,38 +54,3 @@ fn every_shader_validates() {
         module_of(f);
     }
 }
-
-/// Size of the WGSL struct `name` as naga lays it out.
-fn wgsl_size(module: &naga::Module, name: &str) -> u32 {
-    let mut layouter = naga::proc::Layouter::default();
-    layouter.update(module.to_ctx()).unwrap();
-    let (handle, _) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some(name))
-        .unwrap_or_else(|| panic!("no struct {name}"));
-    layouter[handle].size
-}
-
-#[test]
-fn uniform_mirrors_match_wgsl_layouts() {
-    let root = repo_root();
-    let prelude = module_of(&root.join("src/shaders/prelude.wgsl"));
-    assert_eq!(
-        wgsl_size(&prelude, "Globals") as usize,
-        std::mem::size_of::<grassbench::frame::FrameGlobals>()
-    );
-    let boulanger = module_of(&root.join("techniques/boulanger/shaders/grass.wgsl"));
-    assert_eq!(
-        wgsl_size(&boulanger, "Params") as usize,
-        std::mem::size_of::<grassbench_boulanger::ParamsUniform>()
-    );
-    assert_eq!(
-        wgsl_size(&boulanger, "Cell") as usize,
-        std::mem::size_of::<grassbench_boulanger::CellUniform>()
-    );
-    assert_eq!(
-        wgsl_size(&boulanger, "Blade") as usize,
-        std::mem::size_of::<grassbench_boulanger::patch::PatchBlade>()
-    );
-}

@@ -28,7 +28,7 @@ use std::ops::Range;
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{Error, InitContext, Result, bytemuck, shaders, wgpu};
 
-use crate::CellUniform;
+use crate::shader::CellRecord;
 use grassbench::shaders::{PipelineSpec, render_pipeline};
 
 /// The mip chain shader (without the prelude).
@@ -88,7 +88,7 @@ pub struct BakeInputs<'a> {
 /// the blade pipeline's instance numbering) and, per layer, its range of the list.
 pub struct Layers<'a> {
     /// Cells the blade list refers to.
-    pub cells: &'a [CellUniform],
+    pub cells: &'a [CellRecord],
     /// Blades, as `cell x blade count + blade`.
     pub refs: &'a [u32],
     /// One range of `refs` per layer.

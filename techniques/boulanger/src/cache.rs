@@ -76,7 +76,7 @@ pub fn bake_key(kind: &str, dims: Dims, uniform: &[u8], blades: &[u8]) -> u64 {
     fnv1a(&[
         &VERSION.to_le_bytes(),
         kind.as_bytes(),
-        crate::SHADER.as_bytes(),
+        crate::shader::SHADER.as_bytes(),
         btf::MIP_SHADER.as_bytes(),
         bytemuck::cast_slice(&texture),
         &dims.width.to_le_bytes(),

@@ -1,4 +1,4 @@
-//! Geometry cells on the GPU: one storage buffer of [`CellUniform`]s and the instanced draws
+//! Geometry cells on the GPU: one storage buffer of [`CellRecord`]s and the instanced draws
 //! that cover them.
 //!
 //! Instance `i` of a blade draw is blade `i % n` of the patch (`n` blades) in the cell at slot
@@ -15,10 +15,10 @@ use std::ops::Range;
 use grassbench::technique::ranges::push_merged;
 use grassbench::wgpu;
 
-use crate::CellUniform;
+use crate::shader::CellRecord;
 
 /// Bytes of one cell in the storage buffer.
-pub const CELL_BYTES: u64 = std::mem::size_of::<CellUniform>() as u64;
+pub const CELL_BYTES: u64 = std::mem::size_of::<CellRecord>() as u64;
 
 /// The draws of one page of cells.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -32,6 +32,8 @@ use glam::Vec3;
 use grassbench::shaders::{PipelineSpec, render_pipeline};
 use grassbench::{target, wgpu};
 
+use crate::shader::SliceQuad;
+
 /// The stencil value blade shadows write and the cover tests for.
 pub const STENCIL_MARK: u32 = 1;
 
@@ -128,7 +130,7 @@ impl GroundShadows {
             targets,
             ..PipelineSpec::new(label, layout, module, entries, buffers, sample_count)
         };
-        let quad = [Some(crate::SliceQuad::LAYOUT)];
+        let quad = [Some(SliceQuad::LAYOUT)];
         Self {
             blades: render_pipeline(
                 device,

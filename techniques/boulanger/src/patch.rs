@@ -204,6 +204,14 @@ impl Orientation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn blade_records_mirror_the_shader() {
+        assert_eq!(
+            grassbench::shaders::struct_size(crate::shader::SHADER, "Blade").unwrap() as usize,
+            std::mem::size_of::<PatchBlade>()
+        );
+    }
     use proptest::prelude::*;
 
     fn patch(strata: u32) -> Patch {

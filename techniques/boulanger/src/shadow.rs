@@ -15,8 +15,8 @@
 
 use std::ops::Range;
 
-use crate::CellUniform;
 use crate::patch::PatchBlade;
+use crate::shader::CellRecord;
 use crate::vertical::box_layer;
 use glam::Vec2;
 
@@ -37,7 +37,7 @@ pub fn bake_layer(
     patch_size: f32,
     blades: &[PatchBlade],
     gravity: f32,
-) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
+) -> (Vec<CellRecord>, Vec<u32>, Range<u32>) {
     let (r, side) = (radius(patch_size), 0.5 * patch_size);
     box_layer(
         patch_size,

@@ -11,10 +11,10 @@ use std::ops::Range;
 use grassbench::wgpu;
 use grassbench::wgpu::util::DeviceExt as _;
 
-use crate::CellUniform;
 use crate::patch::Orientation;
 use crate::patch::PatchBlade;
 use crate::quadtree::CellGrid;
+use crate::shader::CellRecord;
 use crate::vertical::box_layer;
 use glam::Vec2;
 
@@ -31,7 +31,7 @@ pub fn bake_layer(
     patch_size: f32,
     blades: &[PatchBlade],
     gravity: f32,
-) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
+) -> (Vec<CellRecord>, Vec<u32>, Range<u32>) {
     let side = 0.5 * patch_size;
     box_layer(
         patch_size,

@@ -13,8 +13,8 @@ use std::ops::Range;
 
 use glam::Vec2;
 
-use crate::CellUniform;
 use crate::patch::PatchBlade;
+use crate::shader::CellRecord;
 
 /// The vertical slices of one patch.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,7 +69,7 @@ impl SliceLayout {
     /// The bake's cells: for each layer (in order) the patch and its eight unmirrored
     /// neighbours, each carrying the layer's camera in `mode` (`shaders/grass.wgsl`,
     /// `bake_position`).
-    pub fn bake_cells(&self) -> Vec<CellUniform> {
+    pub fn bake_cells(&self) -> Vec<CellRecord> {
         self.each_layer()
             .flat_map(|(axis, i, front)| {
                 let mode = [
@@ -81,7 +81,7 @@ impl SliceLayout {
                     self.coordinate(i),
                     if front { 1.0 } else { -1.0 },
                 ];
-                neighbours(self.patch_size).map(move |c| CellUniform {
+                neighbours(self.patch_size).map(move |c| CellRecord {
                     center_signs: [c.x, c.y, 1.0, 1.0],
                     mode,
                 })
@@ -150,9 +150,9 @@ pub fn box_layer(
     gravity: f32,
     mode: [f32; 4],
     half: Vec2,
-) -> (Vec<CellUniform>, Vec<u32>, Range<u32>) {
-    let cells: Vec<CellUniform> = neighbours(patch_size)
-        .map(|c| CellUniform {
+) -> (Vec<CellRecord>, Vec<u32>, Range<u32>) {
+    let cells: Vec<CellRecord> = neighbours(patch_size)
+        .map(|c| CellRecord {
             center_signs: [c.x, c.y, 1.0, 1.0],
             mode,
         })
