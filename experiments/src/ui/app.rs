@@ -66,8 +66,10 @@ impl App {
             .map(|e| e.info.id.to_owned())
             .collect();
         stage.build_panes(args.panes, &ids, 0)?;
-        let mut diff = DiffView::default();
-        diff.b = 1.min(args.panes.saturating_sub(1));
+        let diff = DiffView {
+            b: 1.min(args.panes.saturating_sub(1)),
+            ..DiffView::default()
+        };
         Ok(Self {
             stage,
             clock: Clock::default(),
