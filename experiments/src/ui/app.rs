@@ -18,7 +18,7 @@ use super::spawn::{self, SpawnKind};
 use super::stage::Stage;
 use super::views::wind::WindSettings;
 use super::views::{self, Action};
-use super::{overlay, screenshot};
+use super::{grid, screenshot};
 use crate::{registry, scenes};
 
 /// A frame slower than this while the camera moves switches panes to half resolution.
@@ -258,8 +258,8 @@ impl App {
         }
     }
 
-    /// Renders the panes that need it, then draws them in a grid with their overlays and
-    /// handles the pointer on them (camera, spawn tool).
+    /// Renders the panes that need it, then draws them in a grid ([`grid::show`]) and acts on
+    /// the pointer there (camera, spawn tool) and the walker's keys.
     fn central(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         let Some(render_state) = frame.wgpu_render_state() else {
             ui.label("no wgpu renderer");
@@ -281,57 +281,18 @@ impl App {
                     .is_some_and(|r| r.gpu_wall_ms > PREVIEW_THRESHOLD_MS)
         });
 
-        let n = self.stage.panes.len();
-        let cols = if n == 1 { 1 } else { 2 };
-        let rows = n.div_ceil(cols);
-        let area = ui.available_rect_before_wrap();
-        let cell = egui::vec2(area.width() / cols as f32, area.height() / rows as f32);
         let dt = ui.input(|i| i.stable_dt).min(0.1);
-        let mut moved = false;
-        let mut spawns = Vec::new();
-        self.pane_rects.clear();
-        for (k, pane) in self.stage.panes.iter_mut().enumerate() {
-            let (col, row) = (k % cols, k / cols);
-            let rect = egui::Rect::from_min_size(
-                area.min + egui::vec2(col as f32 * cell.x, row as f32 * cell.y),
-                cell,
-            )
-            .shrink(4.0);
-            // Fit the picture into the cell, keeping its aspect ratio.
-            let aspect = pane.full_size.width as f32 / pane.full_size.height as f32;
-            let fit = if rect.width() / rect.height() > aspect {
-                egui::vec2(rect.height() * aspect, rect.height())
-            } else {
-                egui::vec2(rect.width(), rect.width() / aspect)
-            };
-            let pic = egui::Rect::from_center_size(rect.center(), fit);
-            self.pane_rects.push(pic);
-            let response = ui.interact(
-                pic,
-                ui.scope_id().with(("pane", k)),
-                egui::Sense::click_and_drag(),
-            );
-            if self.wind.spawn != SpawnKind::Off
-                && response.clicked()
-                && let Some(pos) = response.interact_pointer_pos()
-            {
-                spawns.push((k, spawn::ndc(pic, pos), self.wind.spawn));
-            }
-            if pane.error.is_none() || pane.technique.is_some() {
-                let id = pane.texture(render_state);
-                ui.painter().image(
-                    id,
-                    pic,
-                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                    egui::Color32::WHITE,
-                );
-            }
-            if response.hovered() || response.dragged() {
-                let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-                moved |= ui.input(|i| self.camera.control(i, response.drag_delta(), scroll, dt));
-            }
-            overlay::draw(ui, pane, pic, k);
-        }
+        let grid = grid::show(
+            ui,
+            render_state,
+            &mut self.stage.panes,
+            &mut self.camera,
+            self.wind.spawn,
+            dt,
+        );
+        self.pane_rects = grid.pictures;
+        let mut moved = grid.moved;
+        let spawns = grid.spawns;
         self.apply_startup();
         for (k, at, kind) in spawns {
             self.spawn_at(k, at, kind);

@@ -8,11 +8,12 @@
 //!
 //! | file | concept |
 //! |---|---|
-//! | `app.rs` | the window: the panel's sections, the panes' grid, the frame loop |
+//! | `app.rs` | the window: the panel's sections, the panes, the frame loop |
 //! | `stage.rs` | the one world and its panes, stepped together frame by frame |
 //! | `pane.rs` | one pane: a technique, its view, its figures and texture |
 //! | `clock.rs` | the frame shown, play, pause, time scale |
 //! | `views/` | the side panel's sections, one small view each |
+//! | `grid.rs` | the panes in a grid: pictures, overlays, the pointer on them |
 //! | `overlay.rs` | figures, plot and errors drawn over a pane |
 //! | `camera.rs` | the shared camera: scene path, walker, orbit |
 //! | `editor.rs` | widgets generated from parameter tables (technique parameters, wind) |
@@ -26,6 +27,7 @@ mod camera;
 mod clock;
 mod diff;
 mod editor;
+mod grid;
 mod overlay;
 mod pane;
 mod screenshot;
