@@ -65,7 +65,7 @@ pub fn frame_differences(
     let mut previous: Option<image::RgbaImage> = None;
     let mut diffs = Vec::with_capacity(frames as usize);
     for k in 0..=frames {
-        harness.camera_override = Some(motion.pose(start, k));
+        harness.view.camera_override = Some(motion.pose(start, k));
         // Frame 0 every time: with the wind frozen only the camera moves.
         let img = harness
             .frame(technique.as_mut(), 0, true)?

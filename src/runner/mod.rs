@@ -1,6 +1,10 @@
-//! Running techniques on a scene: one [`Harness`] per (scene, size, MSAA) holds the shared GPU
-//! state; [`run`] measures one technique for W warm-up and N measured frames, timing every
-//! stage on its own.
+//! Running techniques on a scene: a [`World`] holds what every picture of a scene shares (the
+//! scene, its GPU resources, the wind advanced and baked once per frame), a [`View`] what each
+//! picture has of its own (target, pass timer, debug view, camera override), and
+//! [`World::frame`] renders one frame of a technique into a view: the one code path of every
+//! caller. A [`Harness`] is a world with one view, for the command line, the benches and the
+//! tests; the UI holds one world and a view per pane. [`run`] measures one technique for W
+//! warm-up and N measured frames, timing every stage on its own.
 //!
 //! Clocks, and which figure comes from which (see `shared/PLATFORM.md`):
 //! - CPU stages (`wind_ms`, `update_ms`, `upload_ms`, `encode_ms`) are wall time on the CPU;
@@ -9,44 +13,25 @@
 //! - `gpu_ts_*_ms` come from timestamp queries around each pass, where the adapter has them;
 //!   render and compute passes are kept apart because lavapipe's compute timestamps are wrong.
 
+mod harness;
 mod provenance;
 mod record;
 mod stats;
+mod view;
+mod world;
 
 use std::time::Instant;
 
 pub use crate::files::{write_atomic, write_csv};
+pub use harness::Harness;
 pub use provenance::{Provenance, WGPU_VERSION, command_line};
 pub use record::{FrameRecord, LevelRow, RunSummary};
 pub use stats::Percentiles;
+pub use view::View;
+pub use world::World;
 
-use crate::scene::SceneGpu;
-use crate::target::Size;
-use crate::technique::{
-    FrameEncoder, GrassTechnique, InitContext, PassKind, PassTimer, TechniqueEntry,
-};
-use crate::wind::WindField;
-use crate::{Error, FrameInputs, GpuContext, RenderTarget, Result, Scene};
-
-/// Shared state for rendering one scene at one size: the scene's GPU resources, the target,
-/// the wind (advanced frame by frame) and the pass timer.
-pub struct Harness<'g> {
-    /// Device and queue.
-    pub gpu: &'g GpuContext,
-    /// The scene.
-    pub scene: Scene,
-    /// Bind group 0, terrain, wind texture, background.
-    pub scene_gpu: SceneGpu,
-    /// Where frames are drawn.
-    pub target: RenderTarget,
-    /// Debug view passed to techniques (0 = none).
-    pub debug_view: u32,
-    /// Eye and unit view direction replacing the scene's camera path (the UI's free camera).
-    pub camera_override: Option<(glam::Vec3, glam::Vec3)>,
-    wind: Box<dyn WindField>,
-    wind_frame: Option<u64>,
-    timer: Option<PassTimer>,
-}
+use crate::technique::{FrameEncoder, GrassTechnique, InitContext, PassKind, TechniqueEntry};
+use crate::{Error, FrameInputs, Result};
 
 /// What one frame produced.
 pub struct FrameOutput {
@@ -56,107 +41,53 @@ pub struct FrameOutput {
     pub image: Option<image::RgbaImage>,
 }
 
-impl<'g> Harness<'g> {
-    /// Sets up a scene for targets of `size`, with 4x MSAA when `msaa`.
-    pub fn new(gpu: &'g GpuContext, scene: Scene, size: Size, msaa: bool) -> Result<Self> {
-        let target = RenderTarget::new(gpu, size, msaa)?;
-        let scene_gpu = SceneGpu::new(gpu, &scene, target.sample_count)?;
-        let wind = scene.wind()?;
-        Ok(Self {
-            gpu,
-            scene_gpu,
-            target,
-            wind,
-            wind_frame: None,
-            timer: PassTimer::new(gpu),
-            scene,
-            debug_view: 0,
-            camera_override: None,
-        })
-    }
-
-    /// Changes the target size (same sample count) and tells `technique`.
-    pub fn resize(&mut self, technique: &mut dyn GrassTechnique, size: Size) -> Result<()> {
-        if size != self.target.size {
-            self.target = RenderTarget::new(self.gpu, size, self.target.sample_count > 1)?;
-            technique.resize(self.gpu, size)?;
-        }
-        Ok(())
-    }
-
-    /// Replaces the scene's wind (validated) and restarts it from time 0.
-    pub fn set_wind(&mut self, config: crate::wind::WindConfig) -> Result<()> {
-        let wind = crate::wind::build(
-            &config,
-            self.scene.config.seed,
-            &self.scene.terrain,
-            self.scene.config.object.as_ref(),
-        )?;
-        self.scene.config.wind = config;
-        self.wind = wind;
-        self.wind_frame = None;
-        Ok(())
-    }
-
-    /// The wind as it stands after the last frame.
-    pub fn wind(&self) -> &dyn WindField {
-        self.wind.as_ref()
-    }
-
-    /// What a technique is created with on this harness's scene and target.
-    pub fn init_context(&self) -> InitContext<'_> {
+/// Rendering a world's frames into views: creating techniques for a view, catching them up,
+/// and the frame itself, the one code path every caller renders through.
+impl<'g> World<'g> {
+    /// What a technique drawing into `view` is created with.
+    pub fn init_context<'a>(&'a self, view: &View) -> InitContext<'a> {
         InitContext {
             gpu: self.gpu,
             scene: &self.scene,
             scene_gpu: &self.scene_gpu,
-            size: self.target.size,
-            sample_count: self.target.sample_count,
+            size: view.target.size,
+            sample_count: view.target.sample_count,
         }
     }
 
-    /// Creates a technique: its defaults, overlaid with the scene file's `[techniques.<id>]`,
-    /// overlaid with `overrides`; its GPU memory estimate is checked against the adapter first.
+    /// Creates a technique drawing into `view`: its defaults, overlaid with the scene file's
+    /// `[techniques.<id>]`, overlaid with `overrides`.
     pub fn create(
         &self,
+        view: &View,
         entry: &TechniqueEntry,
         overrides: &toml::Table,
     ) -> Result<Box<dyn GrassTechnique>> {
+        if view.target.sample_count != self.scene_gpu.sample_count {
+            return Err(Error::param(
+                "msaa",
+                view.target.sample_count,
+                format!("the world's {} samples", self.scene_gpu.sample_count),
+            ));
+        }
         let params = self.scene.technique_params(entry.info.id, overrides);
         let estimate = entry
             .estimate(&self.scene, &params)?
-            .plus(self.target.estimate());
+            .plus(view.target.estimate());
         crate::gpu::memory::check(self.gpu, entry.info.id, estimate)?;
         let during = format!("creating technique `{}`", entry.info.id);
-        let ctx = self.init_context();
+        let ctx = self.init_context(view);
         self.gpu.scoped(&during, || entry.create(&ctx, &params))?
     }
 
-    /// Advances the wind to `frame` (stateful fields are rebuilt and replayed when going back).
-    fn advance_wind(&mut self, frame: u64) -> Result<()> {
-        if self.wind.is_stateless() {
-            self.wind_frame = Some(frame);
-            return Ok(());
-        }
-        if self.wind_frame.is_some_and(|f| f > frame) {
-            self.wind = self.scene.wind()?;
-            self.wind_frame = None;
-        }
-        let start = self.wind_frame.map_or(0, |f| f + 1);
-        for f in start..=frame {
-            self.wind.advance(self.scene.time_of(f), self.scene.dt());
-        }
-        self.wind_frame = Some(frame);
-        Ok(())
+    /// The camera of `frame` in `view` (the scene's path, or [`View::camera_override`]).
+    pub fn camera(&self, view: &View, frame: u64) -> crate::camera::Camera {
+        self.inputs(view, frame).camera
     }
 
-    /// The camera of `frame` (the scene's path, or [`Self::camera_override`]).
-    pub fn camera(&self, frame: u64) -> crate::camera::Camera {
-        self.inputs(frame).camera
-    }
-
-    fn inputs(&self, frame: u64) -> FrameInputs<'_> {
-        let mut camera = self.scene.camera_at(frame, self.target.size);
-        if let Some((eye, forward)) = self.camera_override {
+    fn inputs(&self, view: &View, frame: u64) -> FrameInputs<'_> {
+        let mut camera = self.scene.camera_at(frame, view.target.size);
+        if let Some((eye, forward)) = view.camera_override {
             camera.eye = eye;
             camera.forward = forward.normalize_or(camera.forward);
         }
@@ -166,9 +97,9 @@ impl<'g> Harness<'g> {
             dt: self.scene.dt(),
             camera,
             scene: &self.scene,
-            wind: self.wind.as_ref(),
-            size: self.target.size,
-            debug_view: self.debug_view,
+            wind: self.wind(),
+            size: view.target.size,
+            debug_view: view.debug_view,
         }
     }
 
@@ -176,16 +107,17 @@ impl<'g> Harness<'g> {
     /// state also draw them), so a later frame sees the same history as in a full run.
     pub fn catch_up(
         &mut self,
+        view: &mut View,
         technique: &mut dyn GrassTechnique,
         from: u64,
         to: u64,
     ) -> Result<()> {
         for frame in from..to {
             if technique.info().gpu_state {
-                self.frame(technique, frame, false)?;
+                self.frame(view, technique, frame, false)?;
             } else {
                 self.advance_wind(frame)?;
-                let inputs = self.inputs(frame);
+                let inputs = self.inputs(view, frame);
                 technique.update(&inputs)?;
             }
         }
@@ -196,6 +128,7 @@ impl<'g> Harness<'g> {
     /// of `prepare` + `encode`); `update` must have run for this frame.
     pub fn record(
         &mut self,
+        view: &View,
         technique: &mut dyn GrassTechnique,
         frame: u64,
     ) -> Result<wgpu::CommandBuffer> {
@@ -203,25 +136,34 @@ impl<'g> Harness<'g> {
         let gpu = self.gpu;
         let prefix = format!("{}.", technique.info().id);
         gpu.scoped("recording a frame", || -> Result<_> {
-            let inputs = self.inputs(frame);
+            let inputs = self.inputs(view, frame);
             self.scene_gpu.upload(&gpu.queue, &inputs);
             technique.prepare(gpu, &inputs)?;
-            let mut enc = FrameEncoder::new(gpu, &self.target, &self.scene_gpu, None, &prefix);
+            let mut enc = FrameEncoder::new(gpu, &view.target, &self.scene_gpu, None, &prefix);
             technique.encode(&mut enc);
             Ok(enc.finish().finish())
         })?
     }
 
     /// Runs only `technique.update` for `frame` (for benchmarks of the CPU stage).
-    pub fn update_only(&mut self, technique: &mut dyn GrassTechnique, frame: u64) -> Result<()> {
+    pub fn update_only(
+        &mut self,
+        view: &View,
+        technique: &mut dyn GrassTechnique,
+        frame: u64,
+    ) -> Result<()> {
         self.advance_wind(frame)?;
-        let inputs = self.inputs(frame);
+        let inputs = self.inputs(view, frame);
         technique.update(&inputs)
     }
 
-    /// Renders one frame of `technique` and measures it; returns the image if `capture`.
+    /// Renders one frame of `technique` into `view` and measures it; returns the image if
+    /// `capture`. The wind stage ([`World::prepare_wind`]) runs once per frame whatever the
+    /// number of views; the scene's per-frame uniforms (camera, size, lights) are uploaded
+    /// before each view's submit.
     pub fn frame(
         &mut self,
+        view: &mut View,
         technique: &mut dyn GrassTechnique,
         frame: u64,
         capture: bool,
@@ -232,17 +174,14 @@ impl<'g> Harness<'g> {
             info.id,
             self.scene.name()
         );
-        let t0 = Instant::now();
-        self.advance_wind(frame)?;
+        let wind_ms = self.prepare_wind(frame)?;
         let time = self.scene.time_of(frame);
-        self.scene_gpu.bake_wind(self.wind.as_ref(), time);
-        let wind_ms = ms(t0);
 
         let gpu = self.gpu;
         let prefix = format!("{}.", info.id);
         let (update_ms, upload_ms, encode_ms, submit_at, readback, draw_calls) =
             gpu.scoped(&during, || -> Result<_> {
-                let inputs = self.inputs(frame);
+                let inputs = self.inputs(view, frame);
                 let t = Instant::now();
                 technique.update(&inputs)?;
                 let update_ms = ms(t);
@@ -255,9 +194,9 @@ impl<'g> Harness<'g> {
                 let t = Instant::now();
                 let mut enc = FrameEncoder::new(
                     gpu,
-                    &self.target,
+                    &view.target,
                     &self.scene_gpu,
-                    self.timer.as_mut(),
+                    view.timer.as_mut(),
                     "core.",
                 );
                 {
@@ -272,7 +211,7 @@ impl<'g> Harness<'g> {
                 technique.encode(&mut enc);
                 let draw_calls = enc.counts().draws - core_draws;
                 let mut encoder = enc.finish();
-                let readback = capture.then(|| self.target.encode_readback(gpu, &mut encoder));
+                let readback = capture.then(|| view.target.encode_readback(gpu, &mut encoder));
                 let command_buffer = encoder.finish();
                 let encode_ms = ms(t);
 
@@ -285,7 +224,7 @@ impl<'g> Harness<'g> {
         gpu.wait_idle(&during)?;
         let gpu_wall_ms = ms(submit_at);
 
-        let passes = self.timer.as_mut().map(|t| t.read(gpu)).unwrap_or_default();
+        let passes = view.timer.as_mut().map(|t| t.read(gpu)).unwrap_or_default();
         // Sum of the timestamp times of the passes `f` selects; empty when none was timed.
         let sum = |f: &dyn Fn(&crate::technique::PassTime) -> bool| -> Option<f64> {
             let mut selected = passes.iter().filter(|p| f(p)).peekable();
@@ -300,9 +239,9 @@ impl<'g> Harness<'g> {
             run_id: String::new(),
             technique: info.id.to_owned(),
             scene: self.scene.name().to_owned(),
-            width: self.target.size.width,
-            height: self.target.size.height,
-            msaa: self.target.sample_count > 1,
+            width: view.target.size.width,
+            height: view.target.size.height,
+            msaa: view.target.sample_count > 1,
             frame,
             time_s: time,
             wind_ms,

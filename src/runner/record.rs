@@ -30,7 +30,8 @@ pub struct FrameRecord {
     pub frame: u64,
     /// Scene time, s.
     pub time_s: f32,
-    /// CPU: advancing and baking the wind (core work, the same for every technique), ms.
+    /// CPU: advancing and baking the wind (core work, the same for every technique; done once
+    /// per frame by the world, and reported to every view drawing that frame), ms.
     pub wind_ms: f64,
     /// CPU: `update`, ms.
     pub update_ms: f64,

@@ -44,7 +44,7 @@ fn render(
     let gpu = gpu()?;
     let mut harness = Harness::new(&gpu, scene(scene_name, 1.0)?, size, false)?;
     let background = render_with(&mut harness, &mut NoGrass, frame)?;
-    harness.debug_view = debug_view;
+    harness.view.debug_view = debug_view;
     let entry = grassbench_cli::registry::find("boulanger")?;
     let mut t = harness.create(entry, params)?;
     let image = render_with(&mut harness, t.as_mut(), frame)?;

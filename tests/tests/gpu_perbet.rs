@@ -36,9 +36,12 @@ fn render_from(
 ) -> anyhow::Result<grassbench::image::RgbaImage> {
     let gpu = gpu()?;
     let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, TEST_SIZE, false)?;
-    harness.camera_override = camera;
+    harness.view.camera_override = camera;
     // As `Harness::create` would make it (the scene's overrides, then these), then frozen.
-    let params = harness.scene.technique_params("perbet", &table(params));
+    let params = harness
+        .world
+        .scene
+        .technique_params("perbet", &table(params));
     let params = grassbench::params::resolve("perbet", &params)?;
     let mut t = grassbench_perbet::Perbet::new(&harness.init_context(), params)?;
     t.freeze(state);
@@ -74,7 +77,7 @@ fn draws_the_meadow_with_three_levels_far_to_near() -> anyhow::Result<()> {
     // perbet, 0.70 for the reference at the same frame (the sky is ~30 %). Holes between
     // levels or grass in the sky would move it out of this band.
     let debug = {
-        harness.debug_view = 1;
+        harness.view.debug_view = 1;
         render_with(&mut harness, t.as_mut(), 21)?
     };
     save_png(&image, &output_dir().join("perbet-meadow.png"))?;

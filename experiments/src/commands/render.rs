@@ -52,7 +52,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let overrides = param_table(&args.params)?;
     let gpu = args.gpu.context()?;
     let mut harness = Harness::new(&gpu, scene, size, args.msaa)?;
-    harness.debug_view = args.debug_view;
+    harness.view.debug_view = args.debug_view;
     let mut technique = harness.create(entry, &overrides)?;
     harness.catch_up(technique.as_mut(), 0, args.frame)?;
     let out = harness.frame(technique.as_mut(), args.frame, true)?;
@@ -62,7 +62,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         "{} frame {} of `{}` → {} ({:.1} ms GPU wall, {} blades)",
         entry.info.id,
         args.frame,
-        harness.scene.name(),
+        harness.world.scene.name(),
         args.out.display(),
         out.record.gpu_wall_ms,
         out.record.blades

@@ -1,25 +1,40 @@
 //! `grassbench ui`: an eframe window comparing techniques live, side by side.
 //!
-//! Techniques render offscreen through the same [`Harness`](grassbench::runner::Harness) and
-//! [`RenderTarget`](grassbench::RenderTarget) as headless runs; the UI only displays the
-//! resulting textures, so what it shows is what sweeps measure.
+//! Techniques render offscreen through the same [`World`](grassbench::runner::World),
+//! [`View`](grassbench::runner::View) and frame function as headless runs; the UI only
+//! displays the resulting textures, so what it shows is what sweeps measure. The window holds
+//! ONE world (scene, its GPU resources, the wind, advanced once per frame) and one clock; each
+//! pane holds a technique and its view (target, timer, debug view).
 //!
 //! | file | concept |
 //! |---|---|
-//! | `app.rs` | the window: side panel, panes, the frame loop |
-//! | `pane.rs` | one pane: a harness, a technique, its figures and texture |
+//! | `app.rs` | the window: the panel's sections, the panes, the frame loop |
+//! | `stage.rs` | the one world and its panes, stepped together frame by frame |
+//! | `pane.rs` | one pane: a technique, its view, its figures and texture |
+//! | `clock.rs` | the frame shown, play, pause, time scale |
+//! | `views/` | the side panel's sections, one small view each |
+//! | `grid.rs` | the panes in a grid: pictures, overlays, the pointer on them |
+//! | `overlay.rs` | figures, plot and errors drawn over a pane |
 //! | `camera.rs` | the shared camera: scene path, walker, orbit |
 //! | `editor.rs` | widgets generated from parameter tables (technique parameters, wind) |
-//! | `diff.rs` | the difference view between two panes |
+//! | `diff.rs` | the difference view between two panes: its state and measure |
+//! | `spawn.rs` | placing Perbet's wind primitives with a click |
+//! | `screenshot.rs` | the screenshot button: every pane and a composite saved |
 //! | `script.rs` | scripted mode: play N frames, save screenshots, exit |
 
 mod app;
 mod camera;
+mod clock;
 mod diff;
 mod editor;
+mod grid;
+mod overlay;
 mod pane;
+mod screenshot;
 mod script;
 mod spawn;
+mod stage;
+mod views;
 
 use std::path::PathBuf;
 use std::sync::Arc;

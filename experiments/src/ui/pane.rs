@@ -1,12 +1,14 @@
-//! One pane: a technique rendered offscreen by its own harness, and its live figures.
+//! One pane: a technique drawn into its own view of the shared world, and its live figures.
+//! The scene, its GPU resources and the wind are the world's ([`super::stage::Stage`]); a pane
+//! holds only what differs between panes: the technique, its target, timer and debug view.
 
 use std::collections::VecDeque;
 
 use eframe::{egui, egui_wgpu};
-use grassbench::runner::{FrameRecord, Harness};
+use grassbench::glam::Vec3;
+use grassbench::runner::{FrameRecord, View, World};
 use grassbench::target::Size;
 use grassbench::technique::GrassTechnique;
-use grassbench::{GpuContext, Scene};
 
 use crate::registry;
 
@@ -23,8 +25,8 @@ pub struct Pane {
     pub technique_id: String,
     /// Parameter overrides edited in the UI.
     pub overrides: toml::Table,
-    /// Scene, target, wind and timer of this pane.
-    pub harness: Harness<'static>,
+    /// Target, timer, debug view and camera of this pane.
+    pub view: View,
     /// The technique, or `None` when creating it failed.
     pub technique: Option<Box<dyn GrassTechnique>>,
     /// The last error, shown in the pane instead of a picture.
@@ -44,19 +46,17 @@ pub struct Pane {
 }
 
 impl Pane {
-    /// A pane showing `technique_id` on `scene`.
+    /// A pane that will show `technique_id` on `world` (created by [`Pane::create`]).
     pub fn new(
-        gpu: &'static GpuContext,
-        scene: Scene,
+        world: &World<'_>,
         technique_id: &str,
         size: Size,
         msaa: bool,
     ) -> anyhow::Result<Self> {
-        let harness = Harness::new(gpu, scene, size, msaa)?;
-        let mut pane = Self {
+        Ok(Self {
             technique_id: technique_id.to_owned(),
             overrides: toml::Table::new(),
-            harness,
+            view: View::new(world.gpu, size, msaa)?,
             technique: None,
             error: None,
             history: VecDeque::with_capacity(HISTORY),
@@ -66,30 +66,16 @@ impl Pane {
             preview: false,
             texture: None,
             dirty: true,
-        };
-        pane.recreate(0);
-        Ok(pane)
+        })
     }
 
-    /// Switches to another technique, keeping camera, time and scene.
-    pub fn set_technique(&mut self, id: &str, frame: u64) {
-        self.technique_id = id.to_owned();
-        self.overrides.clear();
-        self.history.clear();
-        self.recreate(frame);
-    }
-
-    /// Rebuilds the technique with the current overrides and catches it up to `frame`.
-    pub fn recreate(&mut self, frame: u64) {
+    /// Rebuilds the technique with the current overrides, not yet caught up (the stage catches
+    /// every rebuilt pane up in step, see [`super::stage::Stage::recreate`]).
+    pub fn create(&mut self, world: &World<'_>) {
         self.technique = None;
         let result = registry::find(&self.technique_id)
             .map_err(anyhow::Error::from)
-            .and_then(|entry| {
-                let mut t = self.harness.create(entry, &self.overrides)?;
-                self.harness
-                    .catch_up(t.as_mut(), frame.saturating_sub(CATCH_UP_FRAMES), frame)?;
-                Ok(t)
-            });
+            .and_then(|entry| Ok(world.create(&self.view, entry, &self.overrides)?));
         match result {
             Ok(t) => {
                 self.technique = Some(t);
@@ -100,28 +86,38 @@ impl Pane {
         self.dirty = true;
     }
 
+    /// Runs frame `frame` of the technique without showing it (update only; techniques with
+    /// GPU state also draw it).
+    pub fn catch_up(&mut self, world: &mut World<'_>, frame: u64) -> grassbench::Result<()> {
+        match self.technique.as_mut() {
+            Some(technique) => world.catch_up(&mut self.view, technique.as_mut(), frame, frame + 1),
+            None => Ok(()),
+        }
+    }
+
     /// Marks the pane for re-rendering (camera or settings changed).
     pub fn invalidate(&mut self) {
         self.dirty = true;
     }
 
-    /// Renders `frame` if anything changed; reads the image back when `capture`.
-    pub fn render(
+    /// Gets the pane ready to draw `frame` if anything changed: the target sized for `preview`,
+    /// the camera set. Returns the first frame it must catch up from (`frame` when none is
+    /// skipped), or `None` when it need not draw.
+    pub fn plan(
         &mut self,
+        world: &World<'_>,
         frame: u64,
-        camera: Option<(grassbench::glam::Vec3, grassbench::glam::Vec3)>,
+        camera: Option<(Vec3, Vec3)>,
         capture: bool,
         preview: bool,
-    ) {
-        let Some(technique) = self.technique.as_mut() else {
-            return;
-        };
+    ) -> Option<u64> {
+        let technique = self.technique.as_mut()?;
         if !self.dirty
             && self.shown_frame == Some(frame)
             && preview == self.preview
             && (!capture || self.last_image.is_some())
         {
-            return;
+            return None;
         }
         let size = if preview {
             Size {
@@ -131,20 +127,26 @@ impl Pane {
         } else {
             self.full_size
         };
-        if let Err(e) = self.harness.resize(technique.as_mut(), size) {
+        if let Err(e) = self.view.resize(world.gpu, technique.as_mut(), size) {
             self.error = Some(e.to_string());
-            return;
+            return None;
         }
         self.preview = preview;
-        self.harness.camera_override = camera;
+        self.view.camera_override = camera;
         // Frames skipped by a fast time scale are still simulated (update only).
-        if let Some(shown) = self.shown_frame.filter(|s| *s < frame)
-            && let Err(e) = self.harness.catch_up(technique.as_mut(), shown + 1, frame)
-        {
-            self.error = Some(e.to_string());
+        Some(
+            self.shown_frame
+                .filter(|s| *s < frame)
+                .map_or(frame, |s| s + 1),
+        )
+    }
+
+    /// Renders `frame` of the world; reads the image back when `capture`.
+    pub fn draw(&mut self, world: &mut World<'_>, frame: u64, capture: bool) {
+        let Some(technique) = self.technique.as_mut() else {
             return;
-        }
-        match self.harness.frame(technique.as_mut(), frame, capture) {
+        };
+        match world.frame(&mut self.view, technique.as_mut(), frame, capture) {
             Ok(out) => {
                 if self.history.len() == HISTORY {
                     self.history.pop_front();
@@ -170,7 +172,7 @@ impl Pane {
     /// The egui texture showing this pane's target (registered or updated after resizes).
     pub fn texture(&mut self, render_state: &egui_wgpu::RenderState) -> egui::TextureId {
         // egui composites in gamma space: give it the sRGB bytes undecoded.
-        let view = &self.harness.target.display_view;
+        let view = &self.view.target.display_view;
         let mut renderer = render_state.renderer.write();
         match self.texture {
             Some(id) => {

@@ -1,0 +1,58 @@
+//! A pane's section: its technique, debug view and parameters (generated from the
+//! technique's parameter table).
+
+use eframe::egui;
+
+use super::Action;
+use crate::registry;
+use crate::ui::editor::edit_table;
+use crate::ui::pane::Pane;
+
+/// Draws the settings of pane `k`.
+pub fn ui(ui: &mut egui::Ui, k: usize, pane: &mut Pane, actions: &mut Vec<Action>) {
+    ui.collapsing(format!("pane {}: {}", k + 1, pane.technique_id), |ui| {
+        egui::ComboBox::from_id_salt(("technique", k))
+            .selected_text(&pane.technique_id)
+            .show_ui(ui, |ui| {
+                for e in registry::TECHNIQUES {
+                    if ui
+                        .selectable_label(pane.technique_id == e.info.id, e.info.name)
+                        .clicked()
+                    {
+                        actions.push(Action::SetTechnique(k, e.info.id));
+                    }
+                }
+            });
+        if let Some((info, params)) = pane.technique.as_ref().map(|t| (t.info(), t.param_table())) {
+            ui.small(info.paper);
+            let mut view = pane.view.debug_view;
+            let name = |v: u32| {
+                if v == 0 {
+                    "none"
+                } else {
+                    info.debug_views.get(v as usize - 1).copied().unwrap_or("?")
+                }
+            };
+            egui::ComboBox::from_id_salt(("debug", k))
+                .selected_text(format!("debug view: {}", name(view)))
+                .show_ui(ui, |ui| {
+                    for v in 0..=info.debug_views.len() as u32 {
+                        ui.selectable_value(&mut view, v, name(v));
+                    }
+                });
+            if view != pane.view.debug_view {
+                pane.view.debug_view = view;
+                pane.invalidate();
+            }
+            let mut params = params;
+            if edit_table(ui, &mut params, &[]) {
+                pane.overrides = params;
+                actions.push(Action::Recreate(k));
+            }
+        }
+        if ui.button("reset parameters").clicked() {
+            pane.overrides.clear();
+            actions.push(Action::Recreate(k));
+        }
+    });
+}
