@@ -279,6 +279,28 @@ mod tests {
 
     const TOY: TechniqueEntry = entry::<Toy>();
 
+    /// A small flat field: the toy's estimate does not depend on it.
+    const TOY_SCENE: &str = r#"
+        name = "toy"
+        [terrain]
+        size = [8.0, 8.0]
+        max_height = 0.0
+        height = { kind = "constant", value = 0.0 }
+        density = { kind = "constant", value = 1.0 }
+        covering = { kind = "grass" }
+        [camera]
+        fov_y = 50.0
+        near = 0.1
+        far = 100.0
+        [camera.path]
+        kind = "orbit"
+        center = [0.0, 0.0, 0.0]
+        radius = 10.0
+        height = 2.0
+        period = 60.0
+        start_angle = 0.0
+    "#;
+
     fn table(text: &str) -> toml::Table {
         text.parse().unwrap()
     }
@@ -309,7 +331,7 @@ mod tests {
 
     #[test]
     fn the_estimate_sees_the_same_resolved_parameters() {
-        let scene = Scene::from_toml("name = \"toy\"", std::path::Path::new("toy.toml")).unwrap();
+        let scene = Scene::from_toml(TOY_SCENE, std::path::Path::new("toy.toml")).unwrap();
         assert_eq!(TOY.estimate(&scene, &table("")).unwrap().bytes, 800);
         assert_eq!(
             TOY.estimate(&scene, &table("shells = 2")).unwrap().bytes,
