@@ -62,11 +62,13 @@
 //! texture (`6 bytes · size² · 4/3` with mips: 2 MiB at 512²) plus `16·V + 8·V·N` bytes of
 //! per-vertex wind and offsets.
 //!
-//! Measured (lavapipe, `results/bakay_table2/`, `results/bakay_vs_reference/`): ~17 ms of CPU
-//! rasteriser work per shell per frame at 640x480 and ~36 ms at 1024x768 (the paper: 2.2 and
-//! 4.6 ms on a GeForce3), linear in shells and close to linear in pixels, as Sec. 4 found; at
-//! 1280x720 with 16 shells about as fast as `reference` (1.12x), far from the hoped-for 10x,
-//! because a software rasteriser has no cheap fill rate. 3.0 MB of GPU memory on the meadow.
+//! Measured (lavapipe, `results/bakay_table2/`): 8.0 ms of CPU rasteriser work per shell per
+//! frame at 640x480 and 17.3 ms at 1024x768 on average from 1 to 65 shells (the paper: 2.2 and
+//! 4.6 ms on a GeForce3); cost grows with the shells but not in equal steps (12.0, 9.8, 5.0 and
+//! 8.1 ms per added shell between 1, 9, 17, 33 and 65 shells at 640x480), and a little less
+//! than in proportion to pixels, as Sec. 4 found; at 1280x720 with 16 shells 1.7x faster than
+//! `reference`, far from the hoped-for 10x, because a software rasteriser has no cheap fill
+//! rate. 3.0 MB of GPU memory on the meadow.
 //!
 //! ## Known artifacts
 //! - Shells seen edge-on at grazing angles (the walker's horizon) show as separate layers with
