@@ -444,3 +444,36 @@ fn gpu_memory_budget_refuses_with_the_numbers_before_creating_anything() {
         "{err}"
     );
 }
+
+/// A value a technique rejects anywhere in a sweep's grid refuses the file in `validate` and
+/// in `sweep` (through the technique's own parameter check), before anything is measured.
+#[test]
+fn bad_grid_values_are_refused_before_anything_is_measured() {
+    let dir = temp("bad-grid");
+    let file = dir.join("bad.toml");
+    std::fs::write(
+        &file,
+        "name = \"bad\"\nscenes = [\"meadow\"]\ntechniques = [\"bakay\"]\n\
+         resolutions = [\"320x180\"]\nframes = 1\nwarmup = 0\n\
+         [params.bakay]\nshells = [8, -4]\n",
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    fails_with(&["validate", path], &["bakay", "shells = -4"]);
+    let out = dir.join("out");
+    fails_with(
+        &["sweep", path, "-o", out.to_str().unwrap(), "--no-calibration"],
+        &["bakay", "shells = -4"],
+    );
+    assert!(!out.join("runs.csv").exists(), "a run was measured");
+}
+
+/// `list` prints parameters as the values they hold and every variant with what it sets.
+#[test]
+fn list_shows_values_as_written_and_variants() {
+    let (ok, out, _) = grassbench(&["list"]);
+    assert!(ok);
+    assert!(out.contains("flutter = 0.15\n"), "{out}");
+    assert!(out.contains("variant finest"), "{out}");
+    assert!(out.contains("variant no_transitions  omega = 0.0"), "{out}");
+}
