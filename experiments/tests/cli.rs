@@ -462,7 +462,13 @@ fn bad_grid_values_are_refused_before_anything_is_measured() {
     fails_with(&["validate", path], &["bakay", "shells = -4"]);
     let out = dir.join("out");
     fails_with(
-        &["sweep", path, "-o", out.to_str().unwrap(), "--no-calibration"],
+        &[
+            "sweep",
+            path,
+            "-o",
+            out.to_str().unwrap(),
+            "--no-calibration",
+        ],
         &["bakay", "shells = -4"],
     );
     assert!(!out.join("runs.csv").exists(), "a run was measured");
