@@ -153,6 +153,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     // Reference run and last image per group, for ratios and FLIP.
     let mut reference: HashMap<String, Reference> = HashMap::new();
     let mut failed = 0usize;
+    let attempted = todo.len();
     for run in todo {
         bar.set_message(format!("{} on {}", run.technique, run.scene));
         let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
@@ -189,6 +190,12 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         store.finished_count(),
         out.display()
     );
+    if attempted > 0 && failed == attempted {
+        anyhow::bail!(
+            "every one of the {attempted} runs failed (their errors are in {}); nothing was measured",
+            out.join("runs.csv").display()
+        );
+    }
     Ok(())
 }
 
