@@ -8,6 +8,8 @@
 mod coverage;
 mod flip;
 mod psnr;
+#[cfg(test)]
+mod reference;
 mod ssim;
 
 pub use coverage::{coverage_mask, grass_coverage};
