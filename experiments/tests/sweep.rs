@@ -418,17 +418,27 @@ fn bad_sweep_files_are_refused_with_the_reason() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
-/// A sweep in which every run fails (here: a 1 MiB GPU memory budget refuses every technique)
-/// records each failure and exits non-zero, naming the file that holds the errors.
+/// A sweep in which every run fails (here: a 1 MiB GPU memory budget refuses the reference's
+/// 20 MB of blades on the meadow) records each failure and exits non-zero, naming the file
+/// that holds the errors.
 #[test]
 fn a_sweep_whose_runs_all_fail_exits_non_zero() {
     let out = temp("all-failed");
+    std::fs::create_dir_all(&out).unwrap();
+    let file = out.with_extension("toml");
+    std::fs::write(
+        &file,
+        "name = \"all_failed\"\nscenes = [\"meadow\"]\ntechniques = [\"reference\"]\n\
+         resolutions = [\"320x180\"]\nrepetitions = 2\nwarmup = 0\nframes = 1\n",
+    )
+    .unwrap();
     let result = Command::new(env!("CARGO_BIN_EXE_grassbench"))
         .args([
             "sweep",
-            SMOKE,
+            file.to_str().unwrap(),
             "-o",
             out.to_str().unwrap(),
+            "--force",
             "--no-calibration",
         ])
         .env("GRASSBENCH_GPU_MEMORY_MB", "1")
@@ -437,7 +447,13 @@ fn a_sweep_whose_runs_all_fail_exits_non_zero() {
         .unwrap();
     let err = String::from_utf8_lossy(&result.stderr);
     assert!(!result.status.success(), "exited 0: {err}");
-    assert!(err.contains("every one of the") && err.contains("runs.csv"), "{err}");
+    assert!(
+        err.contains("every one of the") && err.contains("runs.csv"),
+        "{err}"
+    );
     let status = column(&out.join("runs.csv"), "status");
-    assert!(!status.is_empty() && status.iter().all(|s| s == "failed"), "{status:?}");
+    assert!(
+        !status.is_empty() && status.iter().all(|s| s == "failed"),
+        "{status:?}"
+    );
 }
