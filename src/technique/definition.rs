@@ -209,7 +209,6 @@ mod tests {
     use super::*;
     use crate::params::{check, check_int};
     use crate::technique::{FrameEncoder, TechniqueStats};
-    use crate::{FrameInputs, GpuContext};
     use serde::{Deserialize, Serialize};
 
     #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -265,12 +264,6 @@ mod tests {
     }
 
     impl GrassTechnique for Toy {
-        fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
-            Ok(())
-        }
-        fn prepare(&mut self, _gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
-            Ok(())
-        }
         fn encode(&self, _encoder: &mut FrameEncoder<'_>) {}
         fn stats(&self) -> TechniqueStats {
             TechniqueStats::default()

@@ -94,11 +94,16 @@ pub trait GrassTechnique: Describe {
         Ok(())
     }
 
-    /// CPU work for a frame: animation, culling, LOD selection, instance generation.
-    fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()>;
+    /// CPU work for a frame: animation, culling, LOD selection, instance generation. Nothing
+    /// by default (a technique whose state is static or computed on the GPU).
+    fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
+        Ok(())
+    }
 
-    /// Uploads what `update` produced.
-    fn prepare(&mut self, gpu: &GpuContext, inputs: &FrameInputs<'_>) -> Result<()>;
+    /// Uploads what `update` produced. Nothing by default.
+    fn prepare(&mut self, _gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
+        Ok(())
+    }
 
     /// Records the frame's passes. Must not change state.
     fn encode(&self, encoder: &mut FrameEncoder<'_>);

@@ -6,7 +6,7 @@ use super::Variants;
 use super::{FrameEncoder, GrassTechnique, InitContext, Technique, TechniqueInfo, TechniqueStats};
 use crate::gpu::GpuEstimate;
 use crate::params::TechniqueParams;
-use crate::{FrameInputs, GpuContext, Result, Scene};
+use crate::{Result, Scene};
 
 /// Draws nothing, so a frame shows the core's background alone.
 #[derive(Clone, Copy, Debug, Default)]
@@ -51,14 +51,6 @@ impl Technique for NoGrass {
 }
 
 impl GrassTechnique for NoGrass {
-    fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
-        Ok(())
-    }
-
-    fn prepare(&mut self, _gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
-        Ok(())
-    }
-
     fn encode(&self, _encoder: &mut FrameEncoder<'_>) {}
 
     fn stats(&self) -> TechniqueStats {

@@ -8,7 +8,7 @@ use grassbench::technique::{
     FrameEncoder, GrassTechnique, InitContext, NoParams, Technique, TechniqueEntry, TechniqueInfo,
     TechniqueStats, Variants,
 };
-use grassbench::{FrameInputs, GpuContext, Scene, wgpu};
+use grassbench::{Scene, wgpu};
 use grassbench_tests::{TEST_SIZE, gpu, scene};
 
 /// A technique that draws with the pipeline it was given (none, or one whose shader reads a
@@ -81,12 +81,6 @@ impl Technique for BadDraw {
 const BAD_PIPELINE: TechniqueEntry = grassbench::technique::entry::<BadDraw>();
 
 impl GrassTechnique for BadDraw {
-    fn update(&mut self, _: &FrameInputs<'_>) -> grassbench::Result<()> {
-        Ok(())
-    }
-    fn prepare(&mut self, _: &GpuContext, _: &FrameInputs<'_>) -> grassbench::Result<()> {
-        Ok(())
-    }
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         let mut pass = encoder.render_pass("bad");
         if let Some(p) = &self.pipeline {

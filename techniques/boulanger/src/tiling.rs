@@ -101,6 +101,19 @@ mod tests {
     use grassbench::glam::Vec2;
     use grassbench::terrain::{CoveringSource, MapSource, Terrain, TerrainConfig};
 
+    /// A flat grass field of `size` metres with a constant density map.
+    fn flat(size: [f32; 2], density: f32) -> Terrain {
+        let config = TerrainConfig {
+            size,
+            max_height: 0.0,
+            samples_per_metre: 1.0,
+            height: MapSource::default(),
+            density: MapSource::Constant { value: density },
+            covering: CoveringSource::Grass,
+        };
+        Terrain::build(&config, 1, std::path::Path::new(".")).unwrap()
+    }
+
     /// A density map of constant 0.6 draws 60 % of the blades, whatever the distance: the
     /// patch's thresholds are drawn uniformly, so the fraction under 0.6 is binomial with
     /// standard deviation sqrt(0.6·0.4/N) = 0.0033 for the N = 21 904 blades of the default
@@ -108,15 +121,7 @@ mod tests {
     /// 150 000 seeds); a bias in the thresholds or in the LOD share of 1.5 % fails it.
     #[test]
     fn constant_density_of_0_6_draws_60_percent() {
-        let config = TerrainConfig {
-            size: [4.0, 4.0],
-            max_height: 0.0,
-            samples_per_metre: 1.0,
-            height: MapSource::default(),
-            density: MapSource::Constant { value: 0.6 },
-            covering: CoveringSource::Grass,
-        };
-        let terrain = Terrain::build(&config, 1, std::path::Path::new(".")).unwrap();
+        let terrain = flat([4.0, 4.0], 0.6);
         let p = Params {
             blades_per_m2: 87_800.0,
             ..Params::default()
@@ -164,15 +169,7 @@ mod tests {
     /// holds that many virtual blades: 28 560 cells x 148² blades = 625.6 M, 0.2 % under.
     #[test]
     fn the_paper_density_tiles_627_million_blades_over_a_football_field() {
-        let config = TerrainConfig {
-            size: [105.0, 68.0],
-            max_height: 0.0,
-            samples_per_metre: 1.0,
-            height: MapSource::default(),
-            density: MapSource::Constant { value: 1.0 },
-            covering: CoveringSource::Grass,
-        };
-        let terrain = Terrain::build(&config, 1, std::path::Path::new(".")).unwrap();
+        let terrain = flat([105.0, 68.0], 1.0);
         let p = Params {
             blades_per_m2: 87_800.0,
             ..Params::default()
