@@ -114,6 +114,26 @@ mod tests {
         Terrain::build(&config, 1, std::path::Path::new(".")).unwrap()
     }
 
+    /// The defaults at the paper's density (87 800 blades/m²).
+    fn paper_params() -> Params {
+        Params {
+            blades_per_m2: 87_800.0,
+            ..Params::default()
+        }
+    }
+
+    /// The patch `p` makes with `seed`, one blade a stratum.
+    fn paper_patch(p: &Params, seed: u64) -> Patch {
+        Patch::new(
+            p.patch_size,
+            Patch::strata_for(p.patch_size, p.blades_per_m2),
+            BLOCKS,
+            &grassbench::grass::GrassConfig::default(),
+            patch::BladeShape { max_tilt: 0.4 },
+            seed,
+        )
+    }
+
     /// A density map of constant 0.6 draws 60 % of the blades, whatever the distance: the
     /// patch's thresholds are drawn uniformly, so the fraction under 0.6 is binomial with
     /// standard deviation sqrt(0.6·0.4/N) = 0.0033 for the N = 21 904 blades of the default
@@ -122,20 +142,9 @@ mod tests {
     #[test]
     fn constant_density_of_0_6_draws_60_percent() {
         let terrain = flat([4.0, 4.0], 0.6);
-        let p = Params {
-            blades_per_m2: 87_800.0,
-            ..Params::default()
-        };
-        let strata = Patch::strata_for(p.patch_size, p.blades_per_m2);
+        let p = paper_params();
         for seed in [1, 2, 3] {
-            let patch = Patch::new(
-                p.patch_size,
-                strata,
-                BLOCKS,
-                &grassbench::grass::GrassConfig::default(),
-                patch::BladeShape { max_tilt: 0.4 },
-                seed,
-            );
+            let patch = paper_patch(&p, seed);
             let lod = LodDistances {
                 min_geom: p.min_geom,
                 max_geom: p.max_geom,
@@ -170,19 +179,8 @@ mod tests {
     #[test]
     fn the_paper_density_tiles_627_million_blades_over_a_football_field() {
         let terrain = flat([105.0, 68.0], 1.0);
-        let p = Params {
-            blades_per_m2: 87_800.0,
-            ..Params::default()
-        };
-        let strata = Patch::strata_for(p.patch_size, p.blades_per_m2);
-        let patch = Patch::new(
-            p.patch_size,
-            strata,
-            BLOCKS,
-            &grassbench::grass::GrassConfig::default(),
-            patch::BladeShape { max_tilt: 0.4 },
-            1,
-        );
+        let p = paper_params();
+        let patch = paper_patch(&p, 1);
         let grid = CellGrid::new(&terrain, p.patch_size);
         let cells = grid.count();
         let tree = Quadtree::build(&terrain, grid, 1.0, 1.0);
