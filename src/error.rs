@@ -69,15 +69,15 @@ pub enum Error {
         missing: String,
     },
     /// Reading or writing a file failed.
-    #[error("{action} `{path}`: {source}")]
+    #[error("{action} `{path}`: {error}")]
     Io {
         /// "cannot read", "cannot write", ...
         action: &'static str,
         /// The file.
         path: PathBuf,
-        /// The OS error.
-        #[source]
-        source: std::io::Error,
+        /// The OS error, already in the message: not a `source`, so an error chain printed
+        /// cause by cause (`{:#}` in anyhow) says it once.
+        error: std::io::Error,
     },
     /// A scene, sweep or map file is malformed.
     #[error("{path}: {message}")]
@@ -152,7 +152,35 @@ impl Error {
         Self::Io {
             action,
             path: path.into(),
-            source,
+            error: source,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The message and its causes joined the way anyhow's `{:#}` prints a chain.
+    fn chain(e: &dyn std::error::Error) -> String {
+        let mut text = e.to_string();
+        let mut cause = e.source();
+        while let Some(c) = cause {
+            text.push_str(&format!(": {c}"));
+            cause = c.source();
+        }
+        text
+    }
+
+    #[test]
+    fn an_io_error_chain_names_its_cause_once() {
+        let e = Error::io(
+            "cannot write",
+            "out/runs.csv",
+            std::io::Error::from(std::io::ErrorKind::AlreadyExists),
+        );
+        let text = chain(&e);
+        assert!(text.starts_with("cannot write `out/runs.csv`: "), "{text}");
+        assert_eq!(text.matches("exists").count(), 1, "{text}");
     }
 }
