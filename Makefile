@@ -17,6 +17,8 @@ results: setup
 
 test: setup
 	$(CARGO) test --release --workspace
+	# Every benchmark compiles (they are not built by `cargo test`).
+	$(CARGO) build --release --workspace --benches
 	# Smoke-run the criterion benchmarks on a tiny workload (each once).
 	GRASSBENCH_BENCH_SMALL=1 $(CARGO) test --release -p grassbench-cli --bench techniques
 

@@ -8,7 +8,8 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use grassbench::Scene;
-use grassbench_perbet::{Density, Params, Precomputed, Quality};
+use grassbench_perbet::precompute::Precomputed;
+use grassbench_perbet::{Density, Params, Quality};
 
 fn bench_precompute(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../experiments/scenes/meadow.toml");
