@@ -56,7 +56,7 @@ fn techniques(c: &mut Criterion) {
             .sample_size(10)
             .warm_up_time(Duration::from_millis(500))
             .measurement_time(Duration::from_secs(if small() { 1 } else { 5 }));
-        let blades = technique.stats().blades;
+        let blades = technique.stats().blades_shown();
         group.throughput(Throughput::Elements(blades.max(1)));
         let mut frame = 3;
         group.bench_function("update", |b| {

@@ -47,8 +47,18 @@ pub struct FrameRecord {
     pub gpu_ts_render_ms: Option<f64>,
     /// Timestamp-query time of compute passes, ms (wrong on lavapipe: cross-check with wall).
     pub gpu_ts_compute_ms: Option<f64>,
-    /// Blades represented.
-    pub blades: u64,
+    /// Blades drawn as geometry ([`TechniqueStats::blades_drawn`]); empty in files written
+    /// before the count was split (their `blades` column mixed drawn and represented blades).
+    ///
+    /// [`TechniqueStats::blades_drawn`]: crate::TechniqueStats::blades_drawn
+    #[serde(default)]
+    pub blades_drawn: Option<u64>,
+    /// Blades an impostor stands for, each once ([`TechniqueStats::blades_represented`]);
+    /// empty in older files.
+    ///
+    /// [`TechniqueStats::blades_represented`]: crate::TechniqueStats::blades_represented
+    #[serde(default)]
+    pub blades_represented: Option<u64>,
     /// Triangles submitted.
     pub triangles: u64,
     /// Draw calls.
@@ -110,6 +120,9 @@ pub fn format_counters(counters: &[(&'static str, f64)]) -> String {
 }
 
 /// A run summarised (a row of `runs.csv`).
+///
+/// Every measured figure is an `Option`: a failed run (`status = failed`) has none, and its
+/// cells are left empty, never 0, so no reader can average a failure in as a fast run.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunSummary {
     /// Run id (`<configuration>-r<repetition>` in sweeps, empty otherwise).
@@ -118,7 +131,7 @@ pub struct RunSummary {
     /// Repetition, from 0.
     #[serde(default)]
     pub repetition: u32,
-    /// `ok`, or `failed` (then `error` says why and the figures are zero).
+    /// `ok`, or `failed` (then `error` says why and the figures are empty).
     #[serde(default = "status_ok")]
     pub status: String,
     /// Why the run failed.
@@ -140,17 +153,17 @@ pub struct RunSummary {
     /// Measured frames.
     pub frames: usize,
     /// Median CPU update, ms.
-    pub update_ms_median: f64,
+    pub update_ms_median: Option<f64>,
     /// Median CPU upload, ms.
-    pub upload_ms_median: f64,
+    pub upload_ms_median: Option<f64>,
     /// Median CPU encode, ms.
-    pub encode_ms_median: f64,
+    pub encode_ms_median: Option<f64>,
     /// Median GPU wall time, ms.
-    pub gpu_wall_ms_median: f64,
+    pub gpu_wall_ms_median: Option<f64>,
     /// 5th percentile GPU wall time, ms.
-    pub gpu_wall_ms_p5: f64,
+    pub gpu_wall_ms_p5: Option<f64>,
     /// 95th percentile GPU wall time, ms.
-    pub gpu_wall_ms_p95: f64,
+    pub gpu_wall_ms_p95: Option<f64>,
     /// Median timestamp time of the technique's render passes, ms.
     pub gpu_ts_render_ms_median: Option<f64>,
     /// Median timestamp time of compute passes, ms.
@@ -158,19 +171,23 @@ pub struct RunSummary {
     /// Median timestamp time of the background, ms.
     pub gpu_ts_background_ms_median: Option<f64>,
     /// Median CPU + GPU wall time of a frame, ms.
-    pub frame_ms_median: f64,
+    pub frame_ms_median: Option<f64>,
     /// 5th percentile frame time, ms.
-    pub frame_ms_p5: f64,
+    pub frame_ms_p5: Option<f64>,
     /// 95th percentile frame time, ms.
-    pub frame_ms_p95: f64,
-    /// Median blades.
-    pub blades: u64,
+    pub frame_ms_p95: Option<f64>,
+    /// Median blades drawn as geometry (empty in files written before the count was split).
+    #[serde(default)]
+    pub blades_drawn: Option<u64>,
+    /// Median blades an impostor stands for, each once (empty in older files).
+    #[serde(default)]
+    pub blades_represented: Option<u64>,
     /// Median triangles.
-    pub triangles: u64,
+    pub triangles: Option<u64>,
     /// Median draw calls.
-    pub draw_calls: u64,
+    pub draw_calls: Option<u64>,
     /// Largest GPU memory held, bytes.
-    pub gpu_bytes: u64,
+    pub gpu_bytes: Option<u64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -179,12 +196,8 @@ pub struct RunSummary {
     pub flip_vs_reference: Option<f64>,
     /// Mean FLIP against the reference after 4x downsampling (placement-insensitive).
     pub flip_vs_reference_quarter: Option<f64>,
-    /// GPU wall time per blade represented, ns.
+    /// Median GPU wall time per blade shown (drawn or represented), ns.
     pub blade_cost_ns: Option<f64>,
-    /// The adapter's raw cost of a reference blade's triangles from calibration, ns.
-    pub raw_blade_cost_ns: Option<f64>,
-    /// `raw_blade_cost_ns / blade_cost_ns`: 1 = as fast as the rasteriser allows.
-    pub efficiency: Option<f64>,
 }
 
 /// The status of a finished run, and of a row written before runs had a status.
@@ -193,25 +206,30 @@ fn status_ok() -> String {
 }
 
 impl RunSummary {
-    /// Whether the run finished (its figures are measurements, not zeros).
+    /// Whether the run finished (its figures are measurements).
     pub fn is_ok(&self) -> bool {
         self.status == "ok"
     }
 
-    /// Summarises measured frames (at least one).
+    /// Blades drawn and represented: every blade the run's median frame showed (empty when
+    /// either count is missing).
+    pub fn blades_shown(&self) -> Option<u64> {
+        Some(self.blades_drawn? + self.blades_represented?)
+    }
+
+    /// Summarises measured frames; with none, every figure is empty.
     pub fn from_frames(frames: &[FrameRecord], params: &toml::Table) -> Self {
-        let pct = |f: &dyn Fn(&FrameRecord) -> f64| {
-            Percentiles::of(frames.iter().map(f)).unwrap_or_default()
-        };
-        let opt = |f: &dyn Fn(&FrameRecord) -> Option<f64>| {
+        let pct = |f: &dyn Fn(&FrameRecord) -> f64| Percentiles::of(frames.iter().map(f));
+        let median = |f: &dyn Fn(&FrameRecord) -> Option<f64>| {
             Percentiles::of(frames.iter().filter_map(f)).map(|p| p.median)
         };
-        let median_u64 =
-            |f: &dyn Fn(&FrameRecord) -> u64| pct(&|r| f(r) as f64).median.round() as u64;
+        let median_u64 = |f: &dyn Fn(&FrameRecord) -> Option<u64>| {
+            median(&|r| f(r).map(|v| v as f64)).map(|m| m.round() as u64)
+        };
         let wall = pct(&|r| r.gpu_wall_ms);
         let total = pct(&|r| r.wind_ms + r.update_ms + r.upload_ms + r.encode_ms + r.gpu_wall_ms);
         let first = frames.first();
-        let blades = median_u64(&|r| r.blades);
+        let shown = median_u64(&|r| Some(r.blades_drawn? + r.blades_represented?));
         Self {
             run_id: first.map(|r| r.run_id.clone()).unwrap_or_default(),
             repetition: 0,
@@ -224,22 +242,23 @@ impl RunSummary {
             height: first.map_or(0, |r| r.height),
             msaa: first.is_some_and(|r| r.msaa),
             frames: frames.len(),
-            update_ms_median: pct(&|r| r.update_ms).median,
-            upload_ms_median: pct(&|r| r.upload_ms).median,
-            encode_ms_median: pct(&|r| r.encode_ms).median,
-            gpu_wall_ms_median: wall.median,
-            gpu_wall_ms_p5: wall.p5,
-            gpu_wall_ms_p95: wall.p95,
-            gpu_ts_render_ms_median: opt(&|r| r.gpu_ts_render_ms),
-            gpu_ts_compute_ms_median: opt(&|r| r.gpu_ts_compute_ms),
-            gpu_ts_background_ms_median: opt(&|r| r.gpu_ts_background_ms),
-            frame_ms_median: total.median,
-            frame_ms_p5: total.p5,
-            frame_ms_p95: total.p95,
-            blades,
-            triangles: median_u64(&|r| r.triangles),
-            draw_calls: median_u64(&|r| r.draw_calls),
-            gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max().unwrap_or(0),
+            update_ms_median: median(&|r| Some(r.update_ms)),
+            upload_ms_median: median(&|r| Some(r.upload_ms)),
+            encode_ms_median: median(&|r| Some(r.encode_ms)),
+            gpu_wall_ms_median: wall.map(|p| p.median),
+            gpu_wall_ms_p5: wall.map(|p| p.p5),
+            gpu_wall_ms_p95: wall.map(|p| p.p95),
+            gpu_ts_render_ms_median: median(&|r| r.gpu_ts_render_ms),
+            gpu_ts_compute_ms_median: median(&|r| r.gpu_ts_compute_ms),
+            gpu_ts_background_ms_median: median(&|r| r.gpu_ts_background_ms),
+            frame_ms_median: total.map(|p| p.median),
+            frame_ms_p5: total.map(|p| p.p5),
+            frame_ms_p95: total.map(|p| p.p95),
+            blades_drawn: median_u64(&|r| r.blades_drawn),
+            blades_represented: median_u64(&|r| r.blades_represented),
+            triangles: median_u64(&|r| Some(r.triangles)),
+            draw_calls: median_u64(&|r| Some(r.draw_calls)),
+            gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max(),
             params: params
                 .iter()
                 .map(|(k, v)| format!("{k}={}", crate::params::format_value(v)))
@@ -248,13 +267,13 @@ impl RunSummary {
             gpu_wall_ratio_to_reference: None,
             flip_vs_reference: None,
             flip_vs_reference_quarter: None,
-            blade_cost_ns: (blades > 0).then(|| wall.median * 1e6 / blades as f64),
-            raw_blade_cost_ns: None,
-            efficiency: None,
+            blade_cost_ns: wall
+                .zip(shown.filter(|&n| n > 0))
+                .map(|(w, n)| w.median * 1e6 / n as f64),
         }
     }
 
-    /// The row of a run that failed before producing frames.
+    /// The row of a run that failed: no figure, only why.
     pub fn failed(run_id: &str, technique: &str, scene: &str, error: &str) -> Self {
         let mut row = Self::from_frames(&[], &toml::Table::new());
         row.run_id = run_id.to_owned();
@@ -338,7 +357,7 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", 819.534429)
+            ("reference", Some(819.534429))
         );
         assert_eq!(reference.gpu_wall_ratio_to_reference, Some(1.0));
         assert_eq!(reference.gpu_ts_compute_ms_median, None);
@@ -363,9 +382,76 @@ mod tests {
     }
 
     #[test]
-    fn failed_rows_are_not_ok() {
+    fn failed_rows_are_not_ok_and_leave_every_figure_empty() {
         let row = RunSummary::failed("x-r0", "reference", "meadow", "boom");
         assert!(!row.is_ok());
         assert!(RunSummary::from_frames(&[], &toml::Table::new()).is_ok());
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.serialize(&row).unwrap();
+        let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        let mut lines = text.lines();
+        let (header, cells) = (lines.next().unwrap(), lines.next().unwrap());
+        let both = format!("{header}\n{cells}\n");
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .from_reader(both.as_bytes());
+        let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.unwrap()).collect();
+        let measured = [
+            "gpu_wall_ms_median",
+            "frame_ms_median",
+            "update_ms_median",
+            "blades_drawn",
+            "triangles",
+            "draw_calls",
+            "gpu_bytes",
+            "blade_cost_ns",
+        ];
+        for name in measured {
+            let k = rows[0].iter().position(|h| h == name).unwrap();
+            assert_eq!(&rows[1][k], "", "{name} of a failed run must be empty");
+        }
+        // Read back, the figures stay missing (not zero).
+        let back: RunSummary = csv::Reader::from_reader(text.as_bytes())
+            .deserialize()
+            .next()
+            .unwrap()
+            .unwrap();
+        assert_eq!((back.gpu_wall_ms_median, back.triangles), (None, None));
+        assert_eq!(back.error, "boom");
+    }
+
+    #[test]
+    fn a_summary_counts_blades_drawn_and_represented_apart() {
+        let frame = |drawn, represented, wall| FrameRecord {
+            run_id: String::new(),
+            technique: "t".into(),
+            scene: "s".into(),
+            width: 4,
+            height: 4,
+            msaa: false,
+            frame: 0,
+            time_s: 0.0,
+            wind_ms: 0.0,
+            update_ms: 1.0,
+            upload_ms: 0.0,
+            encode_ms: 0.0,
+            gpu_wall_ms: wall,
+            gpu_ts_background_ms: None,
+            gpu_ts_render_ms: None,
+            gpu_ts_compute_ms: None,
+            blades_drawn: Some(drawn),
+            blades_represented: Some(represented),
+            triangles: 10,
+            draw_calls: 1,
+            gpu_bytes: 5,
+            counters: String::new(),
+            levels: Vec::new(),
+        };
+        let frames = [frame(100, 300, 2.0), frame(200, 200, 4.0), frame(300, 100, 6.0)];
+        let s = RunSummary::from_frames(&frames, &toml::Table::new());
+        assert_eq!((s.blades_drawn, s.blades_represented), (Some(200), Some(200)));
+        assert_eq!(s.blades_shown(), Some(400));
+        // 4 ms over the 400 blades of the median frame.
+        assert_eq!(s.blade_cost_ns, Some(4.0 * 1e6 / 400.0));
     }
 }

@@ -11,9 +11,10 @@ use crate::runner::RunSummary;
 /// The technique every other is measured against (ratio and FLIP in a sweep's `runs.csv`).
 pub const REFERENCE: &str = "reference";
 
-/// `run`'s median GPU wall time over `reference`'s: below 1, the run is faster.
-pub fn ratio_to_reference(run: &RunSummary, reference: &RunSummary) -> f64 {
-    run.gpu_wall_ms_median / reference.gpu_wall_ms_median
+/// `run`'s median GPU wall time over `reference`'s: below 1, the run is faster; `None`
+/// when either has no measured time (a failed run).
+pub fn ratio_to_reference(run: &RunSummary, reference: &RunSummary) -> Option<f64> {
+    Some(run.gpu_wall_ms_median? / reference.gpu_wall_ms_median?)
 }
 
 /// What a row's group is known by in `runs.csv`: scene, scene variant, size, MSAA, repetition.
@@ -45,7 +46,7 @@ pub fn fill_ratios(rows: &mut [RunSummary]) {
             Some(ratio) => Some(ratio),
             None if r.is_ok() => references
                 .get(&group_of(r))
-                .map(|reference| ratio_to_reference(r, reference)),
+                .and_then(|reference| ratio_to_reference(r, reference)),
             None => None,
         })
         .collect();
@@ -64,7 +65,7 @@ mod tests {
         r.scene = "meadow".to_owned();
         r.scene_variant = variant.to_owned();
         r.repetition = repetition;
-        r.gpu_wall_ms_median = ms;
+        r.gpu_wall_ms_median = Some(ms);
         r
     }
 
@@ -98,7 +99,7 @@ mod tests {
                 None
             ]
         );
-        assert_eq!(ratio_to_reference(&rows[0], &rows[1]), 0.25);
+        assert_eq!(ratio_to_reference(&rows[0], &rows[1]), Some(0.25));
     }
 
     #[test]

@@ -50,14 +50,39 @@ pub struct TechniqueInfo {
 
 /// What a technique submitted in its last frame and what it holds. Draw calls are not here:
 /// the [`FrameEncoder`] counts them as they are recorded.
+///
+/// Blades are counted two ways:
+/// - [`Self::blades_drawn`]: blades whose own geometry was submitted this frame (instances of
+///   a blade mesh, a Bezier blade's strip, ...), whatever opacity the shader gives them;
+/// - [`Self::blades_represented`]: the scene's blades that impostors stand for instead (a
+///   billboard, texture slices, shells, a 2D texture), each blade once however many impostor
+///   layers show it: a cell's vertical and horizontal slices together stand for its blades
+///   once. An impostor that shows only a share of a blade (a transition band, where the
+///   blade's geometry fades out as the impostor fades in) counts that share; shares are summed
+///   and rounded to whole blades.
+///
+/// So `blades_drawn + blades_represented` ([`Self::blades_shown`]) is the population the frame
+/// stands for: the blades in view, less what the technique dropped (culling, density falling
+/// with distance), plus at most the blades of its transition bands counted twice in part
+/// (drawn, and by the impostor's share). Both are tested per technique against an
+/// independent count of the scene's blades on a small scene (`tests/tests/counts.rs`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct TechniqueStats {
-    /// Blades represented (drawn as geometry or standing in an impostor).
-    pub blades: u64,
+    /// Blades drawn as geometry.
+    pub blades_drawn: u64,
+    /// Blades an impostor stands for (each blade once; none of those in `blades_drawn`).
+    pub blades_represented: u64,
     /// Triangles submitted.
     pub triangles: u64,
     /// GPU memory held by the technique, bytes.
     pub gpu_bytes: u64,
+}
+
+impl TechniqueStats {
+    /// Every blade the frame shows, drawn or represented.
+    pub fn blades_shown(&self) -> u64 {
+        self.blades_drawn + self.blades_represented
+    }
 }
 
 /// Blades one of a technique's own levels of detail drew or stood for in the last frame

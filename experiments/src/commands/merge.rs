@@ -194,8 +194,8 @@ mod tests {
     #[test]
     fn rows_are_read_by_name_kept_once_and_written_with_todays_columns() {
         let (a, b, out) = (temp("a"), temp("b"), temp("out"));
-        // The fixture has the old level-of-detail columns and lacks `efficiency`; the same
-        // run in two shards is kept once.
+        // The fixture has old columns (the level-of-detail counts, one mixed `blades` count)
+        // and lacks today's split counts; the same run in two shards is kept once.
         std::fs::copy(FIXTURE, a.join("runs.csv")).unwrap();
         std::fs::copy(FIXTURE, b.join("runs.csv")).unwrap();
         let shards = [a.clone(), b.clone()];
@@ -208,7 +208,9 @@ mod tests {
         assert_eq!(merged, original);
         let header = std::fs::read_to_string(out.join("runs.csv")).unwrap();
         assert!(
-            header.contains(",efficiency") && !header.contains("blades_geometry"),
+            header.contains(",blades_drawn,blades_represented,")
+                && !header.contains("blades_geometry")
+                && !header.contains("efficiency"),
             "{header}"
         );
         // Nothing to merge: no file.
@@ -223,7 +225,7 @@ mod tests {
         assert!(!out.join("frames.csv").exists());
         // One run with two results is refused.
         let mut changed = original.clone();
-        changed[1].gpu_wall_ms_median += 1.0;
+        changed[1].gpu_wall_ms_median = changed[1].gpu_wall_ms_median.map(|v| v + 1.0);
         write_csv(&b.join("runs.csv"), &changed).unwrap();
         let e = merge_rows(&shards, &out, "runs.csv", id, true)
             .unwrap_err()

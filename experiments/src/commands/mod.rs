@@ -44,6 +44,11 @@ impl GpuArgs {
     }
 }
 
+/// `v` with `digits` decimals, or a dash where nothing was measured.
+pub(crate) fn fmt_opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("–".to_owned(), |x| format!("{x:.digits$}"))
+}
+
 /// Parses repeated `--param key=value` into a table.
 pub fn param_table(assignments: &[String]) -> anyhow::Result<toml::Table> {
     let mut table = toml::Table::new();

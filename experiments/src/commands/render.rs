@@ -59,13 +59,14 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let image = out.image.context("the frame produced no image")?;
     save_png(&image, &args.out)?;
     eprintln!(
-        "{} frame {} of `{}` → {} ({:.1} ms GPU wall, {} blades)",
+        "{} frame {} of `{}` → {} ({:.1} ms GPU wall, {} blades drawn, {} represented)",
         entry.info.id,
         args.frame,
         harness.world.scene.name(),
         args.out.display(),
         out.record.gpu_wall_ms,
-        out.record.blades
+        out.record.blades_drawn.unwrap_or_default(),
+        out.record.blades_represented.unwrap_or_default()
     );
     Ok(())
 }

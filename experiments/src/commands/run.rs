@@ -13,7 +13,7 @@ use grassbench::target::{Size, save_png};
 use grassbench::technique::NoGrass;
 
 use super::out_dir::prepare_out_dir;
-use super::{GpuArgs, param_table};
+use super::{GpuArgs, fmt_opt, param_table};
 use crate::{registry, scenes};
 
 /// Arguments of `run`.
@@ -243,9 +243,15 @@ impl SceneOutput<'_> {
             });
         }
         let s = &result.summary;
+        let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
         eprintln!(
-            "{name:>16} {id:<12} {:>8.1} ms/frame GPU wall (p5 {:.1}, p95 {:.1}), {} blades, {} triangles",
-            s.gpu_wall_ms_median, s.gpu_wall_ms_p5, s.gpu_wall_ms_p95, s.blades, s.triangles
+            "{name:>16} {id:<12} {:>8} ms/frame GPU wall (p5 {}, p95 {}), {} blades drawn, {} represented, {} triangles",
+            fmt_opt(s.gpu_wall_ms_median, 1),
+            fmt_opt(s.gpu_wall_ms_p5, 1),
+            fmt_opt(s.gpu_wall_ms_p95, 1),
+            count(s.blades_drawn),
+            count(s.blades_represented),
+            count(s.triangles)
         );
         for (key, value) in s.params.split(';').filter_map(|kv| kv.split_once('=')) {
             self.params.push(ParamRow {
@@ -290,25 +296,27 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades | triangles | GPU MB |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades drawn | blades represented | triangles | GPU MB |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {:.1} ({:.1}–{:.1}) | {:.1} | {} | {} | {:.1} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
             r.height,
             if r.msaa { " 4xMSAA" } else { "" },
-            r.gpu_wall_ms_median,
-            r.gpu_wall_ms_p5,
-            r.gpu_wall_ms_p95,
-            r.frame_ms_median,
-            r.blades,
-            r.triangles,
-            r.gpu_bytes as f64 / 1e6
+            fmt_opt(r.gpu_wall_ms_median, 1),
+            fmt_opt(r.gpu_wall_ms_p5, 1),
+            fmt_opt(r.gpu_wall_ms_p95, 1),
+            fmt_opt(r.frame_ms_median, 1),
+            count(r.blades_drawn),
+            count(r.blades_represented),
+            count(r.triangles),
+            fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1)
         );
     }
     let _ = writeln!(s, "\n## Images\n");

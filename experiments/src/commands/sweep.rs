@@ -162,7 +162,6 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
             &spec,
             scene,
             run,
-            calibration.as_ref(),
             &mut reference,
             store.dir(),
         ) {
@@ -272,7 +271,6 @@ fn execute(
     spec: &SweepSpec,
     scene: &Scene,
     run: &PlannedRun,
-    calibration: Option<&Calibration>,
     reference: &mut HashMap<String, Reference>,
     dir: &std::path::Path,
 ) -> anyhow::Result<Executed> {
@@ -296,17 +294,13 @@ fn execute(
         reference.insert(run.group.clone(), (row.clone(), image.clone()));
     }
     if let Some((ref_row, ref_img)) = reference.get(&run.group) {
-        row.gpu_wall_ratio_to_reference = Some(ratio_to_reference(&row, ref_row));
+        row.gpu_wall_ratio_to_reference = ratio_to_reference(&row, ref_row);
         if let (Some(img), Some(ref_img)) = (&image, ref_img) {
             row.flip_vs_reference = Some(f64::from(flip(ref_img, img)?.mean));
             row.flip_vs_reference_quarter = Some(f64::from(
                 flip(&downsample(ref_img, 4), &downsample(img, 4))?.mean,
             ));
         }
-    }
-    if let Some(c) = calibration {
-        row.raw_blade_cost_ns = Some(c.raw_blade_cost_ns);
-        row.efficiency = row.blade_cost_ns.map(|b| c.raw_blade_cost_ns / b);
     }
     if run.repetition == 0
         && let Some(img) = &image

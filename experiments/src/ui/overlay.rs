@@ -23,9 +23,11 @@ pub fn draw(ui: &egui::Ui, pane: &Pane, pic: egui::Rect, k: usize) {
             "gpu wall {:.1} ms · timestamps {ts} ms",
             r.gpu_wall_ms
         ));
+        let count = |v: Option<u64>| v.map_or("-".to_owned(), |n| n.to_string());
         lines.push(format!(
-            "{} blades · {} tris · {:.1} MB",
-            r.blades,
+            "{} drawn + {} represented blades · {} tris · {:.1} MB",
+            count(r.blades_drawn),
+            count(r.blades_represented),
             r.triangles,
             r.gpu_bytes as f64 / 1e6
         ));

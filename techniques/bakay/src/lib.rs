@@ -267,7 +267,9 @@ impl GrassTechnique for Bakay {
 
     fn stats(&self) -> TechniqueStats {
         TechniqueStats {
-            blades: self.blades,
+            // Every blade is in the shells' texture, none is geometry.
+            blades_drawn: 0,
+            blades_represented: self.blades,
             triangles: self.triangles_per_shell * u64::from(self.params.shells),
             gpu_bytes: self.gpu.bytes,
         }

@@ -404,9 +404,11 @@ impl GrassTechnique for Boulanger {
             None => 0,
         };
         TechniqueStats {
-            blades: plan.lod_blades.geometry
-                + plan.lod_blades.vertical_slices
-                + plan.lod_blades.horizontal_slices,
+            blades_drawn: plan.lod_blades.geometry,
+            // The slices' share of every cell's blades (Eq. 4's `w_hs`): in the mid band the
+            // vertical slices show the same share again, over the horizontal slice (Sec. 3.3),
+            // so they stand for no further blade.
+            blades_represented: plan.lod_blades.horizontal_slices,
             triangles: blade_triangles
                 + quad_triangles
                 + plan.vslice_records.len() as u64 * u64::from(4 * self.params.vertical_slices)

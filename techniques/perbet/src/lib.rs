@@ -452,7 +452,10 @@ impl GrassTechnique for Perbet {
         let strip_triangles =
             2 * u64::from(self.layout.strips) * u64::from(self.layout.columns) * n;
         TechniqueStats {
-            blades: patches * blades,
+            // A patch drawn as 3D blades (alone, or in a transition beside its strips or its
+            // 2D texture) counts as geometry; every other patch in view is an impostor's.
+            blades_drawn: u64::from(d.geometry) * blades,
+            blades_represented: patches.saturating_sub(u64::from(d.geometry)) * blades,
             triangles: u64::from(d.geometry) * blades * (2 * n - 1)
                 + u64::from(d.strips) * strip_triangles
                 + u64::from(d.flat) * 2 * u64::from(gpu::FLAT_CELLS * gpu::FLAT_CELLS),

@@ -313,7 +313,9 @@ impl GrassTechnique for Reference {
 
     fn stats(&self) -> TechniqueStats {
         TechniqueStats {
-            blades: u64::from(self.blade_count),
+            // Every blade is geometry; none is an impostor.
+            blades_drawn: u64::from(self.blade_count),
+            blades_represented: 0,
             triangles: u64::from(self.blade_count) * u64::from(2 * self.params.segments - 1),
             gpu_bytes: self.gpu_bytes,
         }

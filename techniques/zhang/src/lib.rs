@@ -385,12 +385,14 @@ impl GrassTechnique for Zhang {
         c
     }
 
-    /// Blades represented: drawn as single plants or standing in the billboards drawn.
+    /// Blades drawn as single plants (Bezier geometry), and those the billboards drawn stand
+    /// for (`billboard_blades`: a billboard stands for the plants of its grid's share).
     fn stats(&self) -> TechniqueStats {
         let blades = self.frame.blade_count();
         let flowers = self.frame.plan.flower_count();
         TechniqueStats {
-            blades: blades + self.frame.plan.billboard_blades,
+            blades_drawn: blades,
+            blades_represented: self.frame.plan.billboard_blades,
             triangles: blades * u64::from(2 * (self.params.backbone_points - 1))
                 + 2 * flowers
                 + 2 * self.frame.wings.len() as u64

@@ -27,6 +27,8 @@ pub(super) struct Config {
     pub(super) label: String,
     /// Median GPU wall time of each finished repetition, ms.
     pub(super) gpu_wall: Vec<f64>,
+    /// Width of each finished repetition's own p5-p95 band of GPU wall time, ms.
+    pub(super) gpu_wall_band: Vec<f64>,
     /// Median frame time of each finished repetition, ms.
     pub(super) frame: Vec<f64>,
     /// Median CPU update of each repetition, ms.
@@ -41,14 +43,14 @@ pub(super) struct Config {
     pub(super) flip: Vec<f64>,
     /// Mean FLIP against the reference at 1/4 scale, per repetition.
     pub(super) flip_quarter: Vec<f64>,
-    /// Raw blade cost over blade cost, per repetition.
-    pub(super) efficiency: Vec<f64>,
-    /// Blades represented (the last finished repetition's).
-    pub(super) blades: f64,
+    /// Blades drawn as geometry (the last finished repetition's).
+    pub(super) blades_drawn: Option<f64>,
+    /// Blades impostors stand for (the last finished repetition's).
+    pub(super) blades_represented: Option<f64>,
     /// Triangles (the last finished repetition's).
-    pub(super) triangles: f64,
+    pub(super) triangles: Option<f64>,
     /// GPU memory held, MB (the last finished repetition's).
-    pub(super) gpu_mb: f64,
+    pub(super) gpu_mb: Option<f64>,
     /// The last frame of repetition 0, relative to the results folder.
     pub(super) image: Option<String>,
     /// Repetitions that failed.
@@ -58,6 +60,29 @@ pub(super) struct Config {
 /// The median of a sample (`None` when empty).
 pub(super) fn median(v: &[f64]) -> Option<f64> {
     Percentiles::of(v.iter().copied()).map(|p| p.median)
+}
+
+impl Config {
+    /// Blades the configuration showed, drawn and represented (empty for rows written before
+    /// the two counts were split).
+    pub(super) fn blades_shown(&self) -> Option<f64> {
+        Some(self.blades_drawn? + self.blades_represented?)
+    }
+
+    /// How far its repetitions' median GPU times lie apart (max − min, ms), when that exceeds
+    /// the widest p5-p95 band a single repetition measured: the repetitions then disagree by
+    /// more than each one's own frame-to-frame noise, so something outside the configuration
+    /// (the host's load, its clock) moved between them and the median hides it.
+    pub(super) fn repetitions_disagree(&self) -> Option<f64> {
+        let (lo, hi) = self
+            .gpu_wall
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        let band = self.gpu_wall_band.iter().copied().fold(0.0, f64::max);
+        (self.gpu_wall.len() > 1 && hi - lo > band).then_some(hi - lo)
+    }
 }
 
 /// Reads runs.csv into configurations keyed by configuration id, repetitions pooled. A run
@@ -91,18 +116,20 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
             continue;
         }
         c.params.clone_from(&r.params);
-        c.gpu_wall.push(r.gpu_wall_ms_median);
-        c.frame.push(r.frame_ms_median);
-        c.update.push(r.update_ms_median);
-        c.upload.push(r.upload_ms_median);
-        c.encode.push(r.encode_ms_median);
+        c.gpu_wall.extend(r.gpu_wall_ms_median);
+        c.gpu_wall_band
+            .extend(r.gpu_wall_ms_p95.zip(r.gpu_wall_ms_p5).map(|(hi, lo)| hi - lo));
+        c.frame.extend(r.frame_ms_median);
+        c.update.extend(r.update_ms_median);
+        c.upload.extend(r.upload_ms_median);
+        c.encode.extend(r.encode_ms_median);
         c.ratio.extend(r.gpu_wall_ratio_to_reference);
         c.flip.extend(r.flip_vs_reference);
         c.flip_quarter.extend(r.flip_vs_reference_quarter);
-        c.efficiency.extend(r.efficiency);
-        c.blades = r.blades as f64;
-        c.triangles = r.triangles as f64;
-        c.gpu_mb = r.gpu_bytes as f64 / 1e6;
+        c.blades_drawn = r.blades_drawn.map(|b| b as f64);
+        c.blades_represented = r.blades_represented.map(|b| b as f64);
+        c.triangles = r.triangles.map(|t| t as f64);
+        c.gpu_mb = r.gpu_bytes.map(|b| b as f64 / 1e6);
         let image = image_path(config_id);
         if dir.join(&image).exists() {
             c.image = Some(image);

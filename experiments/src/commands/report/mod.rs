@@ -8,8 +8,9 @@ use std::path::PathBuf;
 
 use grassbench::runner::write_atomic;
 
+use super::fmt_opt as fmt;
 use super::sweep::SweepMeta;
-use configs::{Config, load, median};
+use configs::{Config, label, load, median};
 use plots::{frame_time_plot, pareto_plot, scaling_plot};
 
 /// Arguments of `report`.
@@ -17,11 +18,6 @@ use plots::{frame_time_plot, pareto_plot, scaling_plot};
 pub struct ReportArgs {
     /// A sweep's results folder.
     pub dir: PathBuf,
-}
-
-/// `v` with `digits` decimals, or a dash when there is none.
-fn fmt(v: Option<f64>, digits: usize) -> String {
-    v.map_or("–".to_owned(), |x| format!("{x:.digits$}"))
 }
 
 /// Writes REPORT.md and plots/*.svg.
@@ -62,7 +58,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     let _ = writeln!(md, "## Cost and quality\n");
     let _ = writeln!(
         md,
-        "| scene | variant | size | technique | params | GPU ms | frame ms | speed-up | FLIP | FLIP 1/4 | efficiency | blades | triangles | GPU MB | runs failed |"
+        "| scene | variant | size | technique | params | GPU ms | frame ms | speed-up | FLIP | FLIP 1/4 | blades drawn | blades represented | triangles | GPU MB | runs failed |"
     );
     let _ = writeln!(
         md,
@@ -71,7 +67,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     for c in configs.values() {
         let _ = writeln!(
             md,
-            "| {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0} | {:.0} | {:.1} | {} |",
+            "| {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             c.scene,
             if c.variant.is_empty() {
                 "–"
@@ -87,12 +83,37 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             fmt(median(&c.ratio).map(|r| 1.0 / r), 2),
             fmt(median(&c.flip), 3),
             fmt(median(&c.flip_quarter), 3),
-            fmt(median(&c.efficiency), 2),
-            c.blades,
-            c.triangles,
-            c.gpu_mb,
+            fmt(c.blades_drawn, 0),
+            fmt(c.blades_represented, 0),
+            fmt(c.triangles, 0),
+            fmt(c.gpu_mb, 1),
             c.failed
         );
+    }
+    let disagreeing: Vec<(&Config, f64)> = configs
+        .values()
+        .filter_map(|c| Some((c, c.repetitions_disagree()?)))
+        .collect();
+    if !disagreeing.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n**Warning: repetitions that disagree.** In these configurations the median GPU times of the repetitions lie further apart than the p5-p95 band of any one repetition: something outside the configuration (the host's load or clock) changed between them, so compare them with care.\n"
+        );
+        for (c, spread) in &disagreeing {
+            let _ = writeln!(
+                md,
+                "- {} on {} {}: repetition medians {} ms (spread {spread:.1} ms; widest p5-p95 of one repetition {:.1} ms)",
+                label(c),
+                c.scene,
+                c.size,
+                c.gpu_wall
+                    .iter()
+                    .map(|v| format!("{v:.1}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                c.gpu_wall_band.iter().copied().fold(0.0, f64::max)
+            );
+        }
     }
     let _ = writeln!(md, "\n## CPU and GPU stages (ms)\n");
     let _ = writeln!(
@@ -141,8 +162,8 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     if distinct(&|c| c.variant.clone()) > 1 {
         scaling_plot(
             &ok,
-            &|c| c.blades,
-            "blades represented",
+            &|c| c.blades_shown().unwrap_or(0.0),
+            "blades shown (drawn + represented)",
             &plots.join("scaling_blades.svg"),
         )?;
         let _ = writeln!(md, "![GPU time versus blades](plots/scaling_blades.svg)\n");
