@@ -14,6 +14,7 @@
 //!   render and compute passes are kept apart because lavapipe's compute timestamps are wrong.
 
 mod harness;
+mod host;
 mod provenance;
 mod record;
 mod stats;
@@ -24,6 +25,7 @@ use std::time::Instant;
 
 pub use crate::files::{write_atomic, write_csv};
 pub use harness::Harness;
+pub use host::{HostLoad, HostSample};
 pub use provenance::{Provenance, WGPU_VERSION, command_line};
 pub use record::{FrameRecord, LevelRow, RunSummary};
 pub use stats::Percentiles;
@@ -326,7 +328,11 @@ pub fn run_interleaved(
     let mut images: Vec<Vec<(u64, image::RgbaImage)>> = (0..n).map(|_| Vec::new()).collect();
     let mut errors: Vec<Option<Error>> = (0..n).map(|_| None).collect();
     let mut done = 0;
+    let mut host_start = None;
     for frame in 0..total {
+        if frame == options.warmup {
+            host_start = HostSample::now();
+        }
         for (k, technique) in techniques.iter_mut().enumerate() {
             if errors[k].is_some() {
                 continue;
@@ -347,17 +353,25 @@ pub fn run_interleaved(
             progress(done, total * n as u64);
         }
     }
+    let host = host_start
+        .zip(HostSample::now())
+        .and_then(|(a, b)| a.load_until(&b));
     Ok(techniques
         .iter()
         .zip(frames.into_iter().zip(images))
         .zip(errors)
         .map(|((technique, (frames, images)), error)| match error {
             Some(e) => Err(e),
-            None => Ok(RunResult {
-                summary: RunSummary::from_frames(&frames, &technique.param_table()),
-                frames,
-                images,
-            }),
+            None => {
+                let mut summary = RunSummary::from_frames(&frames, &technique.param_table());
+                summary.host_other_cores = host.map(|h| h.other_cores);
+                summary.host_steal = host.map(|h| h.steal);
+                Ok(RunResult {
+                    summary,
+                    frames,
+                    images,
+                })
+            }
         })
         .collect())
 }

@@ -198,6 +198,14 @@ pub struct RunSummary {
     pub flip_vs_reference_quarter: Option<f64>,
     /// Median GPU wall time per blade shown (drawn or represented), ns.
     pub blade_cost_ns: Option<f64>,
+    /// CPU cores other processes kept busy, on average, while the run's frames were measured
+    /// ([`super::HostLoad`]; empty off Linux and in older files). On a software rasteriser
+    /// every such core is taken from the GPU: a run beside a compile measures the compile too.
+    #[serde(default)]
+    pub host_other_cores: Option<f64>,
+    /// Share of the CPUs' time the hypervisor gave to other machines meanwhile, 0..1.
+    #[serde(default)]
+    pub host_steal: Option<f64>,
 }
 
 /// The status of a finished run, and of a row written before runs had a status.
@@ -270,6 +278,8 @@ impl RunSummary {
             blade_cost_ns: wall
                 .zip(shown.filter(|&n| n > 0))
                 .map(|(w, n)| w.median * 1e6 / n as f64),
+            host_other_cores: None,
+            host_steal: None,
         }
     }
 
@@ -447,9 +457,16 @@ mod tests {
             counters: String::new(),
             levels: Vec::new(),
         };
-        let frames = [frame(100, 300, 2.0), frame(200, 200, 4.0), frame(300, 100, 6.0)];
+        let frames = [
+            frame(100, 300, 2.0),
+            frame(200, 200, 4.0),
+            frame(300, 100, 6.0),
+        ];
         let s = RunSummary::from_frames(&frames, &toml::Table::new());
-        assert_eq!((s.blades_drawn, s.blades_represented), (Some(200), Some(200)));
+        assert_eq!(
+            (s.blades_drawn, s.blades_represented),
+            (Some(200), Some(200))
+        );
         assert_eq!(s.blades_shown(), Some(400));
         // 4 ms over the 400 blades of the median frame.
         assert_eq!(s.blade_cost_ns, Some(4.0 * 1e6 / 400.0));

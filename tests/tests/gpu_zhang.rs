@@ -101,7 +101,9 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
         "{every:?}, {every_draws} draws"
     );
     assert!(
-        culled.blades_shown() > 0 && culled.blades_shown() < every.blades_shown() && culled_draws >= 2,
+        culled.blades_shown() > 0
+            && culled.blades_shown() < every.blades_shown()
+            && culled_draws >= 2,
         "{culled:?} ({culled_draws} draws) against {every:?}"
     );
     assert_eq!(

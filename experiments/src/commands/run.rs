@@ -292,18 +292,20 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
     let _ = writeln!(
         s,
         "GPU times are wall time from submit to the end of `poll(wait)` (the ground truth on software \
-         rasterisers); timestamp-query figures are in `runs.csv` beside them. Frame = CPU stages + GPU wall.\n"
+         rasterisers); timestamp-query figures are in `runs.csv` beside them. Frame = CPU stages + GPU wall. \
+         *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
+         were measured: on a software rasteriser that time is taken from the GPU.\n"
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades drawn | blades represented | triangles | GPU MB |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades drawn | blades represented | triangles | GPU MB | other processes (cores) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
@@ -316,7 +318,8 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
             count(r.blades_drawn),
             count(r.blades_represented),
             count(r.triangles),
-            fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1)
+            fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1),
+            fmt_opt(r.host_other_cores, 2)
         );
     }
     let _ = writeln!(s, "\n## Images\n");

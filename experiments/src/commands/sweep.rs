@@ -157,14 +157,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     for run in todo {
         bar.set_message(format!("{} on {}", run.technique, run.scene));
         let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
-        match execute(
-            &gpu,
-            &spec,
-            scene,
-            run,
-            &mut reference,
-            store.dir(),
-        ) {
+        match execute(&gpu, &spec, scene, run, &mut reference, store.dir()) {
             Ok((row, frames, params)) => store.append(&row, &frames, &params)?,
             Err(e) => {
                 // A failed run is recorded as failed and the sweep goes on.

@@ -43,6 +43,8 @@ pub(super) struct Config {
     pub(super) flip: Vec<f64>,
     /// Mean FLIP against the reference at 1/4 scale, per repetition.
     pub(super) flip_quarter: Vec<f64>,
+    /// Cores other processes kept busy during each finished repetition (where recorded).
+    pub(super) host_other_cores: Vec<f64>,
     /// Blades drawn as geometry (the last finished repetition's).
     pub(super) blades_drawn: Option<f64>,
     /// Blades impostors stand for (the last finished repetition's).
@@ -83,7 +85,19 @@ impl Config {
         let band = self.gpu_wall_band.iter().copied().fold(0.0, f64::max);
         (self.gpu_wall.len() > 1 && hi - lo > band).then_some(hi - lo)
     }
+
+    /// The most cores other processes took during one of its repetitions, when that is more
+    /// than [`BUSY_HOST_CORES`]: its times then measure the host's load as well.
+    pub(super) fn busy_host(&self) -> Option<f64> {
+        let most = self.host_other_cores.iter().copied().fold(0.0, f64::max);
+        (most > BUSY_HOST_CORES).then_some(most)
+    }
 }
+
+/// Cores other processes may take during a run before the report says its times are not the
+/// configuration's alone: a quarter of a core (a quiet host measured 0.00-0.05 here; a
+/// compile beside a run takes 1-2).
+pub(super) const BUSY_HOST_CORES: f64 = 0.25;
 
 /// Reads runs.csv into configurations keyed by configuration id, repetitions pooled. A run
 /// written before its group's reference (another shard's, after `merge`) has no ratio in
@@ -117,8 +131,11 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         }
         c.params.clone_from(&r.params);
         c.gpu_wall.extend(r.gpu_wall_ms_median);
-        c.gpu_wall_band
-            .extend(r.gpu_wall_ms_p95.zip(r.gpu_wall_ms_p5).map(|(hi, lo)| hi - lo));
+        c.gpu_wall_band.extend(
+            r.gpu_wall_ms_p95
+                .zip(r.gpu_wall_ms_p5)
+                .map(|(hi, lo)| hi - lo),
+        );
         c.frame.extend(r.frame_ms_median);
         c.update.extend(r.update_ms_median);
         c.upload.extend(r.upload_ms_median);
@@ -126,6 +143,7 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         c.ratio.extend(r.gpu_wall_ratio_to_reference);
         c.flip.extend(r.flip_vs_reference);
         c.flip_quarter.extend(r.flip_vs_reference_quarter);
+        c.host_other_cores.extend(r.host_other_cores);
         c.blades_drawn = r.blades_drawn.map(|b| b as f64);
         c.blades_represented = r.blades_represented.map(|b| b as f64);
         c.triangles = r.triangles.map(|t| t as f64);
@@ -186,4 +204,38 @@ pub(super) fn label(c: &Config) -> String {
         }
     }
     l
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn config(medians: &[f64], bands: &[f64], other: &[f64]) -> Config {
+        Config {
+            gpu_wall: medians.to_vec(),
+            gpu_wall_band: bands.to_vec(),
+            host_other_cores: other.to_vec(),
+            ..Config::default()
+        }
+    }
+
+    #[test]
+    fn repetitions_disagree_beyond_their_own_noise() {
+        // 60 ms and 195 ms with bands of 10 ms (issue 19 §8's football field): flagged.
+        let c = config(&[60.0, 195.0, 190.0], &[10.0, 8.0, 9.0], &[]);
+        assert_eq!(c.repetitions_disagree(), Some(135.0));
+        // Within one repetition's band: not flagged; one repetition: nothing to compare.
+        assert_eq!(
+            config(&[60.0, 65.0], &[10.0, 8.0], &[]).repetitions_disagree(),
+            None
+        );
+        assert_eq!(config(&[60.0], &[1.0], &[]).repetitions_disagree(), None);
+    }
+
+    #[test]
+    fn a_busy_host_is_named() {
+        assert_eq!(config(&[1.0], &[0.1], &[0.02, 1.3]).busy_host(), Some(1.3));
+        assert_eq!(config(&[1.0], &[0.1], &[0.02, 0.2]).busy_host(), None);
+        assert_eq!(config(&[1.0], &[0.1], &[]).busy_host(), None);
+    }
 }

@@ -10,7 +10,7 @@ use grassbench::runner::write_atomic;
 
 use super::fmt_opt as fmt;
 use super::sweep::SweepMeta;
-use configs::{Config, label, load, median};
+use configs::{BUSY_HOST_CORES, Config, label, load, median};
 use plots::{frame_time_plot, pareto_plot, scaling_plot};
 
 /// Arguments of `report`.
@@ -112,6 +112,25 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
                     .collect::<Vec<_>>()
                     .join(", "),
                 c.gpu_wall_band.iter().copied().fold(0.0, f64::max)
+            );
+        }
+    }
+    let busy: Vec<(&Config, f64)> = configs
+        .values()
+        .filter_map(|c| Some((c, c.busy_host()?)))
+        .collect();
+    if !busy.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n**Warning: a busy host.** Other processes kept more than {BUSY_HOST_CORES} of a core busy while these configurations measured (`host_other_cores` in runs.csv); on a software rasteriser that time is taken from the GPU, so their times are too slow by up to that share of the cores:\n"
+        );
+        for (c, cores) in &busy {
+            let _ = writeln!(
+                md,
+                "- {} on {} {}: up to {cores:.2} cores",
+                label(c),
+                c.scene,
+                c.size
             );
         }
     }
