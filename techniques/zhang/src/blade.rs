@@ -19,11 +19,21 @@ pub fn slack(length: f32, a: Vec3, b: Vec3) -> f32 {
 }
 
 /// A point on the backbone: the cubic Bezier curve of Eq. (5),
-/// `p = P0(1−t)³ + 3P1t(1−t)² + 3P2t²(1−t) + P3t³`. The vertex shader evaluates the same
-/// polynomial (`bezier` in `shaders/blade.wgsl`).
+/// `p = P0(1−t)³ + 3P1t(1−t)² + 3P2t²(1−t) + P3t³`. The twin of `bezier` in
+/// `shaders/blade.wgsl`, which the vertex shader draws with (tests/tests/twins.rs compares
+/// the two).
 pub fn bezier(p: &[Vec3; CONTROL_POINTS], t: f32) -> Vec3 {
     let s = 1.0 - t;
     p[0] * (s * s * s) + p[1] * (3.0 * t * s * s) + p[2] * (3.0 * t * t * s) + p[3] * (t * t * t)
+}
+
+/// The derivative `dp/dt` of Eq. (5),
+/// `3(1−t)²(P1 − P0) + 6(1−t)t(P2 − P1) + 3t²(P3 − P2)`: the backbone's direction, which
+/// the vertex shader turns into the blade's face normal. The twin of `bezier_tangent` in
+/// `shaders/blade.wgsl`.
+pub fn bezier_tangent(p: &[Vec3; CONTROL_POINTS], t: f32) -> Vec3 {
+    let s = 1.0 - t;
+    3.0 * s * s * (p[1] - p[0]) + 6.0 * s * t * (p[2] - p[1]) + 3.0 * t * t * (p[3] - p[2])
 }
 
 /// The constants of one animation step, shared by every blade and flower.
@@ -280,6 +290,44 @@ mod tests {
             let p = [a, b, c, d];
             prop_assert!((bezier(&p, 0.0) - a).length() < 1e-5);
             prop_assert!((bezier(&p, 1.0) - d).length() < 1e-4);
+        }
+
+        /// Between its end points the backbone is the thesis' cubic in Bernstein form,
+        /// `Σ C(3, i) tⁱ (1 − t)³⁻ⁱ P_i` (Eq. 5), evaluated here in f64 with the binomial
+        /// coefficients computed, and its tangent is that polynomial's derivative (central
+        /// differences of it).
+        #[test]
+        fn bezier_is_the_bernstein_cubic_between_its_end_points(
+            a in vec3(), b in vec3(), c in vec3(), d in vec3(), t in 0.01f32..0.99,
+        ) {
+            let p = [a, b, c, d];
+            let bernstein = |t: f64| {
+                let mut sum = [0.0f64; 3];
+                for (i, point) in p.iter().enumerate() {
+                    let binomial = (0..i).fold(1.0, |c, k| c * (3 - k) as f64 / (k + 1) as f64);
+                    let weight = binomial * t.powi(i as i32) * (1.0 - t).powi(3 - i as i32);
+                    for (s, x) in sum.iter_mut().zip(point.to_array()) {
+                        *s += weight * f64::from(x);
+                    }
+                }
+                sum
+            };
+            let t64 = f64::from(t);
+            let expected = bernstein(t64);
+            let got = bezier(&p, t).to_array();
+            // f32 evaluation of coordinates up to 20 m: errors of a few ulps (~1e-5 m).
+            for k in 0..3 {
+                prop_assert!((f64::from(got[k]) - expected[k]).abs() < 1e-4, "t {t}: {got:?} vs {expected:?}");
+            }
+            let h = 1e-4;
+            let (above, below) = (bernstein(t64 + h), bernstein(t64 - h));
+            let tangent = bezier_tangent(&p, t).to_array();
+            for k in 0..3 {
+                let difference = (above[k] - below[k]) / (2.0 * h);
+                // Central differences of a cubic are exact up to h² · |P‴| / 6 (< 1e-5 for
+                // control points within 20 m); the f32 tangent is good to a few 1e-5.
+                prop_assert!((f64::from(tangent[k]) - difference).abs() < 1e-3, "t {t}: {tangent:?} vs {difference}");
+            }
         }
 
         /// After any step in any wind, the root has not moved, each control-polygon segment

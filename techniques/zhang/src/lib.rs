@@ -124,9 +124,10 @@
 //!   upright blade's wind direction is undefined).
 //! - The Bezier evaluation and the segment points are computed in the vertex shader from the
 //!   control points (the thesis does it on the CPU): same geometry, 48 instead of `24·n`
-//!   bytes of upload per blade. `blade::bezier` writes Eq. (5) on the CPU; nothing draws or
-//!   animates with it, and only its own property test (the curve passes through `P0` and
-//!   `P3`) calls it: no test compares it with the shader's `bezier`.
+//!   bytes of upload per blade. `blade::bezier` and `blade::bezier_tangent` write Eq. (5) and
+//!   its derivative on the CPU; nothing draws or animates with them: they are the shader's
+//!   twins, tested against the Bernstein form of the thesis' curve at interior parameters,
+//!   and `tests/tests/twins.rs` runs the shader's `bezier` and `bezier_tangent` against them.
 //! - The ground under a blade is the plane through its root; flowers attach to a blade
 //!   position rather than being sprinkled independently.
 //! - Sec. 4.2 raises the *velocity* of far billboards with distance; we scale their top
