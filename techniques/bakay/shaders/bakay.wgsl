@@ -34,28 +34,25 @@ struct Params {
 @group(1) @binding(7) var blade_attrs: texture_2d<f32>;
 @group(1) @binding(8) var grass_sampler: sampler;
 
-// Tilt of segment j: θ_j = I·(π/2)·(j/N)^p (Sec. 3: a constant increment per shell for p = 1).
+// Tilt of segment j: θ_j = I·(π/2)·(j/N)^p (Sec. 3: a constant increment per shell for p = 1;
+// twin of `bend::tilt`).
 fn tilt(j: u32, intensity: f32) -> f32 {
     let x = f32(j) / f32(params.counts.x);
     let profile = select(pow(x, params.shape.y), 0.0, x <= 0.0);
     return intensity * 0.5 * PI * profile;
 }
 
-// V_w = W − (W·N)N, normalised; zero when W is along the normal or zero.
+// V_w = W − (W·N)N, normalised; zero when W is along the normal or zero (twin of
+// `wind::tangent_direction`).
 fn tangent_direction(w: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let t = w - dot(w, n) * n;
     let l = length(t);
     return select(vec3(0.0), t / l, l > 1e-6);
 }
 
-@compute @workgroup_size(64)
-fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
-    let v = id.x;
-    if (v >= params.counts.y) {
-        return;
-    }
-    let p = vec3(ground[6u * v], ground[6u * v + 1u], ground[6u * v + 2u]);
-    let n = vec3(ground[6u * v + 3u], ground[6u * v + 4u], ground[6u * v + 5u]);
+// The wind vector V_w (xyz) and intensity I (w) of the ground vertex at `p` with unit normal
+// `n` (Sec. 3; twin of `wind::point_source` and `wind::scene` in src/wind.rs).
+fn ground_wind(p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let max_i = params.shape.z;
     var dir = vec3(0.0);
     var intensity = 0.0;
@@ -75,13 +72,32 @@ fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
         dir = tangent_direction(wind, n);
         intensity = min(length(tangential) / params.shape.w, max_i);
     }
-    wind_out[v] = vec4(dir, intensity);
-    // Running totals up the blade, one segment of length S per shell.
+    return vec4(dir, intensity);
+}
+
+// Segment `k` of a blade at intensity I, one inter-shell distance S long: what it adds to the
+// running totals (n, w) along the normal and the wind vector (Fig. 6; twin of
+// `bend::segment` in src/bend.rs).
+fn shell_segment(k: u32, intensity: f32) -> vec2<f32> {
+    let a = tilt(k, intensity);
+    return params.shape.x * vec2(cos(a), sin(a));
+}
+
+@compute @workgroup_size(64)
+fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
+    let v = id.x;
+    if (v >= params.counts.y) {
+        return;
+    }
+    let p = vec3(ground[6u * v], ground[6u * v + 1u], ground[6u * v + 2u]);
+    let n = vec3(ground[6u * v + 3u], ground[6u * v + 4u], ground[6u * v + 5u]);
+    let wind = ground_wind(p, n);
+    wind_out[v] = wind;
+    // Running totals up the blade, one segment of length S per shell (`bend::offsets`).
     var nw = vec2(0.0);
     for (var k = 0u; k < params.counts.x; k++) {
         offsets_out[k * params.counts.y + v] = nw;
-        let a = tilt(k, intensity);
-        nw += params.shape.x * vec2(cos(a), sin(a));
+        nw += shell_segment(k, wind.w);
     }
 }
 

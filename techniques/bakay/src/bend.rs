@@ -1,5 +1,6 @@
 //! The length-preserving bend of Bakay Sec. 3 (their Fig. 6), on the CPU: the mirror of the
-//! running sums `cs_bend` keeps in `shaders/bakay.wgsl`.
+//! running sums `cs_bend` keeps in `shaders/bakay.wgsl` (tests/tests/twins.rs runs the shader's
+//! `tilt`, `shell_segment` and `cs_bend` against these functions).
 //!
 //! A blade is a chain of segments of equal length `S` (the inter-shell distance). Segment `j`
 //! leans away from the surface normal by the tilt
@@ -22,16 +23,25 @@ pub fn tilt(j: u32, shells: u32, intensity: f32, stiffness: f32) -> f32 {
     intensity * FRAC_PI_2 * x.powf(stiffness)
 }
 
+/// Segment `k` of a blade, `spacing` long and tilted by [`tilt`]: what it adds to the running
+/// totals `(n, w)` (along the normal, along the wind vector). The twin of `shell_segment` in
+/// `shaders/bakay.wgsl`.
+pub fn segment(k: u32, shells: u32, spacing: f32, intensity: f32, stiffness: f32) -> (f32, f32) {
+    let (s, c) = tilt(k, shells, intensity, stiffness).sin_cos();
+    (spacing * c, spacing * s)
+}
+
 /// Offsets `(n_k, w_k)` (along the normal, along the wind vector) of shells `k = 0..shells` for
-/// inter-shell distance `spacing`, as running totals (shell 0 is the ground: `(0, 0)`).
+/// inter-shell distance `spacing`, as running totals (shell 0 is the ground: `(0, 0)`), the
+/// totals `cs_bend` keeps.
 pub fn offsets(shells: u32, spacing: f32, intensity: f32, stiffness: f32) -> Vec<(f32, f32)> {
     let mut out = Vec::with_capacity(shells as usize);
     let (mut n, mut w) = (0.0f32, 0.0f32);
     for k in 0..shells {
         out.push((n, w));
-        let (s, c) = tilt(k, shells, intensity, stiffness).sin_cos();
-        n += spacing * c;
-        w += spacing * s;
+        let (dn, dw) = segment(k, shells, spacing, intensity, stiffness);
+        n += dn;
+        w += dw;
     }
     out
 }

@@ -46,7 +46,9 @@
 //!   stretches blades as they bend; with `j` every segment keeps the length `S` (tested).
 //!   Running totals (Sec. 3: "a running total is kept") are kept per vertex in a compute pass
 //!   (`cs_bend`), once per frame, instead of the paper's per-animation-step registers: it
-//!   serves the point source and any scene wind alike, `O(vertices · N)`.
+//!   serves the point source and any scene wind alike, `O(vertices · N)`. [`wind`] and
+//!   [`bend`] are its CPU twins: `tests/tests/twins.rs` runs `cs_bend` over generated ground
+//!   vertices against them and checks that every segment it leaves is `S` long.
 //! - **Density, covering (Boulanger Sec. 3.4, Zhang Sec. 5.5.2).** A texel is drawn only where
 //!   the covering map says grass and where the density map exceeds its blade's threshold, the
 //!   rule the scene's blade field (and so `reference`) uses per blade.

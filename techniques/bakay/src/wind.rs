@@ -1,5 +1,6 @@
-//! Per-vertex wind of Bakay Sec. 3 on the CPU: the mirror of what `cs_bend` in
-//! `shaders/bakay.wgsl` computes for every vertex of the ground mesh.
+//! Per-vertex wind of Bakay Sec. 3 on the CPU: the mirror of what `ground_wind` in
+//! `shaders/bakay.wgsl` computes for every vertex of the ground mesh in `cs_bend`
+//! (tests/tests/twins.rs runs `cs_bend` against these functions).
 //!
 //! Each vertex gets a wind vector `V_w` in its tangent plane and an intensity `I`:
 //! - **point source** (the paper's): `W` = unit vector from the vertex to the source,
@@ -27,9 +28,21 @@ pub struct VertexWind {
     pub intensity: f32,
 }
 
-/// `V_w = normalize(W − (W·N)N)`, or zero when `W` is (nearly) along the normal or zero.
+/// Tangential parts shorter than this have no direction: the shader's cut-off in
+/// `tangent_direction`, where the rounding of `W − (W·N)N` for `W` along `N` would give a
+/// random one.
+pub const NO_DIRECTION: f32 = 1e-6;
+
+/// `V_w = normalize(W − (W·N)N)`, or zero when `W` is (nearly) along the normal or zero:
+/// the twin of `tangent_direction` in `shaders/bakay.wgsl`.
 pub fn tangent_direction(w: Vec3, normal: Vec3) -> Vec3 {
-    (w - w.dot(normal) * normal).normalize_or_zero()
+    let t = w - w.dot(normal) * normal;
+    let length = t.length();
+    if length > NO_DIRECTION {
+        t / length
+    } else {
+        Vec3::ZERO
+    }
 }
 
 /// Animation step of a point (distance band from the source).
@@ -64,7 +77,7 @@ pub fn point_source(
 pub fn scene(velocity: Vec3, normal: Vec3, reference_speed: f32, max_intensity: f32) -> VertexWind {
     let tangential = velocity - velocity.dot(normal) * normal;
     VertexWind {
-        vector: tangential.normalize_or_zero(),
+        vector: tangent_direction(velocity, normal),
         intensity: (tangential.length() / reference_speed).min(max_intensity),
     }
 }
