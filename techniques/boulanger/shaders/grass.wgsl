@@ -517,16 +517,25 @@ struct SliceTexel {
     gy: vec2<f32>,
 }
 
-// The texel at `local` (in cells from `first_cell`) through the patch orientation map (Sec. 4.1):
-// one unfiltered texel per cell, bit 0 = mirror x, bit 1 = mirror z; Eq. 7: u' = (patchSize ·
-// orientation · u) mod 1. Call in uniform control flow (screen derivatives).
-fn slice_texel(local: vec2<f32>, first_cell: vec2<i32>) -> SliceTexel {
+// The patch orientation map (Sec. 4.1) at `local` (in cells from `first_cell`): one unfiltered
+// texel per cell, bit 0 = mirror x, bit 1 = mirror z. Returns the cell's mirror signs (xy) and,
+// by Eq. 7, u' = (patchSize · orientation · u) mod 1, the texture coordinates (zw). Twin of
+// `slice::orientation_texel` in src/slice.rs.
+fn orientation_texel(local: vec2<f32>, first_cell: vec2<i32>) -> vec4<f32> {
     let dims = vec2<i32>(textureDimensions(orientation_map));
     let index = clamp(first_cell + vec2<i32>(floor(local)), vec2(0), dims - 1);
     let bits = textureLoad(orientation_map, index, 0).r;
+    let signs = vec2(select(1.0, -1.0, (bits & 1u) != 0u), select(1.0, -1.0, (bits & 2u) != 0u));
+    return vec4(signs, fract(signs * local));
+}
+
+// The texel at `local` (in cells from `first_cell`) through the patch orientation map, with the
+// screen gradients. Call in uniform control flow (screen derivatives).
+fn slice_texel(local: vec2<f32>, first_cell: vec2<i32>) -> SliceTexel {
+    let o = orientation_texel(local, first_cell);
     var t: SliceTexel;
-    t.signs = vec2(select(1.0, -1.0, (bits & 1u) != 0u), select(1.0, -1.0, (bits & 2u) != 0u));
-    t.uv = fract(t.signs * local);
+    t.signs = o.xy;
+    t.uv = o.zw;
     t.gx = dpdx(local) * t.signs;
     t.gy = dpdy(local) * t.signs;
     return t;

@@ -92,7 +92,8 @@
 //!   threshold is tested against the local density and geometry's share; where a pixel covers
 //!   many texels (minified more than about 1.4x) the single averaged threshold would be
 //!   meaningless, so the expected fraction `ρ · mean_t(1 − opacity_g)` of the uniformly spread
-//!   thresholds is drawn instead.
+//!   thresholds is drawn instead. `lod` and `slice::orientation_texel` are the CPU twins of
+//!   the shader's weights, opacities, share and orientation map (`tests/tests/twins.rs`).
 //! - **Ground shadows** (Sec. 3.5, Fig. 15, [`ground_shadow`]). One pass before the grass: the
 //!   geometric blades projected along the sun onto the ground (the plane tangent at each root)
 //!   mark the stencil where they pass the depth test, a screen-covering triangle multiplies the
@@ -222,6 +223,7 @@ use grassbench::{
     TechniqueInfo, TechniqueStats,
 };
 
+pub use gpu::params_uniform;
 pub use ground_shadow::GroundShadows;
 pub use lod::LodDistances;
 pub use params::{Params, Transparency};

@@ -16,7 +16,7 @@ use crate::patch::PatchBlade;
 use crate::quadtree::CellGrid;
 use crate::shader::CellRecord;
 use crate::vertical::box_layer;
-use glam::Vec2;
+use glam::{IVec2, Vec2};
 
 /// GPU memory of the horizontal slice's BTF of side `resolution` with its mip chain.
 pub fn texture_bytes(resolution: u32) -> u64 {
@@ -40,6 +40,26 @@ pub fn bake_layer(
         [1.0, 0.0, 0.0, 0.0],
         Vec2::splat(side),
     )
+}
+
+/// The patch orientation map read at `local`, a position in cells from the first cell
+/// `first_cell` of a macro-cell (`local = patchSize · (u, v)` of Eq. 6, `patchSize` the
+/// macro-cell's side in cells), on the cells of `grid` with the scene's `seed`: the
+/// orientation of the cell there (clamped to the grid, as the map's unfiltered texel is) and,
+/// by Eq. 7, the horizontal slice's texture coordinates `u' = (patchSize · orientation · u)
+/// mod 1`. The twin of `orientation_texel` in `shaders/grass.wgsl`.
+pub fn orientation_texel(
+    grid: &CellGrid,
+    seed: u64,
+    local: Vec2,
+    first_cell: IVec2,
+) -> (Orientation, Vec2) {
+    let max = IVec2::new(grid.nx as i32 - 1, grid.nz as i32 - 1);
+    let cell = (first_cell + local.floor().as_ivec2()).clamp(IVec2::ZERO, max.max(IVec2::ZERO));
+    let orientation = Orientation::of_cell(seed, cell.x as u32, cell.y as u32);
+    let mirrored = orientation.signs() * local;
+    // `mod 1` into [0, 1) for negative coordinates too (WGSL's `fract`, not Rust's).
+    (orientation, mirrored - mirrored.floor())
 }
 
 /// The patch orientation map (Sec. 4.1, Fig. 20a): one `R8Uint` texel per cell, bit 0 = mirror
@@ -73,4 +93,63 @@ pub fn orientation_map(
         &data,
     );
     (texture.create_view(&Default::default()), data.len() as u64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Eq. 7 through the map shows, at every interior point of a macro-cell, the texel of the
+    /// mirrored patch that geometry draws there (Sec. 3.1: the cell's copy is the patch
+    /// mirrored about its centre, so the point `w` of a cell shows the patch point
+    /// `orientation.apply(w − centre)`, at texture coordinates `point / size + 1/2` in the
+    /// top view), and it is Eq. 7's `(patchSize · orientation · u) mod 1` as printed.
+    #[test]
+    fn eq_7_shows_the_mirrored_patch_that_geometry_draws() {
+        let grid = CellGrid {
+            origin: Vec2::new(-10.0, -6.0),
+            cell: 0.5,
+            nx: 40,
+            nz: 24,
+        };
+        let mut mirrored = [0u32; 4];
+        for seed in [1, 7] {
+            for (first, side) in [
+                (IVec2::new(0, 0), 1),
+                (IVec2::new(4, 8), 4),
+                (IVec2::new(16, 8), 8),
+            ] {
+                for a in 0..37 {
+                    for b in 0..29 {
+                        // Interior points of the macro-cell, u in (0, 1)², none on a cell border.
+                        let u = Vec2::new((a as f32 + 0.37) / 37.0, (b as f32 + 0.61) / 29.0);
+                        let local = u * side as f32;
+                        let (o, uv) = orientation_texel(&grid, seed, local, first);
+                        let cell = first + local.floor().as_ivec2();
+                        let expected = Orientation::of_cell(seed, cell.x as u32, cell.y as u32);
+                        assert_eq!(o, expected);
+                        mirrored[o.bits() as usize] += 1;
+                        let w = grid.origin + (first.as_vec2() + local) * grid.cell;
+                        let centre = grid.cell_min(cell.x as u32, cell.y as u32) + 0.5 * grid.cell;
+                        let patch_uv = expected.apply((w - centre) / grid.cell) + 0.5;
+                        assert!(
+                            (uv - patch_uv).abs().max_element() < 1e-4,
+                            "{local}: {uv} vs {patch_uv}"
+                        );
+                        let printed =
+                            (side as f32 * expected.signs() * u).map(|c| c.rem_euclid(1.0));
+                        assert!(
+                            (uv - printed).abs().max_element() < 1e-5,
+                            "{local}: {uv} vs {printed}"
+                        );
+                    }
+                }
+            }
+        }
+        // Every mirror was seen, so the signs were exercised both ways.
+        assert!(mirrored.iter().all(|&c| c > 100), "{mirrored:?}");
+        // Past the grid, the map's last texel is read (clamped), as the GPU's textureLoad.
+        let (o, _) = orientation_texel(&grid, 1, Vec2::new(3.5, 0.2), IVec2::new(39, -2));
+        assert_eq!(o, Orientation::of_cell(1, 39, 0));
+    }
 }
