@@ -77,7 +77,7 @@ struct VsOut {
 // --- Receivers and postures (Sec. 3.2) ------------------------------------------------------
 
 // Bend angle of segment `i` of a blade of `kind` at posture `index`: linear between the two
-// nearest pre-computed postures of its kind (`receiver::angles_at` on the CPU).
+// nearest pre-computed postures of its kind (twin of `receiver::angles_at`).
 fn bend_angle(kind: u32, index: f32, i: u32) -> f32 {
     let k = params.more.x;
     let n = params.counts.y;
@@ -87,7 +87,8 @@ fn bend_angle(kind: u32, index: f32, i: u32) -> f32 {
     return mix(postures[at], postures[at + n], u - f32(row));
 }
 
-// Unit direction of a segment tilted by `t` (direction of the tilt, length the angle).
+// Unit direction of a segment tilted by `t` (direction of the tilt, length the angle; twin of
+// `patch::segment_direction`).
 fn segment_direction(t: vec2<f32>) -> vec3<f32> {
     let a = length(t);
     if (a < 1e-6) {
@@ -123,7 +124,8 @@ fn strip_xz(e: Entry, k: u32, u: f32) -> vec2<f32> {
 }
 
 // Point at height `level` (in segments, fractional) of edge `j` of strip `k` of the strips
-// entry `e`, the `slot`-th strips entry: the edge's receiver bends it like a blade.
+// entry `e`, the `slot`-th strips entry: the edge's receiver bends it like a blade (twin of
+// `morph::edge_point`).
 fn edge_point(e: Entry, slot: u32, k: u32, j: u32, level: f32) -> vec3<f32> {
     let n = params.counts.y;
     let xz = strip_xz(e, k, f32(j) / f32(params.counts.w));
@@ -140,7 +142,8 @@ fn edge_point(e: Entry, slot: u32, k: u32, j: u32, level: f32) -> vec3<f32> {
     return p;
 }
 
-// The animated strip surface at texture coordinates `uv` (v up): between its two edges.
+// The animated strip surface at texture coordinates `uv` (v up): between its two edges (twin of
+// `morph::strip_surface`).
 fn strip_surface(e: Entry, slot: u32, k: u32, uv: vec2<f32>) -> vec3<f32> {
     let c = params.counts.w;
     let x = clamp(uv.x, 0.0, 1.0) * f32(c);
@@ -270,6 +273,20 @@ fn fs_flat(in: VsOut) -> @location(0) vec4<f32> {
 
 // --- 3D blades (Sec. 2.1, Fig. 2; morphing Sec. 4.2) ------------------------------------------
 
+// Sec. 4.2: during a 3D <-> 2.5D transition, point `level` of blade `b` of the 3D entry `e`,
+// at `p` in its own animated shape, moves linearly (`e.morph` of the way) towards the place its
+// painted copy has on the animated strip of the same patch (twin of `morph::morphed`).
+fn morphed(p: vec3<f32>, e: Entry, b: u32, level: u32) -> vec3<f32> {
+    if (e.morph <= 0.0) {
+        return p;
+    }
+    let o = e.flags & 1u;
+    let uv = painted[(b * 2u + o) * (params.counts.y + 1u) + level];
+    let strips = entries[e.link];
+    let painted_at = strip_surface(strips, e.link - params.bases.x, blades[b].strips[o], uv);
+    return mix(p, painted_at, e.morph);
+}
+
 @vertex
 fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> VsOut {
     var out: VsOut;
@@ -299,15 +316,7 @@ fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
             tangent = dir;
         }
     }
-    // Sec. 4.2: during a 3D <-> 2.5D transition the blade moves linearly towards the place
-    // its painted copy has on the animated strip.
-    if (e.morph > 0.0) {
-        let o = e.flags & 1u;
-        let uv = painted[(b * 2u + o) * (n + 1u) + level];
-        let strips = entries[e.link];
-        let painted_at = strip_surface(strips, e.link - params.bases.x, blade.strips[o], uv);
-        p = mix(p, painted_at, e.morph);
-    }
+    p = morphed(p, e, b, level);
     let s = f32(level) / f32(n);
     let facing = blade.root_facing.z;
     let side_axis = vec3(cos(facing), 0.0, sin(facing));

@@ -50,7 +50,8 @@
 //!   sorting ("we just need to process the prairie in the right order").
 //! - **Transitions** (Sec. 4, [`frame`]). A transition lasts `transition_steps` frames (the
 //!   paper's twenty). 3D ↔ 2.5D: both levels animate; each 3D blade is drawn at a linear blend
-//!   between its own animated shape and the point its painted copy has on the animated strip,
+//!   between its own animated shape and the point its painted copy has on the animated strip
+//!   ([`morph`], the CPU twin of the shader's strip surface and morph),
 //!   then the last `fade` of the way cross-fades blades and strips ("an additional fade in -
 //!   fade out", Sec. 4.2). 2.5D ↔ 2D: strips sink into (grow out of) the ground while the 2D
 //!   texture fades in (out) on its offset surface (Sec. 4.3). A transition the camera turns back
@@ -94,6 +95,7 @@
 pub mod frame;
 pub mod gpu;
 pub mod lod;
+pub mod morph;
 pub mod paint;
 pub mod params;
 pub mod patch;
@@ -104,7 +106,6 @@ pub mod tiling;
 use glam::{Vec2, Vec3};
 use grassbench::gpu::GpuEstimate;
 use grassbench::technique::{LevelBlades, Technique, TechniqueEntry, Variant, Variants};
-use grassbench::wind::Postures;
 use grassbench::{
     FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
     TechniqueInfo, TechniqueStats,
@@ -114,7 +115,7 @@ pub use gpu::SHADER;
 pub use params::{Density, Params, Quality};
 
 use frame::{Entry, FLAG_ORIENTATION, FLAG_REVERSED, Lists};
-use gpu::{BladeGpu, Draws, Gpu, ParamsUniform, Statics};
+use gpu::{Draws, Gpu, ParamsUniform, Statics};
 use lod::{LodGrid, Ranges};
 use patch::{Layout, Patch};
 use precompute::{Precomputed, Sizes};
@@ -174,44 +175,24 @@ impl Technique for Perbet {
         let scene = ctx.scene;
         let grass = &scene.config.grass;
         let precompute = Precomputed::new(scene, &params)?;
+        let blades_per_patch = params.blades(grass.density);
+        let arrays = precompute.arrays();
+        let uniform = precompute.uniform(&params, grass);
         let Precomputed {
             layout,
             patches,
-            postures,
             strip_layers,
             flat_layers,
+            ..
         } = precompute;
-        let n = layout.segments as usize;
-        let blades_per_patch = params.blades(grass.density);
-        let mut blades = Vec::new();
-        let mut tilts = Vec::new();
-        let mut painted = Vec::new();
-        for b in patches.iter().flat_map(|p| &p.blades) {
-            blades.push(BladeGpu {
-                root_facing: [b.root.x, b.root.y, b.facing, b.height],
-                shape: [b.width, b.variation, b.threshold, 0.0],
-                strips: [b.strips[0], b.strips[1], b.kind, 0],
-            });
-            tilts.extend(b.tilts.iter().map(|t| t.to_array()));
-            let points = b.rest_points(layout.segments);
-            for o in 0..2 {
-                painted.extend(points.iter().map(|p| layout.painted_uv(o, *p).to_array()));
-            }
-        }
-        debug_assert_eq!(tilts.len(), blades.len() * n);
-        let table: Vec<f32> = postures
-            .iter()
-            .flat_map(|p| receiver::posture_table(p, layout.segments))
-            .collect();
-        let posture_count = postures.first().map_or(0, Postures::count) as u32;
         let sizes = Sizes::new(scene, &params, layout.strip_height);
         let gpu = Gpu::new(
             ctx,
             &Statics {
-                blades: &blades,
-                tilts: &tilts,
-                painted: &painted,
-                postures: &table,
+                blades: &arrays.blades,
+                tilts: &arrays.tilts,
+                painted: &arrays.painted,
+                postures: &arrays.postures,
                 strip_layers: &strip_layers,
                 flat_layers: &flat_layers,
             },
@@ -238,40 +219,6 @@ impl Technique for Perbet {
             },
             params.transition_steps,
         );
-        let uniform = ParamsUniform {
-            sizes: [
-                params.patch_size,
-                layout.strip_height,
-                params.strip_margin,
-                0.5 * layout.strip_height,
-            ],
-            counts: [
-                blades_per_patch,
-                layout.segments,
-                params.strips,
-                params.strip_columns,
-            ],
-            // Strip edges bend like the middle kind.
-            more: [
-                posture_count,
-                params.variants,
-                gpu::FLAT_CELLS,
-                params.kinds / 2,
-            ],
-            color_root: Vec3::from(grass.color_root)
-                .extend(grass.color_variation)
-                .to_array(),
-            color_tip: Vec3::from(grass.color_tip)
-                .extend(params.translucency)
-                .to_array(),
-            bases: [0; 4],
-            flat_elevations: [
-                paint::FLAT_ELEVATIONS[0],
-                paint::FLAT_ELEVATIONS[1],
-                paint::FLAT_ELEVATIONS[2],
-                0.0,
-            ],
-        };
         let n_patches = tiling.len();
         Ok(Self {
             draws: Draws {

@@ -2,7 +2,9 @@
 //! postures of each kind of grass, and the counts that fix the GPU allocations — everything
 //! built on the CPU before the GPU is touched.
 
+use glam::Vec3;
 use grassbench::gpu::GpuEstimate;
+use grassbench::grass::GrassConfig;
 use grassbench::wind::{BladeConfig, Postures, WindConfig};
 use grassbench::{Result, Scene};
 
@@ -11,6 +13,7 @@ use crate::gpu::{self, BladeGpu, ParamsUniform};
 use crate::paint;
 use crate::params::Params;
 use crate::patch::{self, Layout, Patch};
+use crate::receiver;
 use crate::tiling::Tiling;
 
 /// Counts that fix the technique's allocations (shared by the technique's memory estimate and
@@ -126,6 +129,19 @@ fn postures(scene: &Scene, params: &Params) -> Result<Vec<Postures>> {
         .collect()
 }
 
+/// The pre-computed patches as the shader reads them (`Statics` without the textures).
+pub struct Arrays {
+    /// Blades of every variant, variant-major (the shader's `blades`).
+    pub blades: Vec<BladeGpu>,
+    /// Rest tilt of every segment of every blade (`tilts`).
+    pub tilts: Vec<[f32; 2]>,
+    /// Painted texture coordinates of every point of every blade, per orientation, blade
+    /// after blade (`painted`: the morph targets of Sec. 4.2, Fig. 14).
+    pub painted: Vec<[f32; 2]>,
+    /// The posture table of every kind, kind after kind (`postures`).
+    pub postures: Vec<f32>,
+}
+
 /// What the technique computes on the CPU before touching the GPU (the paper's
 /// pre-computation: patches, strip and 2D textures, postures).
 pub struct Precomputed {
@@ -176,5 +192,82 @@ impl Precomputed {
             strip_layers,
             flat_layers,
         })
+    }
+
+    /// The patches, their painted coordinates and the posture tables resampled to the
+    /// blades' segments, as the GPU reads them.
+    pub fn arrays(&self) -> Arrays {
+        let layout = &self.layout;
+        let mut arrays = Arrays {
+            blades: Vec::new(),
+            tilts: Vec::new(),
+            painted: Vec::new(),
+            postures: self
+                .postures
+                .iter()
+                .flat_map(|p| receiver::posture_table(p, layout.segments))
+                .collect(),
+        };
+        for b in self.patches.iter().flat_map(|p| &p.blades) {
+            arrays.blades.push(BladeGpu {
+                root_facing: [b.root.x, b.root.y, b.facing, b.height],
+                shape: [b.width, b.variation, b.threshold, 0.0],
+                strips: [b.strips[0], b.strips[1], b.kind, 0],
+            });
+            arrays.tilts.extend(b.tilts.iter().map(|t| t.to_array()));
+            let points = b.rest_points(layout.segments);
+            for o in 0..2 {
+                arrays
+                    .painted
+                    .extend(points.iter().map(|p| layout.painted_uv(o, *p).to_array()));
+            }
+        }
+        debug_assert_eq!(
+            arrays.tilts.len(),
+            arrays.blades.len() * layout.segments as usize
+        );
+        arrays
+    }
+
+    /// The shader's `Params` for `params` and the scene's `grass` (`bases` zero: each frame
+    /// sets where its strips and 2D entries start).
+    pub fn uniform(&self, params: &Params, grass: &GrassConfig) -> ParamsUniform {
+        let layout = &self.layout;
+        let blades_per_patch = params.blades(grass.density);
+        let posture_count = self.postures.first().map_or(0, Postures::count) as u32;
+        ParamsUniform {
+            sizes: [
+                params.patch_size,
+                layout.strip_height,
+                params.strip_margin,
+                0.5 * layout.strip_height,
+            ],
+            counts: [
+                blades_per_patch,
+                layout.segments,
+                params.strips,
+                params.strip_columns,
+            ],
+            // Strip edges bend like the middle kind.
+            more: [
+                posture_count,
+                params.variants,
+                gpu::FLAT_CELLS,
+                params.kinds / 2,
+            ],
+            color_root: Vec3::from(grass.color_root)
+                .extend(grass.color_variation)
+                .to_array(),
+            color_tip: Vec3::from(grass.color_tip)
+                .extend(params.translucency)
+                .to_array(),
+            bases: [0; 4],
+            flat_elevations: [
+                paint::FLAT_ELEVATIONS[0],
+                paint::FLAT_ELEVATIONS[1],
+                paint::FLAT_ELEVATIONS[2],
+                0.0,
+            ],
+        }
     }
 }
