@@ -1,8 +1,11 @@
 //! Helpers shared by grassbench's integration tests: a GPU context, small versions of the
-//! built-in scenes, rendering a frame, and snapshot comparison with FLIP that writes the actual
-//! and difference images on failure.
+//! built-in scenes, rendering a frame, snapshot comparison with FLIP that writes the actual
+//! and difference images on failure, and [`twin`]: WGSL functions run over generated inputs
+//! to compare with their Rust twins.
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+
+pub mod twin;
 
 use std::path::{Path, PathBuf};
 
