@@ -200,44 +200,48 @@ fn shards_merge_into_the_whole_sweep_and_mixing_is_refused() {
         ])
         .0
     );
-    let (a, b, merged) = (temp("shard0"), temp("shard1"), temp("merged"));
-    assert!(
-        grassbench(&[
-            "sweep",
-            SMOKE,
-            "-o",
-            a.to_str().unwrap(),
-            "--shard",
-            "0/2",
-            "--no-calibration"
+    // Three shards under GNU parallel, each the README's Slurm array task
+    // (experiments/slurm/job.sh) with the task id parallel hands it.
+    let shards: Vec<PathBuf> = (0..3).map(|i| temp(&format!("shard-{i}"))).collect();
+    let merged = temp("merged");
+    let prefix = temp("shard");
+    let job = Path::new(env!("CARGO_MANIFEST_DIR")).join("slurm/job.sh");
+    let status = Command::new("parallel")
+        .env("GRASSBENCH", env!("CARGO_BIN_EXE_grassbench"))
+        .env("SLURM_ARRAY_TASK_COUNT", "3")
+        .args([
+            "-j3",
+            "--halt",
+            "now,fail=1",
+            &format!(
+                "SLURM_ARRAY_TASK_ID={{}} bash {} {SMOKE} {} --no-calibration",
+                job.display(),
+                prefix.display()
+            ),
+            ":::",
+            "0",
+            "1",
+            "2",
         ])
-        .0
-    );
-    assert!(
-        grassbench(&[
-            "sweep",
-            SMOKE,
-            "-o",
-            b.to_str().unwrap(),
-            "--shard",
-            "1/2",
-            "--no-calibration"
-        ])
-        .0
-    );
-    let (na, nb) = (
-        counts(&a.join("runs.csv")).len(),
-        counts(&b.join("runs.csv")).len(),
-    );
-    assert!(na > 0 && nb > 0);
-    let (ok, err) = grassbench(&[
-        "merge",
-        a.to_str().unwrap(),
-        b.to_str().unwrap(),
-        "-o",
-        merged.to_str().unwrap(),
-    ]);
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .expect("GNU parallel is missing: install package `parallel` (`make setup` does)");
+    assert!(status.success(), "a shard failed under parallel");
+    for s in &shards {
+        assert!(
+            !counts(&s.join("runs.csv")).is_empty(),
+            "{} ran nothing",
+            s.display()
+        );
+    }
+    let mut args = vec!["merge".to_owned()];
+    args.extend(shards.iter().map(|s| s.to_str().unwrap().to_owned()));
+    args.extend(["-o".to_owned(), merged.to_str().unwrap().to_owned()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (ok, err) = grassbench(&args);
     assert!(ok, "{err}");
+    // The same runs and frames as the unsharded sweep ...
     assert_eq!(
         counts(&merged.join("runs.csv")),
         counts(&whole.join("runs.csv"))
@@ -246,6 +250,40 @@ fn shards_merge_into_the_whole_sweep_and_mixing_is_refused() {
         counts(&merged.join("frames.csv")),
         counts(&whole.join("frames.csv"))
     );
+    // ... with every comparison kept: whole groups were dealt out, so each technique ran
+    // beside its group's reference; FLIP against it is the same to the bit (rendering is
+    // deterministic), and a ratio exists wherever the unsharded sweep has one.
+    let by_id = |dir: &Path, name: &str| -> BTreeMap<String, String> {
+        column(&dir.join("runs.csv"), "run_id")
+            .into_iter()
+            .zip(column(&dir.join("runs.csv"), name))
+            .collect()
+    };
+    assert_eq!(
+        by_id(&merged, "flip_vs_reference"),
+        by_id(&whole, "flip_vs_reference")
+    );
+    let present = |m: BTreeMap<String, String>| -> BTreeMap<String, bool> {
+        m.into_iter().map(|(k, v)| (k, !v.is_empty())).collect()
+    };
+    let ratios = present(by_id(&merged, "gpu_wall_ratio_to_reference"));
+    assert_eq!(
+        ratios,
+        present(by_id(&whole, "gpu_wall_ratio_to_reference"))
+    );
+    assert!(ratios.values().all(|&r| r), "{ratios:?}");
+    let images = |dir: &Path| {
+        let mut v: Vec<String> = std::fs::read_dir(dir.join("images"))
+            .map(|d| {
+                d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                    .collect()
+            })
+            .unwrap_or_default();
+        v.sort();
+        v
+    };
+    assert_eq!(images(&merged), images(&whole));
+    let a = shards[0].clone();
 
     // A shard of another sweep is refused.
     let other = temp("other");
@@ -281,7 +319,7 @@ fn shards_merge_into_the_whole_sweep_and_mixing_is_refused() {
         "--no-calibration",
     ]);
     assert!(!ok && err.contains("--force"), "{err}");
-    for d in [whole, a, b, merged, other] {
+    for d in shards.into_iter().chain([whole, merged, other]) {
         std::fs::remove_dir_all(d).unwrap();
     }
     std::fs::remove_file(other_file).unwrap();

@@ -20,6 +20,11 @@ pub struct AdapterSummary {
     pub timestamps: bool,
     /// Nanoseconds per timestamp tick.
     pub timestamp_period_ns: f32,
+    /// Whether passes count their work with pipeline-statistics queries (vertex, clipper,
+    /// fragment and compute invocations). Where `false` (Metal, GL, some drivers), the work
+    /// columns of `frames.csv` and `runs.csv` stay empty. Files written before it read `false`.
+    #[serde(default)]
+    pub pipeline_statistics: bool,
 }
 
 /// Instance, adapter, device and queue, plus the error sink. Created once and borrowed by
@@ -39,7 +44,8 @@ pub struct GpuContext {
 }
 
 /// Features grassbench uses when the adapter has them; none is required.
-const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY;
+const OPTIONAL_FEATURES: wgpu::Features =
+    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::PIPELINE_STATISTICS_QUERY);
 
 impl GpuContext {
     /// Creates a headless context on the requested backend.
@@ -109,6 +115,9 @@ impl GpuContext {
             device_type: format!("{:?}", info.device_type),
             timestamps,
             timestamp_period_ns: queue.get_timestamp_period(),
+            pipeline_statistics: device
+                .features()
+                .contains(wgpu::Features::PIPELINE_STATISTICS_QUERY),
         };
         Self {
             instance,
@@ -159,6 +168,11 @@ impl GpuContext {
     /// Whether render passes can carry timestamp queries.
     pub fn has_timestamps(&self) -> bool {
         self.summary.timestamps
+    }
+
+    /// Whether passes can count their work with pipeline-statistics queries.
+    pub fn has_pipeline_statistics(&self) -> bool {
+        self.summary.pipeline_statistics
     }
 }
 

@@ -32,7 +32,9 @@ pub use stats::Percentiles;
 pub use view::View;
 pub use world::World;
 
-use crate::technique::{FrameEncoder, GrassTechnique, InitContext, PassKind, TechniqueEntry};
+use crate::technique::{
+    FrameEncoder, GrassTechnique, InitContext, PassKind, PassWork, TechniqueEntry,
+};
 use crate::{Error, FrameInputs, Result};
 
 /// What one frame produced.
@@ -141,7 +143,8 @@ impl<'g> World<'g> {
             let inputs = self.inputs(view, frame);
             self.scene_gpu.upload(&gpu.queue, &inputs);
             technique.prepare(gpu, &inputs)?;
-            let mut enc = FrameEncoder::new(gpu, &view.target, &self.scene_gpu, None, &prefix);
+            let mut enc =
+                FrameEncoder::new(gpu, &view.target, &self.scene_gpu, None, None, &prefix);
             technique.encode(&mut enc);
             Ok(enc.finish().finish())
         })?
@@ -199,6 +202,7 @@ impl<'g> World<'g> {
                     &view.target,
                     &self.scene_gpu,
                     view.timer.as_mut(),
+                    view.work.as_mut(),
                     "core.",
                 );
                 {
@@ -235,6 +239,18 @@ impl<'g> World<'g> {
                 .is_some()
                 .then(|| selected.map(|p| p.ms).sum())
         };
+        // GPU-counted work, the technique's passes apart from the core's background.
+        let work = view.work.as_mut().and_then(|w| w.read(gpu));
+        let work_of = |core: bool| -> Option<PassWork> {
+            work.as_ref().map(|w| {
+                w.iter()
+                    .filter(|p| p.label.starts_with("core.") == core)
+                    .map(|p| p.work)
+                    .sum()
+            })
+        };
+        let (grass, background) = (work_of(false), work_of(true));
+        let pixels = f64::from(view.target.size.width * view.target.size.height);
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
         let record = FrameRecord {
@@ -259,6 +275,16 @@ impl<'g> World<'g> {
             triangles: stats.triangles,
             draw_calls,
             gpu_bytes: stats.gpu_bytes,
+            vertex_invocations: grass.map(|w| w.vertex_invocations),
+            clipper_invocations: grass.map(|w| w.clipper_invocations),
+            clipper_primitives_out: grass.map(|w| w.clipper_primitives_out),
+            fragment_invocations: grass.map(|w| w.fragment_invocations),
+            compute_invocations: grass.map(|w| w.compute_invocations),
+            background_vertex_invocations: background.map(|w| w.vertex_invocations),
+            background_fragment_invocations: background.map(|w| w.fragment_invocations),
+            overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
+            grass_pixels: None,
+            fragments_per_grass_pixel: None,
             counters: record::format_counters(&technique.counters()),
             levels: technique.levels(),
         };

@@ -205,6 +205,7 @@ mod tests {
             driver_info: "Mesa 22.3.6".into(),
             timestamps: false,
             timestamp_period_ns: 1.0,
+            pipeline_statistics: false,
         };
         let p = Provenance {
             command: "grassbench sweep s.toml".into(),

@@ -65,6 +65,39 @@ pub struct FrameRecord {
     pub draw_calls: u64,
     /// GPU memory held by the technique, bytes.
     pub gpu_bytes: u64,
+    /// Vertex shader invocations of the technique's passes, counted by the GPU's
+    /// pipeline-statistics queries ([`crate::technique::work`]); empty where the adapter has
+    /// none (see `pipeline_statistics` in `meta.toml`) and in older files.
+    #[serde(default)]
+    pub vertex_invocations: Option<u64>,
+    /// Primitives the technique's passes assembled (clipper invocations).
+    #[serde(default)]
+    pub clipper_invocations: Option<u64>,
+    /// Primitives of the technique's passes that reached rasterisation (clipper output).
+    #[serde(default)]
+    pub clipper_primitives_out: Option<u64>,
+    /// Fragment shader invocations of the technique's passes.
+    #[serde(default)]
+    pub fragment_invocations: Option<u64>,
+    /// Compute shader invocations of the technique's passes.
+    #[serde(default)]
+    pub compute_invocations: Option<u64>,
+    /// Vertex shader invocations of the core's background pass (sky, ground, props, object).
+    #[serde(default)]
+    pub background_vertex_invocations: Option<u64>,
+    /// Fragment shader invocations of the core's background pass.
+    #[serde(default)]
+    pub background_fragment_invocations: Option<u64>,
+    /// The technique's fragment invocations per target pixel: its overdraw.
+    #[serde(default)]
+    pub overdraw: Option<f64>,
+    /// Pixels the technique's grass covers (differing from the grassless frame), for frames
+    /// whose image was captured and compared with one (`run`); empty otherwise.
+    #[serde(default)]
+    pub grass_pixels: Option<u64>,
+    /// The technique's fragment invocations per grass-covered pixel (where both are known).
+    #[serde(default)]
+    pub fragments_per_grass_pixel: Option<f64>,
     /// The technique's own counts ([`GrassTechnique::counters`]), `name=value;...`.
     ///
     /// [`GrassTechnique::counters`]: crate::GrassTechnique::counters
@@ -90,6 +123,18 @@ pub struct LevelRow {
     pub level: String,
     /// Blades.
     pub blades: u64,
+}
+
+impl FrameRecord {
+    /// Records `grass_pixels` (from the frame's captured image) and the fragments per
+    /// grass-covered pixel it gives with the measured fragment invocations.
+    pub fn set_grass_pixels(&mut self, pixels: u64) {
+        self.grass_pixels = Some(pixels);
+        self.fragments_per_grass_pixel = self
+            .fragment_invocations
+            .filter(|_| pixels > 0)
+            .map(|f| f as f64 / pixels as f64);
+    }
 }
 
 impl LevelRow {
@@ -188,6 +233,28 @@ pub struct RunSummary {
     pub draw_calls: Option<u64>,
     /// Largest GPU memory held, bytes.
     pub gpu_bytes: Option<u64>,
+    /// Median vertex shader invocations of the technique's passes (GPU-counted; empty without
+    /// pipeline statistics).
+    #[serde(default)]
+    pub vertex_invocations: Option<u64>,
+    /// Median primitives the technique's passes sent to rasterisation (clipper output).
+    #[serde(default)]
+    pub clipper_primitives_out: Option<u64>,
+    /// Median fragment shader invocations of the technique's passes.
+    #[serde(default)]
+    pub fragment_invocations: Option<u64>,
+    /// Median compute shader invocations of the technique's passes.
+    #[serde(default)]
+    pub compute_invocations: Option<u64>,
+    /// Median fragment invocations of the core's background pass.
+    #[serde(default)]
+    pub background_fragment_invocations: Option<u64>,
+    /// Median overdraw: the technique's fragment invocations per target pixel.
+    #[serde(default)]
+    pub overdraw: Option<f64>,
+    /// Median fragments per grass-covered pixel, over the frames where coverage was measured.
+    #[serde(default)]
+    pub fragments_per_grass_pixel: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -267,6 +334,13 @@ impl RunSummary {
             triangles: median_u64(&|r| Some(r.triangles)),
             draw_calls: median_u64(&|r| Some(r.draw_calls)),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max(),
+            vertex_invocations: median_u64(&|r| r.vertex_invocations),
+            clipper_primitives_out: median_u64(&|r| r.clipper_primitives_out),
+            fragment_invocations: median_u64(&|r| r.fragment_invocations),
+            compute_invocations: median_u64(&|r| r.compute_invocations),
+            background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
+            overdraw: median(&|r| r.overdraw),
+            fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
                 .iter()
                 .map(|(k, v)| format!("{k}={}", crate::params::format_value(v)))
@@ -454,6 +528,16 @@ mod tests {
             triangles: 10,
             draw_calls: 1,
             gpu_bytes: 5,
+            vertex_invocations: None,
+            clipper_invocations: None,
+            clipper_primitives_out: None,
+            fragment_invocations: None,
+            compute_invocations: None,
+            background_vertex_invocations: None,
+            background_fragment_invocations: None,
+            overdraw: None,
+            grass_pixels: None,
+            fragments_per_grass_pixel: None,
             counters: String::new(),
             levels: Vec::new(),
         };

@@ -3,7 +3,7 @@
 //! scene, its GPU resources and the wind are the world's, shared.
 
 use crate::target::Size;
-use crate::technique::{GrassTechnique, PassTimer};
+use crate::technique::{GrassTechnique, PassTimer, WorkCounter};
 use crate::{GpuContext, RenderTarget, Result};
 
 /// Where one technique's frames of a world are drawn, and how they are looked at.
@@ -16,6 +16,8 @@ pub struct View {
     pub camera_override: Option<(glam::Vec3, glam::Vec3)>,
     /// Timestamp queries around each pass, where the adapter has them.
     pub(super) timer: Option<PassTimer>,
+    /// Pipeline-statistics queries around each pass, where the adapter has them.
+    pub(super) work: Option<WorkCounter>,
 }
 
 impl View {
@@ -26,6 +28,7 @@ impl View {
             debug_view: 0,
             camera_override: None,
             timer: PassTimer::new(gpu),
+            work: WorkCounter::new(gpu),
         })
     }
 

@@ -74,8 +74,12 @@ pub const MAX_RUNS: usize = 100_000;
 /// One run of a sweep: a configuration and a repetition.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlannedRun {
-    /// Position in the sweep's order (sharding uses it).
+    /// Position in the sweep's order.
     pub index: usize,
+    /// Position of its group among the sweep's groups, in order: `--shard I/N` deals out
+    /// whole groups (every N-th group from I), so a technique always runs in the same process
+    /// as its group's reference and its ratio and FLIP are measured as in an unsharded sweep.
+    pub group_index: usize,
     /// `<configuration hash>-r<repetition>`: stable across restarts and machines.
     pub id: String,
     /// The configuration's hash, shared by its repetitions.
@@ -219,6 +223,7 @@ impl SweepSpec {
             .collect();
         let scene_grid = cartesian(&self.scene_params);
         let mut runs = Vec::new();
+        let mut group_index = 0;
         for repetition in 0..self.repetitions {
             for scene in &self.scenes {
                 for scene_overrides in &scene_grid {
@@ -231,6 +236,7 @@ impl SweepSpec {
                         for &msaa in &self.msaa {
                             let group_key =
                                 format!("{scene}|{scene_overrides:?}|{resolution}|{msaa}");
+                            let groups_before = runs.len();
                             for &technique in &techniques {
                                 let grid = self
                                     .params
@@ -244,6 +250,7 @@ impl SweepSpec {
                                     let config_id = format!("{:012x}", fnv(&config_key) >> 16);
                                     runs.push(PlannedRun {
                                         index: runs.len(),
+                                        group_index,
                                         id: run_id(&config_id, repetition),
                                         config_id,
                                         group: format!(
@@ -259,6 +266,9 @@ impl SweepSpec {
                                         params,
                                     });
                                 }
+                            }
+                            if runs.len() > groups_before {
+                                group_index += 1;
                             }
                         }
                     }
@@ -397,9 +407,14 @@ k = [1, 2, 3]
         // `reference` first in every group, wherever the file lists it.
         let with_reference = spec.expand(&["y", "reference", "x"]).unwrap();
         assert_eq!(with_reference.len(), 40);
-        for group in with_reference.chunk_by(|a, b| a.group == b.group) {
+        let groups: Vec<&[PlannedRun]> =
+            with_reference.chunk_by(|a, b| a.group == b.group).collect();
+        // 2 reps x 2 scenes x 2 densities = 8 groups, numbered in order (shards deal them out).
+        assert_eq!(groups.len(), 8);
+        for (k, group) in groups.iter().enumerate() {
             assert_eq!(group[0].technique, "reference", "{group:?}");
             assert_eq!(group[1].technique, "y");
+            assert!(group.iter().all(|r| r.group_index == k), "{group:?}");
         }
         for run in &runs {
             assert_eq!(config_id_of(&run.id), run.config_id);

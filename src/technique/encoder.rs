@@ -1,6 +1,8 @@
-//! Recording a frame: passes opened here get bind group 0 set and timestamp queries added.
+//! Recording a frame: passes opened here get bind group 0 set, timestamp queries and
+//! pipeline-statistics queries (the work they did, [`super::work`]) added.
 
 use super::pass::{ComputePass, PassCounts, RenderPass};
+use super::work::WorkCounter;
 use crate::scene::SceneGpu;
 use crate::{GpuContext, RenderTarget};
 
@@ -115,21 +117,27 @@ pub struct FrameEncoder<'a> {
     pub scene: &'a SceneGpu,
     encoder: wgpu::CommandEncoder,
     timer: Option<&'a mut PassTimer>,
+    work: Option<&'a mut WorkCounter>,
     label_prefix: &'a str,
     counts: PassCounts,
 }
 
 impl<'a> FrameEncoder<'a> {
-    /// Starts a frame. Pass labels are prefixed with `label_prefix` (e.g. `reference.`).
+    /// Starts a frame. Passes are timed with `timer` and their work counted with `work` where
+    /// given; labels are prefixed with `label_prefix` (e.g. `reference.`).
     pub fn new(
         gpu: &'a GpuContext,
         target: &'a RenderTarget,
         scene: &'a SceneGpu,
         mut timer: Option<&'a mut PassTimer>,
+        mut work: Option<&'a mut WorkCounter>,
         label_prefix: &'a str,
     ) -> Self {
         if let Some(t) = timer.as_deref_mut() {
             t.passes.clear();
+        }
+        if let Some(w) = work.as_deref_mut() {
+            w.passes.clear();
         }
         Self {
             gpu,
@@ -141,6 +149,7 @@ impl<'a> FrameEncoder<'a> {
                     label: Some("frame"),
                 }),
             timer,
+            work,
             label_prefix,
             counts: PassCounts::default(),
         }
@@ -196,7 +205,14 @@ impl<'a> FrameEncoder<'a> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        RenderPass::new(pass, &mut self.counts)
+        let counted = self
+            .work
+            .as_deref_mut()
+            .and_then(|w| w.next(full, PassKind::Render));
+        if let Some((queries, index)) = &counted {
+            pass.begin_pipeline_statistics_query(queries, *index);
+        }
+        RenderPass::new(pass, &mut self.counts, counted.is_some())
     }
 
     /// Opens a compute pass with bind group 0 set.
@@ -219,7 +235,14 @@ impl<'a> FrameEncoder<'a> {
                 }),
             });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        ComputePass::new(pass, &mut self.counts)
+        let counted = self
+            .work
+            .as_deref_mut()
+            .and_then(|w| w.next(full, PassKind::Compute));
+        if let Some((queries, index)) = &counted {
+            pass.begin_pipeline_statistics_query(queries, *index);
+        }
+        ComputePass::new(pass, &mut self.counts, counted.is_some())
     }
 
     /// The raw command encoder, for copies and clears outside passes.
@@ -232,8 +255,11 @@ impl<'a> FrameEncoder<'a> {
         self.counts
     }
 
-    /// Resolves the timestamp queries and returns the finished command encoder.
+    /// Resolves the timestamp and statistics queries and returns the finished command encoder.
     pub fn finish(mut self) -> wgpu::CommandEncoder {
+        if let Some(work) = self.work.as_deref() {
+            work.resolve(&mut self.encoder);
+        }
         if let Some(timer) = self.timer.as_deref() {
             let n = timer.passes.len() as u32 * 2;
             if n > 0 {

@@ -19,6 +19,7 @@ mod encoder;
 mod no_grass;
 mod pass;
 pub mod ranges;
+pub mod work;
 
 pub use definition::{
     Describe, FINEST, NO_TRANSITIONS, Technique, TechniqueEntry, Variant, Variants, entry,
@@ -26,6 +27,7 @@ pub use definition::{
 pub use encoder::{FrameEncoder, PassKind, PassTime, PassTimer};
 pub use no_grass::{NoGrass, NoParams};
 pub use pass::{ComputePass, PassCounts, RenderPass};
+pub use work::{PassWork, PassWorkRecord, WorkCounter};
 
 use crate::scene::SceneGpu;
 use crate::target::Size;

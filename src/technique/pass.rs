@@ -4,7 +4,9 @@
 //! technique about itself.
 //!
 //! Only the recording calls techniques use are forwarded; the wrapper deliberately has no
-//! `Deref` to the wgpu pass, so a draw cannot bypass the count.
+//! `Deref` to the wgpu pass, so a draw cannot bypass the count. Where the frame counts work
+//! ([`super::work`]), the encoder begins the pass's statistics query as it opens the pass and
+//! the wrapper ends it when dropped, so every draw of the pass is inside it.
 
 use std::ops::Range;
 
@@ -21,11 +23,29 @@ pub struct PassCounts {
 pub struct RenderPass<'p> {
     pass: wgpu::RenderPass<'p>,
     counts: &'p mut PassCounts,
+    /// A statistics query is open on the pass (ended on drop).
+    counting: bool,
+}
+
+impl Drop for RenderPass<'_> {
+    fn drop(&mut self) {
+        if self.counting {
+            self.pass.end_pipeline_statistics_query();
+        }
+    }
 }
 
 impl<'p> RenderPass<'p> {
-    pub(super) fn new(pass: wgpu::RenderPass<'p>, counts: &'p mut PassCounts) -> Self {
-        Self { pass, counts }
+    pub(super) fn new(
+        pass: wgpu::RenderPass<'p>,
+        counts: &'p mut PassCounts,
+        counting: bool,
+    ) -> Self {
+        Self {
+            pass,
+            counts,
+            counting,
+        }
     }
 
     /// See [`wgpu::RenderPass::set_pipeline`].
@@ -97,11 +117,29 @@ impl<'p> RenderPass<'p> {
 pub struct ComputePass<'p> {
     pass: wgpu::ComputePass<'p>,
     counts: &'p mut PassCounts,
+    /// A statistics query is open on the pass (ended on drop).
+    counting: bool,
+}
+
+impl Drop for ComputePass<'_> {
+    fn drop(&mut self) {
+        if self.counting {
+            self.pass.end_pipeline_statistics_query();
+        }
+    }
 }
 
 impl<'p> ComputePass<'p> {
-    pub(super) fn new(pass: wgpu::ComputePass<'p>, counts: &'p mut PassCounts) -> Self {
-        Self { pass, counts }
+    pub(super) fn new(
+        pass: wgpu::ComputePass<'p>,
+        counts: &'p mut PassCounts,
+        counting: bool,
+    ) -> Self {
+        Self {
+            pass,
+            counts,
+            counting,
+        }
     }
 
     /// See [`wgpu::ComputePass::set_pipeline`].

@@ -222,7 +222,7 @@ struct SceneOutput<'a> {
 
 impl SceneOutput<'_> {
     /// Saves `result`'s images and appends its rows; rewrites the scene's CSV files.
-    fn add(&mut self, id: &str, result: runner::RunResult) -> anyhow::Result<()> {
+    fn add(&mut self, id: &str, mut result: runner::RunResult) -> anyhow::Result<()> {
         let (dir, name) = (self.dir, self.name);
         for (f, img) in &result.images {
             let png = format!("{id}_frame{f:04}.png");
@@ -234,6 +234,13 @@ impl SceneOutput<'_> {
                 .map(|(_, bg)| grass_coverage(img, bg, 6))
                 .transpose()?
                 .unwrap_or(f64::NAN);
+            // The measured frame's fragments per grass-covered pixel.
+            if let Some(record) = result.frames.iter_mut().find(|r| r.frame == *f)
+                && coverage.is_finite()
+            {
+                let pixels = f64::from(img.width() * img.height());
+                record.set_grass_pixels((coverage * pixels).round() as u64);
+            }
             self.images.push(ImageRow {
                 technique: id.into(),
                 scene: name.to_owned(),
@@ -242,6 +249,13 @@ impl SceneOutput<'_> {
                 coverage,
             });
         }
+        result.summary.fragments_per_grass_pixel = runner::Percentiles::of(
+            result
+                .frames
+                .iter()
+                .filter_map(|r| r.fragments_per_grass_pixel),
+        )
+        .map(|p| p.median);
         let s = &result.summary;
         let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
         eprintln!(
@@ -293,19 +307,21 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
         s,
         "GPU times are wall time from submit to the end of `poll(wait)` (the ground truth on software \
          rasterisers); timestamp-query figures are in `runs.csv` beside them. Frame = CPU stages + GPU wall. \
+         Fragments and overdraw (fragment shader invocations of the technique's passes, and those per \
+         target pixel) are counted by the GPU's pipeline-statistics queries; empty where the adapter has none. \
          *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
          were measured: on a software rasteriser that time is taken from the GPU.\n"
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades drawn | blades represented | triangles | GPU MB | other processes (cores) |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
@@ -318,6 +334,8 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
             count(r.blades_drawn),
             count(r.blades_represented),
             count(r.triangles),
+            fmt_opt(r.fragment_invocations.map(|f| f as f64 / 1e6), 2),
+            fmt_opt(r.overdraw, 2),
             fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1),
             fmt_opt(r.host_other_cores, 2)
         );

@@ -26,7 +26,8 @@ pub struct SweepArgs {
     /// Results folder (default: `results/<sweep name>`).
     #[arg(long, short)]
     pub out: Option<PathBuf>,
-    /// Run only shard I of N (`I/N`, I from 0): every N-th run, deterministic.
+    /// Run only shard I of N (`I/N`, I from 0): every N-th comparison group (a scene variant,
+    /// size, MSAA and repetition with all its techniques and its reference), deterministic.
     #[arg(long)]
     pub shard: Option<String>,
     /// Replace a results folder that holds a different sweep.
@@ -85,7 +86,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         .unwrap_or((0, 1));
     let mine: Vec<&PlannedRun> = plan
         .iter()
-        .filter(|r| r.index % shard_n == shard_i)
+        .filter(|r| r.group_index % shard_n == shard_i)
         .collect();
 
     let out = args

@@ -31,6 +31,20 @@ pub fn draw(ui: &egui::Ui, pane: &Pane, pic: egui::Rect, k: usize) {
             r.triangles,
             r.gpu_bytes as f64 / 1e6
         ));
+        // GPU-counted work (pipeline statistics), where the adapter counts it.
+        if let (Some(vs), Some(fs), Some(overdraw)) =
+            (r.vertex_invocations, r.fragment_invocations, r.overdraw)
+        {
+            let mega = |n: u64| n as f64 / 1e6;
+            lines.push(format!(
+                "work {:.2} M vertices · {:.2} M fragments · overdraw {overdraw:.2}{}",
+                mega(vs),
+                mega(fs),
+                r.compute_invocations
+                    .filter(|&c| c > 0)
+                    .map_or(String::new(), |c| format!(" · {:.2} M compute", mega(c)))
+            ));
+        }
     }
     if pane.preview {
         lines.push("moving: half resolution".to_owned());

@@ -1,0 +1,176 @@
+//! The work a pass did, measured by the GPU: pipeline-statistics queries (vertex shader,
+//! clipper, fragment shader and compute invocations) around every pass the
+//! [`super::FrameEncoder`] opens, for every technique alike. A technique cannot forget them
+//! nor report them about itself: the pass wrappers begin the query when the pass opens and end
+//! it when the pass is dropped.
+//!
+//! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
+//! recorded and the figures are `None`, never zeros.
+
+use super::PassKind;
+use crate::GpuContext;
+
+/// What the statistics queries count, in the order their results are laid out (wgpu writes
+/// one u64 per set flag, lowest bit first).
+const TYPES: wgpu::PipelineStatisticsTypes =
+    wgpu::PipelineStatisticsTypes::VERTEX_SHADER_INVOCATIONS
+        .union(wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS)
+        .union(wgpu::PipelineStatisticsTypes::CLIPPER_PRIMITIVES_OUT)
+        .union(wgpu::PipelineStatisticsTypes::FRAGMENT_SHADER_INVOCATIONS)
+        .union(wgpu::PipelineStatisticsTypes::COMPUTE_SHADER_INVOCATIONS);
+/// Counters per query.
+const COUNTERS: u64 = 5;
+/// Most passes a frame can count.
+pub const MAX_COUNTED_PASSES: u32 = 64;
+
+/// Work counted by the GPU over one or more passes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct PassWork {
+    /// Vertex shader invocations (the vertex cache may save some for indexed draws).
+    pub vertex_invocations: u64,
+    /// Primitives that reached the clipper (triangles assembled).
+    pub clipper_invocations: u64,
+    /// Primitives the clipper let through to rasterisation (on screen, not culled).
+    pub clipper_primitives_out: u64,
+    /// Fragment shader invocations (helper invocations of 2x2 quads included).
+    pub fragment_invocations: u64,
+    /// Compute shader invocations (workgroups dispatched x workgroup size).
+    pub compute_invocations: u64,
+}
+
+impl PassWork {
+    fn from_counters(c: &[u64]) -> Self {
+        Self {
+            vertex_invocations: c[0],
+            clipper_invocations: c[1],
+            clipper_primitives_out: c[2],
+            fragment_invocations: c[3],
+            compute_invocations: c[4],
+        }
+    }
+}
+
+impl std::ops::Add for PassWork {
+    type Output = Self;
+
+    fn add(self, o: Self) -> Self {
+        Self {
+            vertex_invocations: self.vertex_invocations + o.vertex_invocations,
+            clipper_invocations: self.clipper_invocations + o.clipper_invocations,
+            clipper_primitives_out: self.clipper_primitives_out + o.clipper_primitives_out,
+            fragment_invocations: self.fragment_invocations + o.fragment_invocations,
+            compute_invocations: self.compute_invocations + o.compute_invocations,
+        }
+    }
+}
+
+impl std::iter::Sum for PassWork {
+    fn sum<I: Iterator<Item = Self>>(iter: I) -> Self {
+        iter.fold(Self::default(), |a, b| a + b)
+    }
+}
+
+/// The work of one pass of the last frame.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PassWorkRecord {
+    /// Pass label (prefixed, like [`super::PassTime::label`]).
+    pub label: String,
+    /// Render or compute.
+    pub kind: PassKind,
+    /// What it did.
+    pub work: PassWork,
+}
+
+/// A statistics query set and the buffers to read it back, reused frame after frame.
+pub struct WorkCounter {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    pub(super) passes: Vec<(String, PassKind)>,
+}
+
+impl WorkCounter {
+    /// A counter, or `None` when the device has no pipeline-statistics queries.
+    pub fn new(gpu: &GpuContext) -> Option<Self> {
+        if !gpu.has_pipeline_statistics() {
+            return None;
+        }
+        let size = u64::from(MAX_COUNTED_PASSES) * COUNTERS * 8;
+        Some(Self {
+            queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass work"),
+                ty: wgpu::QueryType::PipelineStatistics(TYPES),
+                count: MAX_COUNTED_PASSES,
+            }),
+            resolve: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("pass work resolve"),
+                size,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            readback: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("pass work readback"),
+                size,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            }),
+            passes: Vec::new(),
+        })
+    }
+
+    /// The query of the next pass (`None` once [`MAX_COUNTED_PASSES`] are taken).
+    pub(super) fn next(&mut self, label: String, kind: PassKind) -> Option<(wgpu::QuerySet, u32)> {
+        let index = self.passes.len() as u32;
+        if index >= MAX_COUNTED_PASSES {
+            return None;
+        }
+        self.passes.push((label, kind));
+        Some((self.queries.clone(), index))
+    }
+
+    /// Resolves the frame's queries into the read-back buffer (at the end of its encoding).
+    pub(super) fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        let n = self.passes.len() as u32;
+        if n > 0 {
+            encoder.resolve_query_set(&self.queries, 0..n, &self.resolve, 0);
+            encoder.copy_buffer_to_buffer(
+                &self.resolve,
+                0,
+                &self.readback,
+                0,
+                u64::from(n) * COUNTERS * 8,
+            );
+        }
+    }
+
+    /// Reads the last frame's work per pass. Call after the frame's submission completed;
+    /// `None` when the read-back failed.
+    pub fn read(&mut self, gpu: &GpuContext) -> Option<Vec<PassWorkRecord>> {
+        let n = self.passes.len() as u64;
+        if n == 0 {
+            return Some(Vec::new());
+        }
+        let slice = self.readback.slice(..n * COUNTERS * 8);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        if gpu.wait_idle("reading pass statistics").is_err() || !matches!(rx.recv(), Ok(Ok(()))) {
+            return None;
+        }
+        let records = slice.get_mapped_range().ok().map(|data| {
+            let counters: &[u64] = bytemuck::cast_slice(&data);
+            self.passes
+                .iter()
+                .zip(counters.chunks_exact(COUNTERS as usize))
+                .map(|((label, kind), c)| PassWorkRecord {
+                    label: label.clone(),
+                    kind: *kind,
+                    work: PassWork::from_counters(c),
+                })
+                .collect()
+        });
+        self.readback.unmap();
+        records
+    }
+}

@@ -1,0 +1,86 @@
+//! Measured work (issue 20 §1): the GPU's pipeline-statistics queries around every pass the
+//! frame encoder opens give what a frame did, for every technique alike. Checked against work
+//! known in advance (the reference's instanced triangle strips, bakay's bend dispatch), and
+//! left empty, never zero, on a backend that cannot count.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use anyhow::Context as _;
+use grassbench::gpu::BackendChoice;
+use grassbench::runner::{FrameRecord, Harness};
+use grassbench::{GpuContext, Scene};
+use grassbench_tests::{TEST_SIZE, gpu, render_record, repo_root};
+
+fn lawn() -> anyhow::Result<Scene> {
+    Ok(Scene::load(&repo_root().join("tests/scenes/counts.toml"))?)
+}
+
+fn frame_of(gpu: &GpuContext, id: &str, overrides: &str) -> anyhow::Result<FrameRecord> {
+    let entry = grassbench_cli::registry::find(id)?;
+    let mut harness = Harness::new(gpu, lawn()?, TEST_SIZE, false)?;
+    let mut technique = harness.create(entry, &overrides.parse()?)?;
+    Ok(render_record(&mut harness, technique.as_mut(), 2)?.1)
+}
+
+#[test]
+fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    assert!(
+        gpu.has_pipeline_statistics(),
+        "lavapipe has PIPELINE_STATISTICS_QUERY (shared/PLATFORM.md); this adapter ({}) does not",
+        gpu.summary.name
+    );
+    // The reference draws every blade as one instance of a triangle strip of 2s + 1 vertices
+    // (s segments: 2s - 1 triangles), with no index buffer: every vertex runs the shader once
+    // and every triangle reaches the clipper.
+    for segments in [2u64, 4] {
+        let r = frame_of(&gpu, "reference", &format!("segments = {segments}"))?;
+        let blades = r.blades_drawn.context("blades drawn")?;
+        assert!(blades > 2000, "{blades} blades");
+        assert_eq!(r.vertex_invocations, Some(blades * (2 * segments + 1)));
+        assert_eq!(r.clipper_invocations, Some(blades * (2 * segments - 1)));
+        assert_eq!(r.clipper_invocations, Some(r.triangles));
+        assert_eq!(r.compute_invocations, Some(0));
+        // Fragments: some, and the overdraw is their share of the target's pixels.
+        let fs = r.fragment_invocations.context("fragments")?;
+        let pixels = f64::from(TEST_SIZE.width * TEST_SIZE.height);
+        assert!(fs > 0 && r.overdraw == Some(fs as f64 / pixels), "{r:?}");
+        // The clipper lets through at most what it received (the lawn is in view: most).
+        let out = r.clipper_primitives_out.context("primitives out")?;
+        assert!(
+            out <= r.triangles && out > r.triangles / 4,
+            "{out} of {}",
+            r.triangles
+        );
+        // The core's background (sky, ground) is counted apart: its full-screen sky alone runs
+        // a fragment for every pixel.
+        assert!(r.background_fragment_invocations.context("background")? >= pixels as u64);
+    }
+    // bakay bends its shells' vertices in a compute pass of 64-wide workgroups: one
+    // invocation per vertex, rounded up to whole workgroups.
+    let b = frame_of(&gpu, "bakay", "")?;
+    let cs = b.compute_invocations.context("compute")?;
+    assert!(cs > 0 && cs % 64 == 0, "{cs} compute invocations");
+    Ok(())
+}
+
+#[test]
+fn a_backend_without_statistics_leaves_the_work_empty() -> anyhow::Result<()> {
+    // wgpu's GL backend has no pipeline-statistics queries (llvmpipe through EGL here).
+    let gpu = GpuContext::new(BackendChoice::Gl)
+        .context("the GL backend (Mesa's llvmpipe through EGL: `make setup` installs it)")?;
+    assert!(!gpu.has_pipeline_statistics(), "{}", gpu.summary.name);
+    let r = frame_of(&gpu, "reference", "")?;
+    assert!(r.blades_drawn.is_some_and(|b| b > 0));
+    assert_eq!(
+        (
+            r.vertex_invocations,
+            r.fragment_invocations,
+            r.compute_invocations,
+            r.overdraw
+        ),
+        (None, None, None, None),
+        "no statistics on GL: empty, never zero"
+    );
+    Ok(())
+}
