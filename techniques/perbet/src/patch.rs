@@ -238,10 +238,11 @@ pub fn tallest(patches: &[Patch], segments: u32, fallback: f32) -> f32 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn layout() -> Layout {
+    /// A small medium-preset layout the crate's tests share.
+    pub(crate) fn layout() -> Layout {
         Layout {
             size: 2.5,
             segments: 4,
