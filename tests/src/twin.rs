@@ -198,12 +198,12 @@ pub fn dispatch(
         let mut groups = Vec::new();
         let mut outputs = Vec::new();
         for group in 0..=top {
-            if group == 0 {
-                if let Some(scene) = bindings.scene {
-                    layouts.push(Some(scene.layout.clone()));
-                    groups.push(Some(scene.bind_group.clone()));
-                    continue;
-                }
+            if group == 0
+                && let Some(scene) = bindings.scene
+            {
+                layouts.push(Some(scene.layout.clone()));
+                groups.push(Some(scene.bind_group.clone()));
+                continue;
             }
             let mine: Vec<_> = bindings.entries.iter().filter(|e| e.0 == group).collect();
             if mine.is_empty() {

@@ -897,7 +897,7 @@ fn perbet_morph_is_the_morph_twin() -> anyhow::Result<()> {
         entries.push(Entry {
             origin: origin.to_array(),
             variant: slot % params.variants,
-            flags: slot % 2 | if slot % 3 == 0 { 2 } else { 0 },
+            flags: (slot % 2) | if slot % 3 == 0 { 2 } else { 0 },
             opacity: 1.0,
             morph: 0.0,
             grow: [1.0, 0.0, 0.5, rng.next_f32()][slot as usize % 4],
