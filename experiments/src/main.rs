@@ -32,7 +32,7 @@ enum Command {
     Calibrate(CalibrateArgs),
     /// Write REPORT.md with tables and plots for a sweep's results folder.
     Report(ReportArgs),
-    /// Image differences: LOD fidelity, cross-technique matrix, temporal stability.
+    /// Image differences: LOD fidelity, cross-technique matrix, temporal change (spurious / missing).
     Compare(CompareArgs),
     /// Check scene and sweep files without rendering.
     Validate(ValidateArgs),

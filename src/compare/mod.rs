@@ -7,15 +7,19 @@
 //!    legitimately differs, so besides full-resolution FLIP they are compared after
 //!    downsampling (1/4, 1/16), by mean colour, by grass coverage per screen tile and by the
 //!    height of the grass silhouette against the sky.
-//! 3. [`frame_differences`] / [`temporal_stability`]: along slow dolly and pan paths with the
-//!    wind frozen, a technique's frame-to-frame change over the reference's on the same path:
-//!    what is left is level-of-detail change and popping.
+//! 3. [`motion_frames`] / [`temporal_change`]: along slow dolly and pan paths with the wind
+//!    calm, a technique's frame-to-frame change against the reference's on the same path, pixel
+//!    by pixel: change the reference does not show (spurious: popping, shimmer) apart from
+//!    change it shows that the technique does not (missing: blur, frozen impostors).
 
 mod cross;
 mod temporal;
 
 pub use cross::{PairScores, cross_compare, silhouette_rows, tile_coverage};
-pub use temporal::{CameraMotion, TemporalStability, frame_differences, temporal_stability};
+pub use temporal::{
+    CameraMotion, Scale, Series, StepMaps, TemporalChange, frame_differences, motion_frames,
+    spurious_and_missing, temporal_change,
+};
 
 use crate::metrics;
 use crate::runner::Harness;

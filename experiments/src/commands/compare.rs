@@ -1,10 +1,10 @@
-//! `grassbench compare`: LOD fidelity, the cross-technique matrix and temporal stability for
+//! `grassbench compare`: LOD fidelity, the cross-technique matrix and temporal change for
 //! every selected technique on every selected scene, as CSV and difference images.
 
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use grassbench::compare::{self, CameraMotion};
+use grassbench::compare::{self, CameraMotion, Scale};
 use grassbench::metrics;
 use grassbench::runner::{Provenance, write_atomic, write_csv};
 use grassbench::target::{Size, save_png};
@@ -29,7 +29,7 @@ pub struct CompareArgs {
     /// Target size WxH.
     #[arg(long, default_value = "640x360")]
     pub size: String,
-    /// Frame steps along each camera motion for temporal stability (0 skips it).
+    /// Frame steps along each camera motion for the temporal figures (0 skips them).
     #[arg(long, default_value_t = 24)]
     pub motion_frames: u32,
     /// Output folder.
@@ -53,14 +53,24 @@ struct LodRow {
     psnr: f64,
 }
 
+/// One row of `temporal.csv`: a technique's change against the reference's along one motion
+/// at one scale (`grassbench::compare::temporal_change`); spurious and missing change in units
+/// of the reference's mean change per step.
 #[derive(serde::Serialize)]
 struct TemporalRow {
     technique: String,
     variant: String,
     scene: String,
     motion: String,
-    peak: f64,
-    p95: f64,
+    scale: String,
+    reference_change: f64,
+    technique_change: f64,
+    spurious_mean: f64,
+    spurious_p95: f64,
+    spurious_peak: f64,
+    missing_mean: f64,
+    missing_p95: f64,
+    missing_peak: f64,
 }
 
 /// The two motions every technique is followed along.
@@ -138,7 +148,7 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
         if args.motion_frames > 0 {
             let mut rows = Vec::new();
             for motion in MOTIONS {
-                let base = compare::frame_differences(
+                let base = compare::motion_frames(
                     &gpu,
                     scene,
                     reference,
@@ -153,7 +163,7 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                         variants.push((NO_TRANSITIONS, v?));
                     }
                     for (variant, overrides) in variants {
-                        let diffs = compare::frame_differences(
+                        let frames = compare::motion_frames(
                             &gpu,
                             scene,
                             entry,
@@ -162,15 +172,24 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                             args.motion_frames,
                             size,
                         )?;
-                        let s = compare::temporal_stability(motion, &diffs, &base);
-                        rows.push(TemporalRow {
-                            technique: entry.info.id.into(),
-                            variant: variant.into(),
-                            scene: name.clone(),
-                            motion: s.motion.into(),
-                            peak: s.peak,
-                            p95: s.p95,
-                        });
+                        for scale in Scale::ALL {
+                            let c = compare::temporal_change(motion, scale, &frames, &base)?;
+                            rows.push(TemporalRow {
+                                technique: entry.info.id.into(),
+                                variant: variant.into(),
+                                scene: name.clone(),
+                                motion: c.motion.into(),
+                                scale: scale.name().into(),
+                                reference_change: c.reference_change,
+                                technique_change: c.technique_change,
+                                spurious_mean: c.spurious.mean,
+                                spurious_p95: c.spurious.p95,
+                                spurious_peak: c.spurious.peak,
+                                missing_mean: c.missing.mean,
+                                missing_p95: c.missing.p95,
+                                missing_peak: c.missing.peak,
+                            });
+                        }
                     }
                 }
             }

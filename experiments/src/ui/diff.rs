@@ -1,6 +1,7 @@
 //! The difference view: two panes compared live with FLIP or an absolute difference.
 
 use eframe::egui;
+use grassbench::compare::StepMaps;
 use grassbench::metrics;
 
 /// Which difference to show.
@@ -10,6 +11,11 @@ pub enum DiffMode {
     Flip,
     /// Absolute RGB difference x4 and mean absolute difference.
     Absolute,
+    /// Each pane's change since its previous frame, pane A against pane B as the reference:
+    /// spurious change (A changed where B did not: popping, shimmer) in red, missing change
+    /// (B changed where A did not: blur, frozen impostors) in cyan, x4
+    /// ([`grassbench::compare::StepMaps`]).
+    Temporal,
 }
 
 /// State of the difference view.
@@ -24,8 +30,11 @@ pub struct DiffView {
     pub mode: DiffMode,
     /// The difference image.
     pub texture: Option<egui::TextureHandle>,
-    /// Mean FLIP, or mean absolute difference in 0..255.
+    /// Mean FLIP, or mean absolute difference in 0..255, or mean spurious change in units of
+    /// the reference pane's change.
     pub mean: Option<f64>,
+    /// Temporal mode: mean missing change in units of the reference pane's change.
+    pub missing: Option<f64>,
     /// What went wrong last time (e.g. panes of different sizes).
     pub error: Option<String>,
 }
@@ -39,15 +48,52 @@ impl Default for DiffView {
             mode: DiffMode::Flip,
             texture: None,
             mean: None,
+            missing: None,
             error: None,
         }
     }
 }
 
 impl DiffView {
-    /// Recomputes the difference of two images.
+    /// Recomputes the temporal difference: pane A's step `a` = (previous, last) against pane
+    /// B's step `b`.
+    pub fn update_temporal(
+        &mut self,
+        ctx: &egui::Context,
+        a: (&image::RgbaImage, &image::RgbaImage),
+        b: (&image::RgbaImage, &image::RgbaImage),
+    ) {
+        match StepMaps::of(a, b) {
+            Ok(maps) => {
+                let (spurious, missing) = maps.means();
+                self.show(ctx, &maps.image(4.0));
+                self.mean = Some(spurious);
+                self.missing = Some(missing);
+                self.error = None;
+            }
+            Err(e) => self.error = Some(e.to_string()),
+        }
+    }
+
+    /// Uploads `img` as the difference texture.
+    fn show(&mut self, ctx: &egui::Context, img: &image::RgbaImage) {
+        let color = egui::ColorImage::from_rgba_unmultiplied(
+            [img.width() as usize, img.height() as usize],
+            img.as_raw(),
+        );
+        match &mut self.texture {
+            Some(t) => t.set(color, egui::TextureOptions::LINEAR),
+            None => {
+                self.texture =
+                    Some(ctx.load_texture("difference", color, egui::TextureOptions::LINEAR))
+            }
+        }
+    }
+
+    /// Recomputes the difference of two images (FLIP or absolute mode).
     pub fn update(&mut self, ctx: &egui::Context, a: &image::RgbaImage, b: &image::RgbaImage) {
         let result = match self.mode {
+            DiffMode::Temporal => return,
             DiffMode::Flip => metrics::flip(a, b).map(|f| (f.heatmap, f64::from(f.mean))),
             DiffMode::Absolute => metrics::abs_diff_image(a, b, 4.0).map(|d| {
                 let sum: f64 = d
@@ -60,21 +106,9 @@ impl DiffView {
         };
         match result {
             Ok((img, mean)) => {
-                let color = egui::ColorImage::from_rgba_unmultiplied(
-                    [img.width() as usize, img.height() as usize],
-                    img.as_raw(),
-                );
-                match &mut self.texture {
-                    Some(t) => t.set(color, egui::TextureOptions::LINEAR),
-                    None => {
-                        self.texture = Some(ctx.load_texture(
-                            "difference",
-                            color,
-                            egui::TextureOptions::LINEAR,
-                        ))
-                    }
-                }
+                self.show(ctx, &img);
                 self.mean = Some(mean);
+                self.missing = None;
                 self.error = None;
             }
             Err(e) => self.error = Some(e.to_string()),

@@ -35,6 +35,9 @@ pub struct Pane {
     pub history: VecDeque<FrameRecord>,
     /// The last image read back (for screenshots and the difference view).
     pub last_image: Option<image::RgbaImage>,
+    /// The image read back before `last_image` (the difference view's temporal mode compares
+    /// the change between the two with another pane's).
+    pub previous_image: Option<image::RgbaImage>,
     /// Frame last rendered.
     pub shown_frame: Option<u64>,
     /// Size at full resolution.
@@ -61,6 +64,7 @@ impl Pane {
             error: None,
             history: VecDeque::with_capacity(HISTORY),
             last_image: None,
+            previous_image: None,
             shown_frame: None,
             full_size: size,
             preview: false,
@@ -153,9 +157,11 @@ impl Pane {
                 }
                 self.history.push_back(out.record);
                 if out.image.is_some() {
+                    self.previous_image = self.last_image.take();
                     self.last_image = out.image;
                 } else if !capture {
                     self.last_image = None;
+                    self.previous_image = None;
                 }
                 self.shown_frame = Some(frame);
                 self.error = None;

@@ -21,6 +21,12 @@ pub fn ui(ui: &mut egui::Ui, diff: &mut DiffView, panes: usize) {
         ui.horizontal(|ui| {
             ui.radio_value(&mut diff.mode, DiffMode::Flip, "FLIP");
             ui.radio_value(&mut diff.mode, DiffMode::Absolute, "absolute x4");
+            ui.radio_value(&mut diff.mode, DiffMode::Temporal, "temporal")
+                .on_hover_text(
+                    "each pane's change since its previous frame, pane B as the reference: \
+                     spurious change (A changed, B did not: popping) red, \
+                     missing change (B changed, A did not: blur) cyan, x4",
+                );
         });
     });
 }
@@ -28,7 +34,16 @@ pub fn ui(ui: &mut egui::Ui, diff: &mut DiffView, panes: usize) {
 /// The difference window: the two panes' last images compared, the mean and the map.
 pub fn window(ctx: &egui::Context, diff: &mut DiffView, panes: &[Pane]) {
     let (a, b) = (diff.a, diff.b);
-    if let (Some(ia), Some(ib)) = (
+    let step = |k: usize| {
+        panes
+            .get(k)
+            .and_then(|p| Some((p.previous_image.as_ref()?, p.last_image.as_ref()?)))
+    };
+    if diff.mode == DiffMode::Temporal {
+        if let (Some(sa), Some(sb)) = (step(a), step(b)) {
+            diff.update_temporal(ctx, sa, sb);
+        }
+    } else if let (Some(ia), Some(ib)) = (
         panes.get(a).and_then(|p| p.last_image.as_ref()),
         panes.get(b).and_then(|p| p.last_image.as_ref()),
     ) {
@@ -40,10 +55,20 @@ pub fn window(ctx: &egui::Context, diff: &mut DiffView, panes: &[Pane]) {
             let what = match diff.mode {
                 DiffMode::Flip => "mean FLIP",
                 DiffMode::Absolute => "mean |Δ| / 255",
+                DiffMode::Temporal => "spurious change",
             };
             match (&diff.error, diff.mean) {
                 (Some(e), _) => {
                     ui.colored_label(egui::Color32::LIGHT_RED, e);
+                }
+                (None, Some(s)) if diff.mode == DiffMode::Temporal => {
+                    ui.label(format!(
+                        "pane {} against pane {} over their last step: {what} {s:.3}, missing change {:.3} (of pane {}'s change)",
+                        a + 1,
+                        b + 1,
+                        diff.missing.unwrap_or(0.0),
+                        b + 1
+                    ));
                 }
                 (None, Some(m)) => {
                     let m = if diff.mode == DiffMode::Absolute {
