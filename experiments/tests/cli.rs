@@ -374,6 +374,32 @@ fn interleaved_runs_give_the_same_images_and_every_technique_its_rows() {
     for id in ["reference", "zhang", "boulanger"] {
         assert!(runs.contains(&format!(",{id},")), "no row for {id}: {runs}");
     }
+    // Every technique's speed-up over the scene's reference, with its 95 % interval.
+    let mut rows = csv::Reader::from_path(interleaved.join("runs.csv")).unwrap();
+    let headers = rows.headers().unwrap().clone();
+    let at = |name: &str| headers.iter().position(|h| h == name).unwrap();
+    let (technique, speedup, low, high) = (
+        at("technique"),
+        at("speedup"),
+        at("speedup_ci_low"),
+        at("speedup_ci_high"),
+    );
+    for row in rows.records() {
+        let row = row.unwrap();
+        let number = |k: usize| row[k].parse::<f64>().ok();
+        if &row[technique] == "reference" {
+            assert_eq!(number(speedup), Some(1.0));
+        } else {
+            let (s, lo, hi) = (
+                number(speedup).unwrap(),
+                number(low).unwrap(),
+                number(high).unwrap(),
+            );
+            assert!(lo <= s && s <= hi, "{}: {lo} {s} {hi}", &row[technique]);
+        }
+    }
+    let readme = std::fs::read_to_string(d.join("interleaved/README.md")).unwrap();
+    assert!(readme.contains("speed-up (95 % interval)"), "{readme}");
 }
 
 #[test]

@@ -76,6 +76,29 @@ fn tiny_sweep_runs_and_reports() {
         ratio.iter().all(|r| !r.is_empty()),
         "every run has a reference in its group"
     );
+    // Every speed-up has its 95 % bootstrap interval, which holds it (the reference's row
+    // has none: its speed-up is 1 by definition).
+    let runs_csv = out.join("runs.csv");
+    let techniques_col = column(&runs_csv, "technique");
+    let number = |name: &str| -> Vec<Option<f64>> {
+        column(&runs_csv, name)
+            .iter()
+            .map(|v| v.parse::<f64>().ok())
+            .collect()
+    };
+    let (speedup, low, high) = (
+        number("speedup"),
+        number("speedup_ci_low"),
+        number("speedup_ci_high"),
+    );
+    for (k, technique) in techniques_col.iter().enumerate() {
+        if technique == "reference" {
+            assert_eq!((speedup[k], low[k], high[k]), (Some(1.0), None, None));
+        } else {
+            let (s, lo, hi) = (speedup[k].unwrap(), low[k].unwrap(), high[k].unwrap());
+            assert!(lo <= s && s <= hi && lo > 0.0, "{technique}: {lo} {s} {hi}");
+        }
+    }
     let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
     assert!(
         meta.contains("[calibration]")
@@ -90,6 +113,7 @@ fn tiny_sweep_runs_and_reports() {
     assert!(
         report.contains("| meadow |")
             && report.contains("reference")
+            && report.contains("**Which is faster.**")
             && report.contains("plots/frame_time.svg"),
         "{report}"
     );

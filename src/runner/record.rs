@@ -259,6 +259,17 @@ pub struct RunSummary {
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
     pub gpu_wall_ratio_to_reference: Option<f64>,
+    /// Speed-up over the reference in the same configuration and repetition: the reference's
+    /// median GPU wall time over this run's (1 / `gpu_wall_ratio_to_reference`).
+    #[serde(default)]
+    pub speedup: Option<f64>,
+    /// 2.5th percentile of the speed-up's bootstrap distribution over both runs' frames
+    /// ([`super::bootstrap`]): with `speedup_ci_high`, a 95 % interval.
+    #[serde(default)]
+    pub speedup_ci_low: Option<f64>,
+    /// 97.5th percentile of the speed-up's bootstrap distribution.
+    #[serde(default)]
+    pub speedup_ci_high: Option<f64>,
     /// Mean FLIP of the last frame against the reference's, full resolution.
     pub flip_vs_reference: Option<f64>,
     /// Mean FLIP against the reference after 4x downsampling (placement-insensitive).
@@ -347,6 +358,9 @@ impl RunSummary {
                 .collect::<Vec<_>>()
                 .join(";"),
             gpu_wall_ratio_to_reference: None,
+            speedup: None,
+            speedup_ci_low: None,
+            speedup_ci_high: None,
             flip_vs_reference: None,
             flip_vs_reference_quarter: None,
             blade_cost_ns: wall

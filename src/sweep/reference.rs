@@ -7,6 +7,7 @@
 use std::collections::HashMap;
 
 use crate::runner::RunSummary;
+use crate::runner::bootstrap::speedup_interval_of_runs;
 
 /// The technique every other is measured against (ratio and FLIP in a sweep's `runs.csv`).
 pub const REFERENCE: &str = "reference";
@@ -15,6 +16,27 @@ pub const REFERENCE: &str = "reference";
 /// when either has no measured time (a failed run).
 pub fn ratio_to_reference(run: &RunSummary, reference: &RunSummary) -> Option<f64> {
     Some(run.gpu_wall_ms_median? / reference.gpu_wall_ms_median?)
+}
+
+/// Compares `run` with its group's `reference` run: sets the ratio, the speed-up and the
+/// speed-up's 95 % bootstrap interval from both runs' per-frame GPU wall times
+/// (`run_frames`, `reference_frames`; the interval stays empty without them, and for the
+/// reference itself, whose speed-up is 1 by definition).
+pub fn compare_with_reference(
+    run: &mut RunSummary,
+    reference: &RunSummary,
+    run_frames: &[f64],
+    reference_frames: &[f64],
+) {
+    run.gpu_wall_ratio_to_reference = ratio_to_reference(run, reference);
+    run.speedup = run.gpu_wall_ratio_to_reference.map(f64::recip);
+    let interval = if run.technique == REFERENCE {
+        None
+    } else {
+        speedup_interval_of_runs(reference_frames, run_frames)
+    };
+    run.speedup_ci_low = interval.map(|i| i.low);
+    run.speedup_ci_high = interval.map(|i| i.high);
 }
 
 /// What a row's group is known by in `runs.csv`: scene, scene variant, size, MSAA, repetition.
@@ -31,27 +53,34 @@ fn group_of(run: &RunSummary) -> GroupKey<'_> {
     )
 }
 
-/// Gives every finished run without a ratio its ratio to the finished reference run of its
-/// group (the last such row when a group holds several, as in the sweep, where each reference
-/// run replaces the one before); runs whose group has none keep none.
-pub fn fill_ratios(rows: &mut [RunSummary]) {
-    let references: HashMap<GroupKey<'_>, &RunSummary> = rows
+/// Gives every finished run without a ratio its ratio (and speed-up, with its interval where
+/// `frames` holds both runs' per-frame GPU wall times, by run id) to the finished reference run
+/// of its group (the last such row when a group holds several, as in the sweep, where each
+/// reference run replaces the one before); runs whose group has none keep none.
+pub fn fill_ratios(rows: &mut [RunSummary], frames: &HashMap<String, Vec<f64>>) {
+    let references: HashMap<GroupKey<'_>, usize> = rows
         .iter()
-        .filter(|r| r.technique == REFERENCE && r.is_ok())
-        .map(|r| (group_of(r), r))
+        .enumerate()
+        .filter(|(_, r)| r.technique == REFERENCE && r.is_ok())
+        .map(|(k, r)| (group_of(r), k))
         .collect();
-    let ratios: Vec<Option<f64>> = rows
+    let pairs: Vec<(usize, usize)> = rows
         .iter()
-        .map(|r| match r.gpu_wall_ratio_to_reference {
-            Some(ratio) => Some(ratio),
-            None if r.is_ok() => references
-                .get(&group_of(r))
-                .and_then(|reference| ratio_to_reference(r, reference)),
-            None => None,
-        })
+        .enumerate()
+        .filter(|(_, r)| r.gpu_wall_ratio_to_reference.is_none() && r.is_ok())
+        .filter_map(|(k, r)| Some((k, *references.get(&group_of(r))?)))
         .collect();
-    for (row, ratio) in rows.iter_mut().zip(ratios) {
-        row.gpu_wall_ratio_to_reference = ratio;
+    let empty = Vec::new();
+    for (k, reference) in pairs {
+        let reference_row = rows[reference].clone();
+        let run_frames = frames.get(&rows[k].run_id).unwrap_or(&empty);
+        let reference_frames = frames.get(&reference_row.run_id).unwrap_or(&empty);
+        compare_with_reference(&mut rows[k], &reference_row, run_frames, reference_frames);
+    }
+    for row in rows.iter_mut() {
+        if row.speedup.is_none() {
+            row.speedup = row.gpu_wall_ratio_to_reference.map(f64::recip);
+        }
     }
 }
 
@@ -85,7 +114,7 @@ mod tests {
         ];
         rows[5].gpu_wall_ratio_to_reference = Some(0.5);
         rows[6].status = "failed".to_owned();
-        fill_ratios(&mut rows);
+        fill_ratios(&mut rows, &HashMap::new());
         let ratios: Vec<Option<f64>> = rows.iter().map(|r| r.gpu_wall_ratio_to_reference).collect();
         assert_eq!(
             ratios,
@@ -109,11 +138,11 @@ mod tests {
             row(REFERENCE, "", 0, 20.0),
             row("zhang", "", 0, 5.0),
         ];
-        fill_ratios(&mut rows);
+        fill_ratios(&mut rows, &HashMap::new());
         assert_eq!(rows[2].gpu_wall_ratio_to_reference, Some(0.25));
         let mut rows = vec![row(REFERENCE, "", 0, 10.0), row("zhang", "", 0, 5.0)];
         rows[0].status = "failed".to_owned();
-        fill_ratios(&mut rows);
+        fill_ratios(&mut rows, &HashMap::new());
         assert_eq!(rows[1].gpu_wall_ratio_to_reference, None);
     }
 }

@@ -9,6 +9,7 @@ use grassbench::runner::{
     self, FrameRecord, Harness, LevelRow, Provenance, RunOptions, RunSummary, write_atomic,
     write_csv,
 };
+use grassbench::sweep::{REFERENCE, compare_with_reference};
 use grassbench::target::{Size, save_png};
 use grassbench::technique::NoGrass;
 
@@ -189,6 +190,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
                 }
             }
         }
+        out.compare_with_reference()?;
         let runs = out.runs;
         all_runs.extend(runs);
         write_csv(&args.out.join("runs.csv"), &all_runs)?;
@@ -287,6 +289,30 @@ impl SceneOutput<'_> {
     }
 }
 
+impl SceneOutput<'_> {
+    /// Gives every run its speed-up over the scene's reference run (where the reference ran),
+    /// with the 95 % bootstrap interval from both runs' frames; rewrites runs.csv.
+    fn compare_with_reference(&mut self) -> anyhow::Result<()> {
+        let walls = |id: &str| -> Vec<f64> {
+            self.frames
+                .iter()
+                .filter(|f| f.technique == id)
+                .map(|f| f.gpu_wall_ms)
+                .collect()
+        };
+        let Some(reference) = self.runs.iter().find(|r| r.technique == REFERENCE).cloned() else {
+            return Ok(());
+        };
+        let reference_walls = walls(REFERENCE);
+        let run_walls: Vec<Vec<f64>> = self.runs.iter().map(|r| walls(&r.technique)).collect();
+        for (run, frames) in self.runs.iter_mut().zip(&run_walls) {
+            compare_with_reference(run, &reference, frames, &reference_walls);
+        }
+        write_csv(&self.dir.join("runs.csv"), &self.runs)?;
+        Ok(())
+    }
+}
+
 fn progress_bar(total: u64, label: &str) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::new(total);
     if let Ok(style) = indicatif::ProgressStyle::with_template(
@@ -310,18 +336,20 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
          Fragments and overdraw (fragment shader invocations of the technique's passes, and those per \
          target pixel) are counted by the GPU's pipeline-statistics queries; empty where the adapter has none. \
          *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
-         were measured: on a software rasteriser that time is taken from the GPU.\n"
+         were measured: on a software rasteriser that time is taken from the GPU. Speed-up = the reference's \
+         median GPU wall time over the technique's on the same scene, with its 95 % bootstrap interval over \
+         both runs' frames: a technique is faster than another only where the intervals do not overlap.\n"
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
@@ -330,6 +358,10 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
             fmt_opt(r.gpu_wall_ms_median, 1),
             fmt_opt(r.gpu_wall_ms_p5, 1),
             fmt_opt(r.gpu_wall_ms_p95, 1),
+            match (r.speedup, r.speedup_ci_low, r.speedup_ci_high) {
+                (Some(v), Some(lo), Some(hi)) => format!("{v:.2} ({lo:.2}–{hi:.2})"),
+                (v, _, _) => fmt_opt(v, 2),
+            },
             fmt_opt(r.frame_ms_median, 1),
             count(r.blades_drawn),
             count(r.blades_represented),

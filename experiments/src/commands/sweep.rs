@@ -10,7 +10,7 @@ use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
 use grassbench::sweep::{
     ParamRow, PlannedRun, REFERENCE, SweepSpec, SweepStore, apply_overrides, image_path,
-    ratio_to_reference, sweep_key,
+    compare_with_reference, sweep_key,
 };
 use grassbench::target::save_png;
 use grassbench::{GpuContext, Scene};
@@ -256,8 +256,8 @@ fn scene_key(run: &PlannedRun) -> String {
 
 type Executed = (RunSummary, Vec<runner::FrameRecord>, Vec<ParamRow>);
 
-/// A group's reference run and its last frame.
-type Reference = (RunSummary, Option<image::RgbaImage>);
+/// A group's reference run, its per-frame GPU wall times and its last frame.
+type Reference = (RunSummary, Vec<f64>, Option<image::RgbaImage>);
 
 /// One run: measure, compare with the group's reference, save its last frame for repetition 0.
 fn execute(
@@ -284,11 +284,12 @@ fn execute(
     row.repetition = run.repetition;
     row.scene_variant = run.scene_variant();
     let image = result.images.into_iter().next().map(|(_, img)| img);
+    let walls: Vec<f64> = result.frames.iter().map(|f| f.gpu_wall_ms).collect();
     if run.technique == REFERENCE {
-        reference.insert(run.group.clone(), (row.clone(), image.clone()));
+        reference.insert(run.group.clone(), (row.clone(), walls.clone(), image.clone()));
     }
-    if let Some((ref_row, ref_img)) = reference.get(&run.group) {
-        row.gpu_wall_ratio_to_reference = ratio_to_reference(&row, ref_row);
+    if let Some((ref_row, ref_walls, ref_img)) = reference.get(&run.group) {
+        compare_with_reference(&mut row, ref_row, &walls, ref_walls);
         if let (Some(img), Some(ref_img)) = (&image, ref_img) {
             row.flip_vs_reference = Some(f64::from(flip(ref_img, img)?.mean));
             row.flip_vs_reference_quarter = Some(f64::from(

@@ -1,12 +1,13 @@
 //! A sweep's `runs.csv` as the report sees it: one [`Config`] per configuration, its
 //! repetitions pooled.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use anyhow::{Context as _, bail};
-use grassbench::runner::{Percentiles, RunSummary};
-use grassbench::sweep::{config_id_of, fill_ratios, image_path, read_rows};
+use grassbench::runner::bootstrap::{Interval, speedup_interval};
+use grassbench::runner::{FrameRecord, Percentiles, RunSummary};
+use grassbench::sweep::{REFERENCE, config_id_of, fill_ratios, image_path, read_rows};
 
 /// One configuration, its repetitions pooled.
 #[derive(Clone, Debug, Default)]
@@ -39,6 +40,11 @@ pub(super) struct Config {
     pub(super) encode: Vec<f64>,
     /// GPU time over the group reference's, per repetition.
     pub(super) ratio: Vec<f64>,
+    /// Per-frame GPU wall times of each finished repetition, by repetition (from frames.csv).
+    pub(super) frame_walls: BTreeMap<u32, Vec<f64>>,
+    /// 95 % bootstrap interval of the speed-up over the group's reference, repetitions and
+    /// frames resampled ([`grassbench::runner::bootstrap::speedup_interval`]).
+    pub(super) speedup_interval: Option<Interval>,
     /// Mean FLIP against the reference, per repetition.
     pub(super) flip: Vec<f64>,
     /// Mean FLIP against the reference at 1/4 scale, per repetition.
@@ -115,7 +121,8 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
             path.display()
         );
     }
-    fill_ratios(&mut rows);
+    let frames = frame_walls(dir)?;
+    fill_ratios(&mut rows, &frames);
     let mut configs: BTreeMap<String, Config> = BTreeMap::new();
     for r in &rows {
         let config_id = config_id_of(&r.run_id);
@@ -141,6 +148,9 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         c.upload.extend(r.upload_ms_median);
         c.encode.extend(r.encode_ms_median);
         c.ratio.extend(r.gpu_wall_ratio_to_reference);
+        if let Some(walls) = frames.get(&r.run_id) {
+            c.frame_walls.insert(r.repetition, walls.clone());
+        }
         c.flip.extend(r.flip_vs_reference);
         c.flip_quarter.extend(r.flip_vs_reference_quarter);
         c.host_other_cores.extend(r.host_other_cores);
@@ -158,7 +168,44 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
     }
     // Labels show only the parameters that vary within a technique, not every default.
     shorten_params(&mut configs);
+    set_speedup_intervals(&mut configs);
     Ok(configs)
+}
+
+/// Per-frame GPU wall times of every run in `dir/frames.csv`, by run id (empty without it).
+fn frame_walls(dir: &Path) -> anyhow::Result<HashMap<String, Vec<f64>>> {
+    let path = dir.join("frames.csv");
+    let mut out: HashMap<String, Vec<f64>> = HashMap::new();
+    if path.exists() {
+        let frames: Vec<FrameRecord> =
+            read_rows(&path).with_context(|| format!("reading {}", path.display()))?;
+        for f in frames {
+            out.entry(f.run_id).or_default().push(f.gpu_wall_ms);
+        }
+    }
+    Ok(out)
+}
+
+/// Gives every configuration the 95 % interval of its speed-up over its group's reference
+/// (same scene, variant, size, MSAA), pairing repetitions by number.
+fn set_speedup_intervals(configs: &mut BTreeMap<String, Config>) {
+    let group = |c: &Config| (c.scene.clone(), c.variant.clone(), c.size.clone(), c.msaa);
+    let references: HashMap<_, BTreeMap<u32, Vec<f64>>> = configs
+        .values()
+        .filter(|c| c.technique == REFERENCE)
+        .map(|c| (group(c), c.frame_walls.clone()))
+        .collect();
+    for c in configs.values_mut().filter(|c| c.technique != REFERENCE) {
+        let Some(reference) = references.get(&group(c)) else {
+            continue;
+        };
+        let (r, t): (Vec<Vec<f64>>, Vec<Vec<f64>>) = c
+            .frame_walls
+            .iter()
+            .filter_map(|(rep, walls)| Some((reference.get(rep)?.clone(), walls.clone())))
+            .unzip();
+        c.speedup_interval = speedup_interval(&r, &t);
+    }
 }
 
 /// Sets `label` of every configuration to the parameters that differ between configurations

@@ -11,6 +11,9 @@ use grassbench::runner::write_atomic;
 use super::fmt_opt as fmt;
 use super::sweep::SweepMeta;
 use configs::{BUSY_HOST_CORES, Config, label, load, median};
+use grassbench::runner::bootstrap::Interval;
+use grassbench::sweep::REFERENCE;
+use std::collections::BTreeMap;
 use plots::{frame_time_plot, pareto_plot, scaling_plot};
 
 /// Arguments of `report`.
@@ -18,6 +21,76 @@ use plots::{frame_time_plot, pareto_plot, scaling_plot};
 pub struct ReportArgs {
     /// A sweep's results folder.
     pub dir: PathBuf,
+}
+
+/// "Which is faster": per group (scene, variant, size, MSAA), its configurations by speed-up
+/// over the reference, joined by `>` where the 95 % intervals of neighbours do not overlap
+/// and by `≈` where they do: one is called faster than another only where the intervals
+/// separate them.
+fn faster_than(md: &mut String, configs: &BTreeMap<String, Config>) {
+    let mut groups: BTreeMap<(String, String, String, bool), Vec<&Config>> = BTreeMap::new();
+    for c in configs.values().filter(|c| !c.gpu_wall.is_empty()) {
+        groups
+            .entry((c.scene.clone(), c.variant.clone(), c.size.clone(), c.msaa))
+            .or_default()
+            .push(c);
+    }
+    let interval = |c: &Config| {
+        if c.technique == REFERENCE {
+            // The unit every speed-up is measured in.
+            Some(Interval {
+                low: 1.0,
+                high: 1.0,
+            })
+        } else {
+            c.speedup_interval
+        }
+    };
+    let mut lines = Vec::new();
+    for ((scene, variant, size, msaa), mut members) in groups {
+        members.retain(|c| interval(c).is_some());
+        if members.len() < 2 {
+            continue;
+        }
+        members.sort_by(|a, b| {
+            let mid = |c: &Config| interval(c).map_or(0.0, |i| 0.5 * (i.low + i.high));
+            mid(b).total_cmp(&mid(a))
+        });
+        let mut line = String::new();
+        for (k, c) in members.iter().enumerate() {
+            if k > 0 {
+                let separated = match (interval(members[k - 1]), interval(c)) {
+                    (Some(a), Some(b)) => a.separated_from(&b),
+                    _ => false,
+                };
+                line.push_str(if separated { " > " } else { " ≈ " });
+            }
+            let _ = match interval(c) {
+                Some(i) if c.technique != REFERENCE => {
+                    write!(line, "{} ({:.2}–{:.2})", label(c), i.low, i.high)
+                }
+                _ => write!(line, "{} (1)", label(c)),
+            };
+        }
+        let variant = if variant.is_empty() {
+            String::new()
+        } else {
+            format!(" {variant}")
+        };
+        lines.push(format!(
+            "- {scene}{variant} {size}{}: {line}",
+            if msaa { " 4x" } else { "" }
+        ));
+    }
+    if !lines.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n**Which is faster.** Speed-up over the reference with its 95 % bootstrap interval (frames and repetitions resampled); `>` only where neighbouring intervals do not overlap, `≈` where they do (no difference this measurement can show):\n"
+        );
+        for l in lines {
+            let _ = writeln!(md, "{l}");
+        }
+    }
 }
 
 /// Writes REPORT.md and plots/*.svg.
@@ -58,16 +131,16 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     let _ = writeln!(md, "## Cost and quality\n");
     let _ = writeln!(
         md,
-        "| scene | variant | size | technique | params | GPU ms | frame ms | speed-up | FLIP | FLIP 1/4 | blades drawn | blades represented | triangles | GPU MB | runs failed |"
+        "| scene | variant | size | technique | params | GPU ms | frame ms | speed-up | 95 % interval | FLIP | FLIP 1/4 | blades drawn | blades represented | triangles | GPU MB | runs failed |"
     );
     let _ = writeln!(
         md,
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for c in configs.values() {
         let _ = writeln!(
             md,
-            "| {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             c.scene,
             if c.variant.is_empty() {
                 "–"
@@ -81,6 +154,8 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             fmt(median(&c.gpu_wall), 1),
             fmt(median(&c.frame), 1),
             fmt(median(&c.ratio).map(|r| 1.0 / r), 2),
+            c.speedup_interval
+                .map_or("–".to_owned(), |i| format!("{:.2}–{:.2}", i.low, i.high)),
             fmt(median(&c.flip), 3),
             fmt(median(&c.flip_quarter), 3),
             fmt(c.blades_drawn, 0),
@@ -90,6 +165,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             c.failed
         );
     }
+    faster_than(&mut md, &configs);
     let disagreeing: Vec<(&Config, f64)> = configs
         .values()
         .filter_map(|c| Some((c, c.repetitions_disagree()?)))
