@@ -208,6 +208,7 @@ pub mod params;
 pub mod patch;
 mod pipelines;
 mod plan;
+pub mod population;
 pub mod quadtree;
 pub mod shader;
 pub mod shadow;
@@ -227,7 +228,7 @@ pub use gpu::params_uniform;
 pub use ground_shadow::GroundShadows;
 pub use lod::LodDistances;
 pub use params::{Params, Transparency};
-pub use patch::{Orientation, Patch, PatchBlade};
+pub use patch::{Orientation, Patch, PatchBlade, PatchSpec};
 pub use quadtree::{CellGrid, Quadtree, Selection, Walk};
 pub use shader::{CellRecord, ParamsUniform, SHADER, SliceQuad};
 pub use tiling::BLOCKS;
@@ -240,6 +241,8 @@ pub const MAX_CELLS: u64 = 4096 * 4096;
 
 /// The technique.
 pub struct Boulanger {
+    /// The parameters as given (what results record); everything built from them used
+    /// [`Params::for_scene`]'s.
     params: Params,
     /// The patch and the quadtree of its cells.
     tiling: tiling::Tiling,
@@ -268,10 +271,12 @@ impl Technique for Boulanger {
     const VARIANTS: Variants = Variants {
         // Geometry everywhere (Eq. 1-4 with every distance inside min_geom).
         finest: "min_geom = 9000.0\nmax_geom = 9001.0\nmin_btf = 9001.0\nmax_btf = 9002.0",
-        // Eq. 5 with ω = 0: a hard threshold test, blades switch representation at once.
+        // Sec. 3.1's levels switched per cell at the middle of each transition band, without
+        // Sec. 3.4's density split or Eq. 5's blending: each cell entirely geometry or
+        // entirely slices.
         others: &[Variant {
             name: grassbench::technique::NO_TRANSITIONS,
-            params: "omega = 0.0",
+            params: "transitions = false",
         }],
     };
 
@@ -279,12 +284,13 @@ impl Technique for Boulanger {
     /// orientation map (one byte per cell), the blade texture and the per-frame buffers at
     /// their first size.
     fn estimate(scene: &grassbench::Scene, params: &Params) -> Result<GpuEstimate> {
+        let params = params.for_scene(&scene.config.grass)?;
         let grid = CellGrid::new(&scene.terrain, params.patch_size);
-        let density = params.effective_blades_per_m2(scene.config.grass.density);
-        let strata = u64::from(Patch::strata_for(params.patch_size, density));
+        let spec = PatchSpec::for_density(params.patch_size, params.blades_per_m2);
         let blade = std::mem::size_of::<PatchBlade>() as u64;
         Ok([
-            GpuEstimate::buffer((strata * strata).saturating_mul(blade)),
+            // At least one record: an empty patch still binds a buffer.
+            GpuEstimate::buffer(u64::from(spec.blades.max(1)).saturating_mul(blade)),
             GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
             GpuEstimate::textures(btf::texture_bytes(shadow::WIDTH, shadow::HEIGHT, 1)),
             GpuEstimate::textures(if params.external_ao {
@@ -309,9 +315,10 @@ impl Technique for Boulanger {
         .sum())
     }
 
-    /// Builds the patch and the quadtree, then the GPU side (`gpu`), which bakes the shadow
-    /// mask and the slices.
-    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
+    /// Builds the patch of the scene's grass, its population and the quadtree, then the GPU
+    /// side (`gpu`), which bakes the shadow mask and the slices.
+    fn new(ctx: &InitContext<'_>, given: Params) -> Result<Self> {
+        let params = given.for_scene(&ctx.scene.config.grass)?;
         if params.transparency == Transparency::AlphaToCoverage && ctx.sample_count < 4 {
             return Err(Error::param(
                 "boulanger.transparency",
@@ -325,7 +332,7 @@ impl Technique for Boulanger {
         if grid.count() > MAX_CELLS || grid.nx > max_side || grid.nz > max_side {
             return Err(Error::param(
                 "boulanger.patch_size",
-                params.patch_size,
+                given.patch_size,
                 format!(
                     "at most {MAX_CELLS} cells and {max_side} a side; the terrain needs {} x {}",
                     grid.nx, grid.nz
@@ -337,7 +344,7 @@ impl Technique for Boulanger {
         let tiling = tiling::Tiling::new(&params, scene, grid, patch, uniform.lod[3]);
         let (gpu, bakes) = gpu::BoulangerGpu::new(ctx, &params, &uniform, &tiling)?;
         Ok(Self {
-            params,
+            params: given,
             tiling,
             gpu,
             bakes,
@@ -361,10 +368,22 @@ impl Boulanger {
         self.tiling.blades_per_patch()
     }
 
+    /// Side of the patch actually tiled, m ([`PatchSpec::for_density`]: near `patch_size`, so
+    /// that the patch holds a whole number of blades at the scene's density).
+    pub fn patch_side(&self) -> f32 {
+        self.tiling.patch.size
+    }
+
+    /// Blades of the tiling that grow (under the density map, on grass, on the terrain).
+    pub fn growing_blades(&self) -> u64 {
+        self.tiling.population.total()
+    }
+
     /// The BTF cache keys (horizontal, vertical) `new` would use on `scene` with `overrides`
     /// (CPU only).
     pub fn bake_keys(scene: &grassbench::Scene, overrides: &toml::Table) -> Result<[u64; 2]> {
         let params: Params = grassbench::params::resolve(Self::INFO.id, overrides)?;
+        let params = params.for_scene(&scene.config.grass)?;
         let patch = tiling::scene_patch(&params, scene);
         let uniform = gpu::params_uniform(&params, &scene.config.grass);
         Ok(bakes::keys(&params, &uniform, &patch))
@@ -378,8 +397,12 @@ impl Boulanger {
 
 impl GrassTechnique for Boulanger {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
-        self.plan
-            .update(&self.tiling, &inputs.camera, &self.gpu.paging);
+        self.plan.update(
+            &self.tiling,
+            &inputs.scene.terrain,
+            &inputs.camera,
+            &self.gpu.paging,
+        );
         Ok(())
     }
 
@@ -406,10 +429,11 @@ impl GrassTechnique for Boulanger {
             None => 0,
         };
         TechniqueStats {
+            // Growing blades whose geometry was submitted, in transitions too (`plan`).
             blades_drawn: plan.lod_blades.geometry,
-            // The slices' share of every cell's blades (Eq. 4's `w_hs`): in the mid band the
-            // vertical slices show the same share again, over the horizontal slice (Sec. 3.3),
-            // so they stand for no further blade.
+            // Every other growing blade of a cell with slices, and every growing blade of a
+            // macro-cell: the horizontal slice lies under all of them, and in the mid band the
+            // vertical slices show the same blades again (Sec. 3.3), so they add none.
             blades_represented: plan.lod_blades.horizontal_slices,
             triangles: blade_triangles
                 + quad_triangles
@@ -419,7 +443,7 @@ impl GrassTechnique for Boulanger {
         }
     }
 
-    /// Sec. 3.1's three levels.
+    /// Sec. 3.1's three levels; the vertical slices' blades are also the horizontal slice's.
     fn levels(&self) -> Vec<LevelBlades> {
         let l = &self.plan.lod_blades;
         [
