@@ -7,9 +7,9 @@
 //! [`BoulangerGpu::encode`] draws it.
 
 use glam::Vec3;
+use grassbench::bytemuck::Zeroable as _;
 use grassbench::technique::RenderPass;
 use grassbench::wgpu::util::DeviceExt as _;
-use grassbench::bytemuck::Zeroable as _;
 use grassbench::{Error, FrameEncoder, GpuContext, InitContext, Result, bytemuck, wgpu};
 
 use crate::bakes::{self, BakeReport};

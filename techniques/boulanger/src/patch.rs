@@ -73,7 +73,9 @@ impl PatchSpec {
             };
         }
         let rho = f64::from(blades_per_m2);
-        let n = (rho * f64::from(size).powi(2)).round().clamp(1.0, f64::from(u32::MAX));
+        let n = (rho * f64::from(size).powi(2))
+            .round()
+            .clamp(1.0, f64::from(u32::MAX));
         Self {
             side: (n / rho).sqrt() as f32,
             blades: n as u32,
@@ -306,15 +308,30 @@ mod tests {
     #[test]
     fn the_patch_holds_the_density_asked_for() {
         let spec = PatchSpec::for_density(0.5, 20.0);
-        assert_eq!(spec, PatchSpec { side: 0.5, blades: 5 });
-        for (size, rho) in [(0.5, 14.0), (0.5, 22.5), (0.5, 87_800.0), (0.5, 0.7), (0.3, 9.0)] {
+        assert_eq!(
+            spec,
+            PatchSpec {
+                side: 0.5,
+                blades: 5
+            }
+        );
+        for (size, rho) in [
+            (0.5, 14.0),
+            (0.5, 22.5),
+            (0.5, 87_800.0),
+            (0.5, 0.7),
+            (0.3, 9.0),
+        ] {
             let s = PatchSpec::for_density(size, rho);
             let tiled = s.blades as f32 / (s.side * s.side);
             assert!((tiled / rho - 1.0).abs() < 1e-5, "{size} m at {rho}: {s:?}");
             assert!(s.blades >= 1);
             // Within half a blade of the side asked for (a single blade may stretch it more).
             let asked = rho * size * size;
-            assert!((s.blades as f32 - asked).abs() <= 0.5 || asked < 1.0, "{s:?}");
+            assert!(
+                (s.blades as f32 - asked).abs() <= 0.5 || asked < 1.0,
+                "{s:?}"
+            );
         }
         assert_eq!(PatchSpec::for_density(0.5, 87_800.0).blades, 21_950);
         assert_eq!(PatchSpec::for_density(0.5, 0.0).blades, 0);

@@ -396,7 +396,10 @@ covering = { kind = "procedural", gaps = 0.2, trees = 0.02, stones = 0.02, frequ
                 ("default", ""),
                 ("bands", BANDS),
                 ("bands, hard", &format!("{BANDS}\nomega = 0.0")),
-                ("bands, no transitions", &format!("{BANDS}\ntransitions = false")),
+                (
+                    "bands, no transitions",
+                    &format!("{BANDS}\ntransitions = false"),
+                ),
             ] {
                 let t = tiling(&scene, overrides);
                 let population = t.population.total();
@@ -456,10 +459,9 @@ covering = { kind = "procedural", gaps = 0.2, trees = 0.02, stones = 0.02, frequ
                 if grown == 0 {
                     continue;
                 }
-                let geometry = p
-                    .geometry
-                    .iter()
-                    .find(|c| Vec2::new(c.record.center_signs[0], c.record.center_signs[1]) == centre);
+                let geometry = p.geometry.iter().find(|c| {
+                    Vec2::new(c.record.center_signs[0], c.record.center_signs[1]) == centre
+                });
                 let mut drawn = 0.0;
                 if let Some(c) = geometry {
                     let signs = Vec2::new(c.record.center_signs[2], c.record.center_signs[3]);
@@ -508,7 +510,10 @@ covering = { kind = "procedural", gaps = 0.2, trees = 0.02, stones = 0.02, frequ
         let border = 0.5 * (t.lod.min_geom + t.lod.max_geom);
         let (mut last_geometry, mut first_slices) = (0.0f32, f32::INFINITY);
         for &(d, share, quad) in &shares {
-            assert!(share == 0.0 || share == 1.0, "a cell {d} m away is split: {share}");
+            assert!(
+                share == 0.0 || share == 1.0,
+                "a cell {d} m away is split: {share}"
+            );
             if share == 1.0 {
                 last_geometry = last_geometry.max(d);
                 assert!(quad.is_none(), "a geometry cell {d} m away has a slice");
@@ -523,8 +528,16 @@ covering = { kind = "procedural", gaps = 0.2, trees = 0.02, stones = 0.02, frequ
         }
         assert!(last_geometry < border && border <= first_slices);
         assert!(last_geometry > border - 0.5 && first_slices < border + 0.5);
-        assert!(p.geometry.iter().all(|c| c.record.mode == [0.0, 1.0, 1.0, 0.0]));
-        assert!(p.vslice_records.iter().all(|c| c.mode == [0.0, 1.0, 0.0, 1.0]));
+        assert!(
+            p.geometry
+                .iter()
+                .all(|c| c.record.mode == [0.0, 1.0, 1.0, 0.0])
+        );
+        assert!(
+            p.vslice_records
+                .iter()
+                .all(|c| c.mode == [0.0, 1.0, 0.0, 1.0])
+        );
         assert!(!p.vslice_records.is_empty());
         // The seamless defaults, and the hard test of the variant before issue 19, split the
         // cells of the band between geometry and slices.

@@ -101,7 +101,10 @@ impl Population {
             count_tested(terrain, &self.grid, patch, self.seed, i, j, range)
         } else {
             let under = prefix_under(patch, block, rho);
-            range.end.min(under.end).saturating_sub(range.start.max(under.start))
+            range
+                .end
+                .min(under.end)
+                .saturating_sub(range.start.max(under.start))
         }
     }
 
@@ -207,7 +210,17 @@ mod tests {
     fn brute_force(terrain: &Terrain, grid: &CellGrid, patch: &Patch, seed: u64) -> Vec<u32> {
         (0..grid.nz)
             .flat_map(|j| (0..grid.nx).map(move |i| (i, j)))
-            .map(|(i, j)| count_tested(terrain, grid, patch, seed, i, j, 0..patch.blades.len() as u32))
+            .map(|(i, j)| {
+                count_tested(
+                    terrain,
+                    grid,
+                    patch,
+                    seed,
+                    i,
+                    j,
+                    0..patch.blades.len() as u32,
+                )
+            })
             .collect()
     }
 
@@ -266,7 +279,9 @@ mod tests {
                     let o = Orientation::of_cell(11, i, j);
                     let tested = p.blades[r.start as usize..r.end as usize]
                         .iter()
-                        .filter(|b| grows(&terrain, centre + o.apply(Vec2::from(b.root)), b.threshold))
+                        .filter(|b| {
+                            grows(&terrain, centre + o.apply(Vec2::from(b.root)), b.threshold)
+                        })
                         .count() as u32;
                     assert_eq!(pop.growing_in(&terrain, &p, (i, j), k, r), tested, "{name}");
                 }

@@ -423,7 +423,12 @@ mod tests {
         // Thousands of cells in view, drawn as a few hundred pieces.
         assert!(covered > 5_000, "{covered}");
         // One blade a cell: a node holds its cells' blades.
-        let blades: u64 = sel.cells.iter().chain(&sel.macro_cells).map(|s| s.blades).sum();
+        let blades: u64 = sel
+            .cells
+            .iter()
+            .chain(&sel.macro_cells)
+            .map(|s| s.blades)
+            .sum();
         assert_eq!(blades, covered);
         assert!(sel.cells.len() + sel.macro_cells.len() < 1_000);
         assert!(sel.macro_cells.iter().any(|s| s.rect.ni >= 8));
