@@ -149,9 +149,10 @@
 //!
 //! ## Cost model
 //! CPU per frame: the quadtree walk, `O(visible nodes)` sphere tests (a few thousand), and one
-//! entry per selected cell; for the counts, per submitted range a binary search in a cell of
-//! uniform ground, one density and covering test per submitted blade elsewhere (a fraction of
-//! what drawing them costs). Start-up: the population, `O(blocks · log N)` per cell of uniform
+//! entry per selected cell; for the counts, nothing more for a cell submitted whole (its
+//! population's count), else per submitted range a binary search in a cell of uniform ground
+//! and one density and covering test per submitted blade elsewhere (a fraction of what
+//! drawing them costs). Start-up: the population, `O(blocks · log N)` per cell of uniform
 //! ground, one test per blade elsewhere (the 626.9 M blades of the uniform pitch: 28 560 x 16
 //! binary searches). GPU: geometric blades `G x 2·segments` triangles, where `G` is the
 //! blades in cells nearer than `max_geom` whose thresholds can pass (the CPU skips those Eq. 5

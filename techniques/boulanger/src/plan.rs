@@ -146,6 +146,10 @@ impl FramePlan {
             let mut drawn = 0u64;
             if geometry {
                 let mut ranges = Vec::new();
+                // Whether every block was submitted whole: then the cell's count is its
+                // population's, without counting block by block.
+                let mut complete = true;
+                let mut blocks = Vec::new();
                 for k in 0..BLOCKS * BLOCKS {
                     // The block where this cell's mirror puts it, with the blades' reach.
                     let (c, half) = tiling.patch.block_center(k);
@@ -164,6 +168,7 @@ impl FramePlan {
                     if (by_distance && near >= lod.max_geom)
                         || !walk.frustum.intersects_aabb(&bounds)
                     {
+                        complete = false;
                         continue;
                     }
                     // The blades Eq. 5 can give visible opacity here: normalised thresholds
@@ -185,17 +190,24 @@ impl FramePlan {
                         s.density_range[1] + 1e-4
                     };
                     let r = tiling.patch.threshold_range(k, lo, hi);
+                    complete &= r == tiling.patch.block_ranges[k as usize];
                     if !r.is_empty() {
-                        drawn += u64::from(tiling.population.growing_in(
-                            terrain,
-                            &tiling.patch,
-                            (i, j),
-                            k,
-                            r.clone(),
-                        ));
+                        blocks.push(k);
                         ranges.push(r);
                     }
                 }
+                drawn = if complete {
+                    u64::from(tiling.population.cell(i, j))
+                } else {
+                    blocks
+                        .iter()
+                        .zip(&ranges)
+                        .map(|(&k, r)| {
+                            let p = &tiling.population;
+                            u64::from(p.growing_in(terrain, &tiling.patch, (i, j), k, r.clone()))
+                        })
+                        .sum()
+                };
                 if !ranges.is_empty() {
                     self.geometry.push(GeometryCell {
                         record: CellRecord {
