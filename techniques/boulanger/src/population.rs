@@ -287,11 +287,22 @@ mod tests {
                 }
             }
             let fraction = pop.total() as f64 / (grid.count() as f64 * 400.0);
+            eprintln!(
+                "measured: {name}: {fraction:.3} of the blades grow, {:?} to {:?} a cell",
+                pop.counts.iter().min(),
+                pop.counts.iter().max()
+            );
             match name {
-                // 400 thresholds drawn uniformly: binomial, sd 0.0245 at 0.6.
+                // 400 thresholds drawn uniformly: binomial, sd 0.0245 at 0.6; 0.08 is 3.3 sd
+                // (measured 0.580: 232 of them under 0.6).
                 "0.6" => assert!((fraction - 0.6).abs() < 0.08, "{fraction}"),
                 "0" => assert_eq!(pop.total(), 0),
-                _ => assert!(fraction > 0.05 && fraction < 0.9, "{fraction}"),
+                // Uneven ground: cells from bare to nearly full (measured 0 to 299 of 400, 47.6 %
+                // growing), so the per-blade test meets every case.
+                _ => {
+                    let (empty, full) = (pop.counts.iter().min(), pop.counts.iter().max());
+                    assert!(empty < Some(&40) && full > Some(&200), "{empty:?} {full:?}");
+                }
             }
         }
     }
