@@ -560,6 +560,9 @@ covering = { kind = "procedural", gaps = 0.2, trees = 0.02, stones = 0.02, frequ
                 .iter()
                 .filter(|s| s.1 > 0.0 && s.1 < 1.0)
                 .count();
+            eprintln!("measured: {old:?}: {split} cells split");
+            // Measured 284 (ω = 0.4) and 289 (ω = 0) of the 576: the band crosses half the
+            // lawn. More than 20 leaves no doubt the seamless split is there.
             assert!(split > 20, "{old:?}: {split} cells split");
         }
     }
