@@ -507,5 +507,5 @@ fn list_shows_values_as_written_and_variants() {
     assert!(ok);
     assert!(out.contains("flutter = 0.15\n"), "{out}");
     assert!(out.contains("variant finest"), "{out}");
-    assert!(out.contains("variant no_transitions  omega = 0.0"), "{out}");
+    assert!(out.contains("variant no_transitions  transitions = false"), "{out}");
 }

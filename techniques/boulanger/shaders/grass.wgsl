@@ -43,7 +43,8 @@ struct Cell {
     // x: 1 when baking a slice (no terrain, wind, density or LOD); when baking, y: projection
     // (0 top view of the horizontal slice, 1 slice across x, 2 slice across z), z: the slice's
     // coordinate along its axis (m, from the patch centre), w: side of the orthographic camera
-    // (+1 on the + side of the axis, -1 on the other)
+    // (+1 on the + side of the axis, -1 on the other); otherwise yzw: the cell's weights
+    // (`cell_weight_geometry`)
     mode: vec4<f32>,
 }
 @group(2) @binding(0) var<storage, read> cells: array<Cell>;
@@ -102,6 +103,17 @@ fn on_grass(xz: vec2<f32>) -> bool {
 // The far fade of the vertical slices: the second factor of Eq. 3.
 fn vertical_fade(d: f32) -> f32 {
     return clamp01((d - params.btf.z) / (params.btf.y - params.btf.z));
+}
+
+// The weights a cell's draws use (twins of src/lod.rs `CellWeights`): `cell_w` = (0, 0, 0) by
+// distance, Eq. 2 and Eq. 3's far fade per blade and per pixel (the seamless transitions); or
+// (1, w_g, fade), one pair for the whole cell (levels switched per cell, without transitions).
+fn cell_weight_geometry(cell_w: vec3<f32>, d: f32) -> f32 {
+    return select(weight_geometry(d), cell_w.y, cell_w.x > 0.5);
+}
+
+fn cell_vertical_fade(cell_w: vec3<f32>, d: f32) -> f32 {
+    return select(vertical_fade(d), cell_w.z, cell_w.x > 0.5);
 }
 
 // Eq. 5 for the far fade of the vertical slices: the blades with the lowest normalised
@@ -267,7 +279,7 @@ fn blade_vertex(vertex: u32, instance: u32) -> BladeOut {
         let d = distance(globals.camera_pos.xyz, vec3(root_xz.x, ground, root_xz.y));
         opacity = 0.0;
         if (on_grass(root_xz) && dth < density) {
-            opacity = geometry_opacity(weight_geometry(d), dth / density, params.lod.z);
+            opacity = geometry_opacity(cell_weight_geometry(cell.mode.yzw, d), dth / density, params.lod.z);
         }
         // Under the alpha-test threshold every fragment would be discarded: skip the blade.
         if (opacity <= 0.0 || opacity < params.lod.w) {
@@ -460,7 +472,7 @@ fn fs_bake(in: BladeOut) -> BakeOut {
 struct SliceQuad {
     @location(0) rect: vec4<f32>,   // world min (x, z), size (x, z)
     @location(1) cells: vec4<f32>,  // first cell (i, j), cells covered (ni, nj)
-    @location(2) tess: vec4<f32>,   // x: quads per side (follows the terrain); yzw: unused
+    @location(2) tess: vec4<f32>,   // x: quads per side (follows the terrain); yzw: its weights
 }
 
 struct SliceOut {
@@ -475,6 +487,8 @@ struct SliceOut {
     @location(4) w_b: f32,
     @location(5) p_a: vec4<f32>,
     @location(6) p_b: f32,
+    // The quad's weights (`cell_weight_geometry`).
+    @location(7) @interpolate(flat) cell_w: vec3<f32>,
 }
 
 @vertex
@@ -497,6 +511,7 @@ fn slice_vertex(vertex: u32, quad: SliceQuad) -> SliceOut {
     out.world = world;
     out.cell_coord = g * quad.cells.zw;
     out.first_cell = vec2<i32>(quad.cells.xy);
+    out.cell_w = quad.tess.yzw;
     let w = btf_weights(globals.sun_direction.xyz);
     out.w_a = w.a;
     out.w_b = w.b;
@@ -542,11 +557,12 @@ fn slice_texel(local: vec2<f32>, first_cell: vec2<i32>) -> SliceTexel {
 }
 
 // The horizontal slice's opacity at `world` (a point of the slice) for a texel of `coverage`
-// and density threshold `dth`: its share of the blades there (Sec. 3.4, Fig. 11).
-fn slice_alpha(t: SliceTexel, coverage: f32, dth: f32, world: vec3<f32>) -> f32 {
+// and density threshold `dth`: its share of the blades there (Sec. 3.4, Fig. 11), with the
+// quad's weights `cell_w`.
+fn slice_alpha(t: SliceTexel, coverage: f32, dth: f32, world: vec3<f32>, cell_w: vec3<f32>) -> f32 {
     let xz = world.xz;
     let ground = vec3(xz.x, world.y - params.tile.y, xz.y);
-    let w_g = weight_geometry(distance(globals.camera_pos.xyz, ground));
+    let w_g = cell_weight_geometry(cell_w, distance(globals.camera_pos.xyz, ground));
     let texels = max(length(t.gx), length(t.gy)) * params.tile.z;
     return coverage * slice_share(dth, terrain_density(xz), w_g, 1.0, texels) * f32(on_grass(xz));
 }
@@ -563,7 +579,7 @@ fn fs_slice(in: SliceOut) -> @location(0) vec4<f32> {
     let diffuse = textureSampleGrad(slice_diffuse, repeat_sampler, t.uv, 0, t.gx, t.gy) / coverage;
     let extra = textureSampleGrad(slice_extra, repeat_sampler, t.uv, 0, t.gx, t.gy) / coverage;
     let ao = extra.z;
-    let alpha = slice_alpha(t, coverage, extra.y, in.world);
+    let alpha = slice_alpha(t, coverage, extra.y, in.world, in.cell_w);
     if (alpha < max(params.lod.w, 1e-3)) {
         discard;
     }
@@ -706,7 +722,7 @@ fn fs_slice_shadow(in: SliceOut) -> @location(0) vec4<f32> {
     let extra = textureSampleGrad(slice_extra, repeat_sampler, t.uv, 0, t.gx, t.gy);
     var alpha = 0.0;
     if (color.a >= 1e-3) {
-        alpha = slice_alpha(t, color.a, extra.y / color.a, in.world);
+        alpha = slice_alpha(t, color.a, extra.y / color.a, in.world, in.cell_w);
     }
     return vec4(mix(vec3(1.0), ground_shadow_factor(), alpha), 1.0);
 }
@@ -728,6 +744,8 @@ struct VSliceOut {
     @location(4) w_b: f32,
     @location(5) p_a: vec4<f32>,
     @location(6) p_b: f32,
+    // The cell's weights (`cell_weight_geometry`).
+    @location(7) @interpolate(flat) cell_w: vec3<f32>,
 }
 
 // Vertex `v` of a cell: quad `v / 6` (2N of them, across x and across z alternately, each axis
@@ -776,6 +794,7 @@ fn vs_vslice(@builtin(vertex_index) vertex: u32, cell: VCell) -> VSliceOut {
     let p = btf_weights((globals.point_position.xyz - world) * mirror);
     out.p_a = p.a;
     out.p_b = p.b;
+    out.cell_w = cell.mode.yzw;
     return out;
 }
 
@@ -793,7 +812,7 @@ fn fs_vslice(in: VSliceOut) -> @location(0) vec4<f32> {
     let dims = vec2<f32>(textureDimensions(vslice_color));
     let texels = max(length(dpdx(in.uv) * dims), length(dpdy(in.uv) * dims));
     // Per pixel (Sec. 3.4, Fig. 11): the texel's threshold against the density below it.
-    let share = slice_share(extra.y, terrain_density(xz), weight_geometry(d), vertical_fade(d), texels)
+    let share = slice_share(extra.y, terrain_density(xz), cell_weight_geometry(in.cell_w, d), cell_vertical_fade(in.cell_w, d), texels)
         * f32(on_grass(xz));
     let alpha = coverage * share;
     if (alpha < max(params.lod.w, 1e-3)) {

@@ -7,6 +7,7 @@
 //! [`BoulangerGpu::encode`] draws it.
 
 use glam::Vec3;
+use grassbench::bytemuck::Zeroable as _;
 use grassbench::technique::RenderPass;
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{Error, FrameEncoder, GpuContext, InitContext, Result, bytemuck, wgpu};
@@ -123,9 +124,16 @@ impl BoulangerGpu {
     ) -> Result<(Self, BakeReport)> {
         let device = &ctx.gpu.device;
         let patch = &tiling.patch;
+        // An empty patch (no grass) still binds one record, which nothing draws.
+        let padding = [crate::patch::PatchBlade::zeroed()];
+        let records = if patch.blades.is_empty() {
+            &padding[..]
+        } else {
+            &patch.blades[..]
+        };
         let blades = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("boulanger patch blades"),
-            contents: bytemuck::cast_slice(&patch.blades),
+            contents: bytemuck::cast_slice(records),
             usage: wgpu::BufferUsages::STORAGE,
         });
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -232,7 +240,7 @@ impl BoulangerGpu {
                 view(3, &orientation),
             ],
         });
-        let blade_bytes = std::mem::size_of_val(patch.blades.as_slice()) as u64;
+        let blade_bytes = std::mem::size_of_val(records) as u64;
         let paging = cells::Paging::new(patch.blades.len() as u32, &device.limits());
         let cell_capacity = paging.capacity(0);
         let (cell_buffer, cell_group) = cells::buffer(

@@ -19,17 +19,22 @@
 //! "point light").
 //!
 //! ## Algorithm
-//! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch of side `patch_size` holds
-//!   `strata²` blades, one per stratum of an `strata x strata` grid (stratified sampling), each
-//!   with a density threshold drawn uniformly in `[0, 1)`. It is laid on every cell of a uniform
-//!   grid over the terrain; each cell uses one of four mirrored versions (x, z, both or none,
-//!   from a hash of the cell), mirrored on the GPU as a sign flip about the patch centre. The
-//!   virtual blade count is `cells x strata²`. By default the patch takes the scene's
-//!   `[grass] density`, so the field is comparable with the reference's; with
-//!   `blades_per_m2 = 87800` on 0.5 m patches (148² = 21 904 blades a patch) the 105 x 68 m
-//!   football field holds 28 560 cells and **626 M virtual blades**, the paper's "about 627
-//!   million" (Sec. 5): the `football_field_human` scene sets that. The scene always gives
-//!   the blades' heights, widths and colours.
+//! - **One patch, tiled** (Sec. 3.1, [`patch`]). A square patch holds the scene's density
+//!   exactly: `N = round(ρ·patch_size²)` blades on the side `√(N/ρ)`, within half a blade's
+//!   area of `patch_size` ([`patch::PatchSpec`]; a deviation: the paper's side is the user's),
+//!   one in each of `N` of the `⌈√N⌉²` strata (stratified sampling), each with a density
+//!   threshold drawn uniformly in `[0, 1)`. It is laid on every cell of a uniform grid over the
+//!   terrain; each cell uses one of four mirrored versions (x, z, both or none, from a hash of
+//!   the cell), mirrored on the GPU as a sign flip about the patch centre. The virtual blade
+//!   count is `cells x N`. By default the patch takes the scene's `[grass] density`, so the
+//!   field is the reference's population at a different placement, and a scene without grass
+//!   (`grass.density = 0`) gets an empty patch and draws nothing at all; with
+//!   `blades_per_m2 = 87800` on 0.5 m patches (21 950 blades a patch) the 105 x 68 m football
+//!   field holds 28 560 cells and **626.9 M virtual blades**, the paper's "about 627 million"
+//!   (Sec. 5): the `football_field_human` scene sets that. The scene always gives the blades'
+//!   heights, widths and colours. (Before issue 19 the patch held the square
+//!   `round(√N)²`: 4 of the 5 blades a 0.5 m patch holds at 20 blades/m², 20 % short, and
+//!   one blade a patch at `grass.density = 0`.)
 //! - **Geometric blades** (Sec. 3.2, `shaders/grass.wgsl` `vs_blade`). A quadrilateral strip of
 //!   `segments` quads along the trajectory of a particle launched from the root almost
 //!   vertically (up to `max_tilt` from the vertical) under `gravity`; its positions at
@@ -40,12 +45,20 @@
 //!   ambient occlusion linear in the vertex height, the scene's fog.
 //! - **Density** (Sec. 3.4). The shared density map, bilinear; a blade exists where its
 //!   threshold is under the local density, tested per blade in the vertex shader and per texel
-//!   for the slice. The covering map removes blades where it says no grass.
+//!   for the slice. The covering map removes blades where it says no grass. The same rule
+//!   (the scene's, `BladeField::grows`) counts the blades that grow in every cell at start-up
+//!   ([`population`]), which the frame's counts are made of.
 //! - **LOD weights** (Eq. 1-5, [`lod`]). `w_g`, `w_vs`, `w_hs` from `min_geom`, `max_geom`,
 //!   `min_btf`, `max_btf` of the 3D distance from the eye to the blade's root. Geometry compares
 //!   `1 − dth` (normalised by the local density, see [`lod`] for why) with its weight, the
 //!   slices take the complement, so no blade is drawn twice or lost; Eq. 5's smooth opacity with
-//!   `omega` (0.4) cross-fades each blade between its two representations.
+//!   `omega` (0.4) cross-fades each blade between its two representations. With
+//!   `transitions = false` (the `no_transitions` variant) there is no split and no fade: each
+//!   cell is entirely geometry, entirely slices with the vertical ones, or entirely the
+//!   horizontal slice, by the distance to its centre against the middles of the two
+//!   transition bands (where the weights cross one half), so the variant differs from the
+//!   default by Sec. 3.4's seamless mechanism alone. (Before issue 19 the variant was `ω = 0`:
+//!   the same density split with a hard Eq. 5, which isolated only the smoothing.)
 //! - **Quadtree** (Sec. 4.1, [`quadtree`]). Leaves are cells with bounding spheres (ground,
 //!   blade height, lean), inner nodes macro-cells; each frame `update` walks it with the view
 //!   frustum. Within `max_geom` it descends to single cells: those get geometry (per visible
@@ -125,9 +138,23 @@
 //!   flutter is not there, and the horizontal slice stays flat). `animate = false` turns both
 //!   off: the paper's static grass.
 //!
+//! ## Counting blades
+//! `blades_drawn` and `blades_represented` count blades that grow (above), each once
+//! ([`plan`]): geometry the growing blades of the ranges it submits, whatever opacity Eq. 5
+//! gives them; the slices every other growing blade of their cells and macro-cells, once
+//! though the vertical and the horizontal slices both show the mid band. In a transition a
+//! blade submitted as geometry counts as drawn, and the slices' complementary share of it is
+//! not counted again. `levels()` gives the vertical slices' blades apart (weighted by Eq. 3's
+//! far fade), though the horizontal slice under them stands for the same blades.
+//!
 //! ## Cost model
 //! CPU per frame: the quadtree walk, `O(visible nodes)` sphere tests (a few thousand), and one
-//! entry per selected cell. GPU: geometric blades `G x 2·segments` triangles, where `G` is the
+//! entry per selected cell; for the counts, nothing more for a cell submitted whole (its
+//! population's count), else per submitted range a binary search in a cell of uniform ground
+//! and one density and covering test per submitted blade elsewhere (a fraction of what
+//! drawing them costs). Start-up: the population, `O(blocks · log N)` per cell of uniform
+//! ground, one test per blade elsewhere (the 626.9 M blades of the uniform pitch: 28 560 x 16
+//! binary searches). GPU: geometric blades `G x 2·segments` triangles, where `G` is the
 //! blades in cells nearer than `max_geom` whose thresholds can pass (the CPU skips those Eq. 5
 //! gives no opacity there), all other blades cost nothing; plus one textured quad per cell in
 //! the transition and per macro-cell beyond (`tess²` quads each on uneven ground), whose cost is
@@ -136,18 +163,20 @@
 //! cover each pixel (depth complexity up to `2N` per cell crossed), which is why the paper's
 //! low horizontal view is its slowest (Sec. 5). The ground shadows draw the geometric blades'
 //! vertices and the horizontal slices' fill a second time, plus one screen of fill for the
-//! cover. Start-up: the BTF bake, bound by fill (4x MSAA,
-//! three targets, hundreds of blade fragments per texel of a side view), 4-8 s of wall time
-//! on lavapipe for the paper's 21 904-blade patch depending on what else runs on the two
-//! cores, 0.1 s from the disk cache. Memory: 32 bytes per patch
-//! blade; the BTFs, `3 x 8 x 4/3` bytes a texel: the horizontal slice's `slice_resolution²`
-//! (8.4 MB at 512) and the vertical slices' `4N x vslice_width x vslice_height` (21.0 MB at 40
-//! layers of 256 x 64; the paper's 512 x 64 would be 42 MB), under issue 9's 64 MB; one byte
-//! per cell for the orientation map and for the occlusion map; the shadow mask, 128 x 64 (262
-//! KB with its mips). Per blade fragment the shadow mask costs a ray-cylinder intersection, an
+//! cover. Start-up: the BTF bake, bound by fill (4x MSAA, three targets, hundreds of blade
+//! fragments per texel of a side view), 4-8 s of wall time on lavapipe for the paper's patch
+//! depending on what else runs on the two cores (measured with the 21 904 blades it held
+//! before issue 19; it now holds 21 950), 0.1 s from the disk cache. Memory: 32 bytes per
+//! patch blade; the BTFs, `3 x 8 x 4/3` bytes a texel: the horizontal slice's
+//! `slice_resolution²` (8.4 MB at 512) and the vertical slices' `4N x vslice_width x
+//! vslice_height` (21.0 MB at 40 layers of 256 x 64; the paper's 512 x 64 would be 42 MB),
+//! under issue 9's 64 MB; one byte per cell for the orientation map and for the occlusion
+//! map; the shadow mask, 128 x 64 (262 KB with its mips); on the CPU, 8 bytes per cell for the
+//! population. Per blade fragment the shadow mask costs a ray-cylinder intersection, an
 //! `atan2` and a texture lookup per light. Nothing grows with the virtual blade count except
-//! the orientation map and the quadtree (about 40 000 nodes on the football field). Brute force for 626 M blades at the
-//! reference's measured ~3.4 µs per blade on this rasteriser would take over half an hour a
+//! the orientation map, the population and the quadtree (about 40 000 nodes on the football
+//! field). Brute force for 626 M blades at the reference's measured ~3.4 µs per blade on this
+//! rasteriser would take over half an hour a
 //! frame.
 //!
 //! ## Known artifacts
@@ -160,7 +189,7 @@
 //!   vanishing point. Slices are blended unsorted across cells' axes, so where slices of the
 //!   two axes cross some borders are wrong (like the blades', Sec. 4.2).
 //! - Slices are brighter and softer than the geometry they replace (measured against geometry
-//!   at a sampled light and view: mean FLIP 0.181 at 320x180, `gpu_boulanger_btf`): mip-mapped
+//!   at a sampled light and view: mean FLIP 0.182 at 320x180, `gpu_boulanger_btf`): mip-mapped
 //!   coverage and colour average the dark stems with the tips, and a slab has no parallax
 //!   inside its 5 cm.
 //! - Five light samples are coarse: a light between them is a blend of images, not the lighting
@@ -187,7 +216,8 @@
 //! ## Code
 //! This file holds the registry entry and the [`GrassTechnique`] impl, which delegates:
 //! [`shader`] is the shader with the mirrors of its structs (a leaf of the crate); `tiling` the
-//! patch of a scene and the quadtree of its cells, built once; `plan` the frame plan that
+//! patch of a scene, the blades that grow in each cell ([`population`]) and the quadtree of
+//! its cells, built once; `plan` the frame plan that
 //! `update` refills every frame from the quadtree walk; `gpu` what is kept on the GPU, with
 //! `pipelines` (bind group layouts, render pipelines) and `bakes` (the shadow mask, then the
 //! BTFs through the cache, at start-up), and it uploads and draws the plan. The other modules
@@ -208,6 +238,7 @@ pub mod params;
 pub mod patch;
 mod pipelines;
 mod plan;
+pub mod population;
 pub mod quadtree;
 pub mod shader;
 pub mod shadow;
@@ -227,7 +258,7 @@ pub use gpu::params_uniform;
 pub use ground_shadow::GroundShadows;
 pub use lod::LodDistances;
 pub use params::{Params, Transparency};
-pub use patch::{Orientation, Patch, PatchBlade};
+pub use patch::{Orientation, Patch, PatchBlade, PatchSpec};
 pub use quadtree::{CellGrid, Quadtree, Selection, Walk};
 pub use shader::{CellRecord, ParamsUniform, SHADER, SliceQuad};
 pub use tiling::BLOCKS;
@@ -240,6 +271,8 @@ pub const MAX_CELLS: u64 = 4096 * 4096;
 
 /// The technique.
 pub struct Boulanger {
+    /// The parameters as given (what results record); everything built from them used
+    /// [`Params::for_scene`]'s.
     params: Params,
     /// The patch and the quadtree of its cells.
     tiling: tiling::Tiling,
@@ -268,10 +301,12 @@ impl Technique for Boulanger {
     const VARIANTS: Variants = Variants {
         // Geometry everywhere (Eq. 1-4 with every distance inside min_geom).
         finest: "min_geom = 9000.0\nmax_geom = 9001.0\nmin_btf = 9001.0\nmax_btf = 9002.0",
-        // Eq. 5 with ω = 0: a hard threshold test, blades switch representation at once.
+        // Sec. 3.1's levels switched per cell at the middle of each transition band, without
+        // Sec. 3.4's density split or Eq. 5's blending: each cell entirely geometry or
+        // entirely slices.
         others: &[Variant {
             name: grassbench::technique::NO_TRANSITIONS,
-            params: "omega = 0.0",
+            params: "transitions = false",
         }],
     };
 
@@ -279,12 +314,13 @@ impl Technique for Boulanger {
     /// orientation map (one byte per cell), the blade texture and the per-frame buffers at
     /// their first size.
     fn estimate(scene: &grassbench::Scene, params: &Params) -> Result<GpuEstimate> {
+        let params = params.for_scene(&scene.config.grass)?;
         let grid = CellGrid::new(&scene.terrain, params.patch_size);
-        let density = params.effective_blades_per_m2(scene.config.grass.density);
-        let strata = u64::from(Patch::strata_for(params.patch_size, density));
+        let spec = PatchSpec::for_density(params.patch_size, params.blades_per_m2);
         let blade = std::mem::size_of::<PatchBlade>() as u64;
         Ok([
-            GpuEstimate::buffer((strata * strata).saturating_mul(blade)),
+            // At least one record: an empty patch still binds a buffer.
+            GpuEstimate::buffer(u64::from(spec.blades.max(1)).saturating_mul(blade)),
             GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
             GpuEstimate::textures(btf::texture_bytes(shadow::WIDTH, shadow::HEIGHT, 1)),
             GpuEstimate::textures(if params.external_ao {
@@ -309,9 +345,10 @@ impl Technique for Boulanger {
         .sum())
     }
 
-    /// Builds the patch and the quadtree, then the GPU side (`gpu`), which bakes the shadow
-    /// mask and the slices.
-    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
+    /// Builds the patch of the scene's grass, its population and the quadtree, then the GPU
+    /// side (`gpu`), which bakes the shadow mask and the slices.
+    fn new(ctx: &InitContext<'_>, given: Params) -> Result<Self> {
+        let params = given.for_scene(&ctx.scene.config.grass)?;
         if params.transparency == Transparency::AlphaToCoverage && ctx.sample_count < 4 {
             return Err(Error::param(
                 "boulanger.transparency",
@@ -325,7 +362,7 @@ impl Technique for Boulanger {
         if grid.count() > MAX_CELLS || grid.nx > max_side || grid.nz > max_side {
             return Err(Error::param(
                 "boulanger.patch_size",
-                params.patch_size,
+                given.patch_size,
                 format!(
                     "at most {MAX_CELLS} cells and {max_side} a side; the terrain needs {} x {}",
                     grid.nx, grid.nz
@@ -337,7 +374,7 @@ impl Technique for Boulanger {
         let tiling = tiling::Tiling::new(&params, scene, grid, patch, uniform.lod[3]);
         let (gpu, bakes) = gpu::BoulangerGpu::new(ctx, &params, &uniform, &tiling)?;
         Ok(Self {
-            params,
+            params: given,
             tiling,
             gpu,
             bakes,
@@ -361,10 +398,22 @@ impl Boulanger {
         self.tiling.blades_per_patch()
     }
 
+    /// Side of the patch actually tiled, m ([`PatchSpec::for_density`]: near `patch_size`, so
+    /// that the patch holds a whole number of blades at the scene's density).
+    pub fn patch_side(&self) -> f32 {
+        self.tiling.patch.size
+    }
+
+    /// Blades of the tiling that grow (under the density map, on grass, on the terrain).
+    pub fn growing_blades(&self) -> u64 {
+        self.tiling.population.total()
+    }
+
     /// The BTF cache keys (horizontal, vertical) `new` would use on `scene` with `overrides`
     /// (CPU only).
     pub fn bake_keys(scene: &grassbench::Scene, overrides: &toml::Table) -> Result<[u64; 2]> {
         let params: Params = grassbench::params::resolve(Self::INFO.id, overrides)?;
+        let params = params.for_scene(&scene.config.grass)?;
         let patch = tiling::scene_patch(&params, scene);
         let uniform = gpu::params_uniform(&params, &scene.config.grass);
         Ok(bakes::keys(&params, &uniform, &patch))
@@ -378,8 +427,12 @@ impl Boulanger {
 
 impl GrassTechnique for Boulanger {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
-        self.plan
-            .update(&self.tiling, &inputs.camera, &self.gpu.paging);
+        self.plan.update(
+            &self.tiling,
+            &inputs.scene.terrain,
+            &inputs.camera,
+            &self.gpu.paging,
+        );
         Ok(())
     }
 
@@ -406,10 +459,11 @@ impl GrassTechnique for Boulanger {
             None => 0,
         };
         TechniqueStats {
+            // Growing blades whose geometry was submitted, in transitions too (`plan`).
             blades_drawn: plan.lod_blades.geometry,
-            // The slices' share of every cell's blades (Eq. 4's `w_hs`): in the mid band the
-            // vertical slices show the same share again, over the horizontal slice (Sec. 3.3),
-            // so they stand for no further blade.
+            // Every other growing blade of a cell with slices, and every growing blade of a
+            // macro-cell: the horizontal slice lies under all of them, and in the mid band the
+            // vertical slices show the same blades again (Sec. 3.3), so they add none.
             blades_represented: plan.lod_blades.horizontal_slices,
             triangles: blade_triangles
                 + quad_triangles
@@ -419,7 +473,7 @@ impl GrassTechnique for Boulanger {
         }
     }
 
-    /// Sec. 3.1's three levels.
+    /// Sec. 3.1's three levels; the vertical slices' blades are also the horizontal slice's.
     fn levels(&self) -> Vec<LevelBlades> {
         let l = &self.plan.lod_blades;
         [

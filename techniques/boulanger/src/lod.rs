@@ -33,6 +33,15 @@
 //! test the fraction of blades in the vertical slices is `ρ·min(w_hs, f) = ρ·w_vs` (Eq. 3's
 //! product equals the minimum because `max_geom ≤ min_btf`: one factor is always 1), and the
 //! horizontal slice keeps `ρ·w_hs` (Eq. 4).
+//!
+//! ## Without transitions
+//! With `transitions = false` (the `no_transitions` variant) nothing above is split: each
+//! cell gets one of Sec. 3.1's three levels by the distance from the eye to its centre
+//! ([`LodDistances::abrupt_level`], cut where Eq. 2's weight and Eq. 3's far fade cross one
+//! half, so the bands keep their extent and cost), and its draws carry fixed weights
+//! ([`CellWeights::Fixed`]): 1 or 0 for geometry, 1 or 0 for the vertical slices. Eq. 5 at a
+//! weight of 1 or 0 is 1 or 0 for every blade whatever ω, so a cell is drawn entirely by one
+//! representation and the seamless mechanism is all that the two variants differ by.
 
 /// Eq. 1: `clamp(x, 0, 1)`; NaN maps to 0.
 pub fn clamp01(x: f32) -> f32 {
@@ -78,6 +87,84 @@ impl LodDistances {
     /// Eq. 4: weight of the horizontal slice at distance `d`.
     pub fn w_hs(&self, d: f32) -> f32 {
         clamp01((d - self.min_geom) / (self.max_geom - self.min_geom))
+    }
+
+    /// Where levels switch without transitions: geometry up to the middle of its transition
+    /// band (Eq. 2's weight is one half there), the vertical slices up to the middle of their
+    /// far fade (Eq. 3's second factor is one half), the horizontal slice beyond.
+    pub fn abrupt_level(&self, d: f32) -> Level {
+        if d < 0.5 * (self.min_geom + self.max_geom) {
+            Level::Geometry
+        } else if d < 0.5 * (self.min_btf + self.max_btf) {
+            Level::VerticalSlices
+        } else {
+            Level::HorizontalSlice
+        }
+    }
+}
+
+/// Sec. 3.1's three levels of detail, as a cell switched without transitions gets one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// Geometric blades only.
+    Geometry,
+    /// The vertical slices over the horizontal slice (the volume of the mid band).
+    VerticalSlices,
+    /// The horizontal slice only.
+    HorizontalSlice,
+}
+
+/// The weights a cell's draws use (the shaders' `cell_weight_geometry` and
+/// `cell_vertical_fade`): by distance per blade and per pixel (Eq. 2 and Eq. 3's far fade,
+/// the seamless transitions), or one pair for the whole cell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CellWeights {
+    /// Eq. 2 and Eq. 3's far fade of each blade's or pixel's own distance.
+    ByDistance,
+    /// Fixed for the cell: geometry's weight `w_g` and the vertical slices' far fade.
+    Fixed {
+        /// Geometry's weight (the slices take `1 − opacity_g`).
+        w_g: f32,
+        /// The vertical slices' far fade.
+        fade: f32,
+    },
+}
+
+impl CellWeights {
+    /// A cell drawn entirely at `level`: geometry alone at full weight, or the slices alone,
+    /// the vertical ones in full or not at all.
+    pub fn of_level(level: Level) -> Self {
+        let (w_g, fade) = match level {
+            Level::Geometry => (1.0, 0.0),
+            Level::VerticalSlices => (0.0, 1.0),
+            Level::HorizontalSlice => (0.0, 0.0),
+        };
+        Self::Fixed { w_g, fade }
+    }
+
+    /// Geometry's weight at distance `d`.
+    pub fn w_g(self, lod: &LodDistances, d: f32) -> f32 {
+        match self {
+            Self::ByDistance => lod.w_g(d),
+            Self::Fixed { w_g, .. } => w_g,
+        }
+    }
+
+    /// The vertical slices' far fade at distance `d`.
+    pub fn fade(self, lod: &LodDistances, d: f32) -> f32 {
+        match self {
+            Self::ByDistance => lod.vertical_fade(d),
+            Self::Fixed { fade, .. } => fade,
+        }
+    }
+
+    /// As the shaders read them (a cell's `mode`, a slice quad's `tess`, after their first
+    /// component): `(0, 0, 0)` by distance, `(1, w_g, fade)` fixed.
+    pub fn encode(self) -> [f32; 3] {
+        match self {
+            Self::ByDistance => [0.0; 3],
+            Self::Fixed { w_g, fade } => [1.0, w_g, fade],
+        }
     }
 }
 

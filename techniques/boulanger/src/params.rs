@@ -1,8 +1,11 @@
 //! Parameters of the technique (`[techniques.boulanger]` in scene files, `--param` on the
 //! command line).
 
+use grassbench::grass::GrassConfig;
 use grassbench::params::{TechniqueParams, check, check_int};
 use grassbench::{Error, Result};
+
+use crate::patch::PatchSpec;
 use serde::{Deserialize, Serialize};
 
 /// How semi-transparent blades and slices are composited (Sec. 4.2).
@@ -28,7 +31,8 @@ pub struct Params {
     /// Blades per square metre in the patch, tiled over the whole terrain; 0 (the default)
     /// takes the scene's `[grass] density`, so the field is comparable with the other
     /// techniques'. 87 800 gives the paper's ~627 M virtual blades on the 105 x 68 m football
-    /// field (`football_field_human` sets it).
+    /// field (`football_field_human` sets it). A scene without grass (`grass.density = 0`)
+    /// has none whatever this says.
     pub blades_per_m2: f32,
     /// Quads per blade strip (Sec. 3.2).
     pub segments: u32,
@@ -42,6 +46,13 @@ pub struct Params {
     pub max_btf: f32,
     /// Half width of the smooth opacity transition, Eq. 5's ω (0 = hard test).
     pub omega: f32,
+    /// Sec. 3.4's seamless transitions: between two levels both representations draw the
+    /// cell, the blades split between them by Eq. 2-5. `false` switches Sec. 3.1's levels
+    /// abruptly instead, per cell by the distance to its centre, where the weights cross one
+    /// half (`(min_geom + max_geom) / 2`, `(min_btf + max_btf) / 2`): every cell is entirely
+    /// geometry or entirely slices, nothing is split or blended (the `no_transitions`
+    /// variant, so that comparing the two isolates the paper's mechanism).
+    pub transitions: bool,
     /// A macro-cell is drawn whole only when at least this many times its side away.
     pub macro_factor: f32,
     /// Semi-transparency: `blend` or `alpha_to_coverage` (Sec. 4.2).
@@ -102,6 +113,7 @@ impl Default for Params {
             min_btf: 12.0,
             max_btf: 30.0,
             omega: 0.4,
+            transitions: true,
             macro_factor: 4.0,
             transparency: Transparency::Blend,
             alpha_threshold: 0.1,
@@ -127,13 +139,50 @@ impl Default for Params {
 }
 
 impl Params {
-    /// The patch density in use: `blades_per_m2`, or the scene's grass density when it is 0.
+    /// The patch density in use: `blades_per_m2`, or the scene's grass density when it is 0;
+    /// none where the scene has no grass (`scene_density = 0`).
     pub fn effective_blades_per_m2(&self, scene_density: f32) -> f32 {
-        if self.blades_per_m2 == 0.0 {
-            scene_density.max(1.0)
+        if scene_density.is_nan() || scene_density <= 0.0 {
+            0.0
+        } else if self.blades_per_m2 == 0.0 {
+            scene_density
         } else {
             self.blades_per_m2
         }
+    }
+
+    /// The patch the scene's grass gives with these parameters ([`PatchSpec::for_density`]):
+    /// its side (near `patch_size`) and blade count; refused when it would hold more than
+    /// [`MAX_BLADES_PER_PATCH`] blades or be wider than 16 m.
+    pub fn patch_spec(&self, grass: &GrassConfig) -> Result<PatchSpec> {
+        let spec =
+            PatchSpec::for_density(self.patch_size, self.effective_blades_per_m2(grass.density));
+        if spec.blades > MAX_BLADES_PER_PATCH || spec.side > 16.0 {
+            return Err(Error::param(
+                "boulanger.patch_size",
+                self.patch_size,
+                format!(
+                    "a patch of at most {MAX_BLADES_PER_PATCH} blades and 16 m: at {} blades/m² it would hold {} blades on {:.3} m",
+                    self.effective_blades_per_m2(grass.density),
+                    spec.blades,
+                    spec.side
+                ),
+            ));
+        }
+        Ok(spec)
+    }
+
+    /// These parameters as the scene's patch makes them: `patch_size` the side of the patch
+    /// actually tiled ([`Self::patch_spec`]), `blades_per_m2` the density in use. Everything
+    /// the technique builds uses these; [`crate::Boulanger`] still reports the parameters as
+    /// given.
+    pub fn for_scene(&self, grass: &GrassConfig) -> Result<Self> {
+        let spec = self.patch_spec(grass)?;
+        Ok(Self {
+            patch_size: spec.side,
+            blades_per_m2: self.effective_blades_per_m2(grass.density),
+            ..self.clone()
+        })
     }
 }
 

@@ -3,7 +3,13 @@
 //! One square patch of blades is generated once, with *stratified sampling*: the patch is cut
 //! into `n x n` strata and one root is placed at a random point of each, so the roots are
 //! uniform at every scale and no clump repeats visibly when the patch is tiled. Each blade gets
-//! a density threshold drawn uniformly in `[0, 1)` (Sec. 3.4). The blades are stored by
+//! a density threshold drawn uniformly in `[0, 1)` (Sec. 3.4).
+//!
+//! The patch holds the scene's density exactly ([`PatchSpec`]): a whole number `N` of blades
+//! (`ρ·size²` rounded) on the side that makes `N / side² = ρ`, and `N` need not be a square: the
+//! roots take `N` of the `⌈√N⌉²` strata, chosen at random, so every stratum holds at most one
+//! root. (Before issue 19 the patch held `round(√N)²` blades, a square: 4 for the 5 a 0.5 m
+//! patch holds at 20 blades/m², 20 % short.) The blades are stored by
 //! *block* (a `blocks x blocks` grid of square sub-patches, so the CPU can cull parts of a cell
 //! that are out of view) and, within a block, sorted by threshold, so the blades a block can
 //! need form one contiguous range (see [`Patch::threshold_range`]).
@@ -43,12 +49,46 @@ pub struct BladeShape {
     pub max_tilt: f32,
 }
 
+/// The patch a density asks for (Sec. 3.1): a whole number of blades on a side near the one
+/// asked for, so that the tiling holds exactly the density.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PatchSpec {
+    /// Side, m.
+    pub side: f32,
+    /// Blades in the patch.
+    pub blades: u32,
+}
+
+impl PatchSpec {
+    /// A patch of about `size` metres a side at `blades_per_m2` blades per square metre:
+    /// `N = round(ρ·size²)` blades, at least one where `ρ > 0`, on the side `√(N / ρ)`, so
+    /// the tiling holds `ρ` blades per square metre exactly rather than `N / size²` (at 14
+    /// blades/m², 3.5 blades a 0.5 m patch: 4 blades on a 0.535 m patch rather than 4 on 0.5 m,
+    /// 14 % too many). No blade where `ρ ≤ 0` (side `size`): the scene has no grass.
+    pub fn for_density(size: f32, blades_per_m2: f32) -> Self {
+        if blades_per_m2.is_nan() || blades_per_m2 <= 0.0 {
+            return Self {
+                side: size,
+                blades: 0,
+            };
+        }
+        let rho = f64::from(blades_per_m2);
+        let n = (rho * f64::from(size).powi(2))
+            .round()
+            .clamp(1.0, f64::from(u32::MAX));
+        Self {
+            side: (n / rho).sqrt() as f32,
+            blades: n as u32,
+        }
+    }
+}
+
 /// The base patch.
 #[derive(Clone, Debug)]
 pub struct Patch {
     /// Side, m.
     pub size: f32,
-    /// Strata per side (`strata²` blades).
+    /// Strata per side: `⌈√blades⌉`, each stratum holding at most one root.
     pub strata: u32,
     /// Blocks per side.
     pub blocks: u32,
@@ -59,26 +99,31 @@ pub struct Patch {
 }
 
 impl Patch {
-    /// Generates the patch: `strata²` blades, one per stratum, sized from `grass`, stored in
-    /// `blocks x blocks` blocks.
+    /// Generates the patch: `count` blades sized from `grass`, one in each of `count` of the
+    /// `⌈√count⌉²` strata (all of them when `count` is a square), stored in `blocks x blocks`
+    /// blocks. `count = 0` gives an empty patch.
     pub fn new(
         size: f32,
-        strata: u32,
+        count: u32,
         blocks: u32,
         grass: &GrassConfig,
         shape: BladeShape,
         seed: u64,
     ) -> Self {
         let mut rng = Rng::new(hash(seed, &[0x5041_5443])); // "PATC"
-        let n = strata.max(1);
+        let n = strata_for(count);
+        let occupied = occupied_strata(n, count, seed);
         let cell = size / n as f32;
         let lerp = |r: [f32; 2], t: f32| r[0] + (r[1] - r[0]) * t;
         // Jitter within the stratum, a thousandth of it away from its edges so that rounding
         // can never move a root (or its mirror image) into the next stratum.
         let jitter = |rng: &mut Rng| 1e-3 + 0.998 * rng.next_f32();
-        let mut blades = Vec::with_capacity((n * n) as usize);
+        let mut blades = Vec::with_capacity(count as usize);
         for j in 0..n {
             for i in 0..n {
+                if !occupied.as_ref().is_none_or(|o| o[(j * n + i) as usize]) {
+                    continue;
+                }
                 let x = (i as f32 + jitter(&mut rng)) * cell - 0.5 * size;
                 let z = (j as f32 + jitter(&mut rng)) * cell - 0.5 * size;
                 let size_draw = rng.next_f32();
@@ -128,11 +173,6 @@ impl Patch {
         (c, 0.5 * side)
     }
 
-    /// Number of strata per side giving about `blades_per_m2` blades per square metre.
-    pub fn strata_for(size: f32, blades_per_m2: f32) -> u32 {
-        ((blades_per_m2 * size * size).sqrt().round() as u32).max(1)
-    }
-
     /// Blades per square metre of the tiling.
     pub fn blades_per_m2(&self) -> f64 {
         self.blades.len() as f64 / f64::from(self.size * self.size)
@@ -154,6 +194,36 @@ impl Patch {
         let b = blades.partition_point(|b| b.threshold < hi) as u32;
         r.start + a..r.start + b.max(a)
     }
+}
+
+/// Strata per side for `count` blades: the smallest `n` with `n² ≥ count` (at least 1).
+fn strata_for(count: u32) -> u32 {
+    let mut n = (f64::from(count).sqrt().ceil() as u32).max(1);
+    while u64::from(n) * u64::from(n) < u64::from(count) {
+        n += 1;
+    }
+    n
+}
+
+/// Which of the `n x n` strata hold a root when `count` blades share them: `None` when all do
+/// (`count = n²`), else `count` strata drawn without replacement (a partial Fisher-Yates
+/// shuffle on its own stream, so the blades' draws do not depend on it).
+fn occupied_strata(n: u32, count: u32, seed: u64) -> Option<Vec<bool>> {
+    let total = n as usize * n as usize;
+    if count as usize >= total {
+        return None;
+    }
+    let mut rng = Rng::new(hash(seed, &[0x5354_5241])); // "STRA"
+    let mut order: Vec<u32> = (0..total as u32).collect();
+    for k in 0..count as usize {
+        let pick = k + (rng.next_u64() % (total - k) as u64) as usize;
+        order.swap(k, pick);
+    }
+    let mut occupied = vec![false; total];
+    for &s in &order[..count as usize] {
+        occupied[s as usize] = true;
+    }
+    Some(occupied)
 }
 
 /// Which of the four mirrored versions of the patch a cell uses (Sec. 3.1; the red and green
@@ -214,15 +284,83 @@ mod tests {
     }
     use proptest::prelude::*;
 
-    fn patch(strata: u32) -> Patch {
+    /// A 0.5 m patch of `count` blades.
+    fn patch_of(count: u32) -> Patch {
         Patch::new(
             0.5,
-            strata,
+            count,
             4,
             &GrassConfig::default(),
             BladeShape { max_tilt: 0.4 },
             9,
         )
+    }
+
+    /// A 0.5 m patch with a blade in each of `strata x strata` strata.
+    fn patch(strata: u32) -> Patch {
+        patch_of(strata * strata)
+    }
+
+    /// Issue 19: the patch holds the density asked for. On the counts lawn (20 blades/m²) a
+    /// 0.5 m patch holds 5 blades, not the square 4 it held before (20 % short); where
+    /// `ρ·size²` is not whole the side moves so the tiled density is still `ρ`; no grass
+    /// gives an empty patch.
+    #[test]
+    fn the_patch_holds_the_density_asked_for() {
+        let spec = PatchSpec::for_density(0.5, 20.0);
+        assert_eq!(
+            spec,
+            PatchSpec {
+                side: 0.5,
+                blades: 5
+            }
+        );
+        for (size, rho) in [
+            (0.5, 14.0),
+            (0.5, 22.5),
+            (0.5, 87_800.0),
+            (0.5, 0.7),
+            (0.3, 9.0),
+        ] {
+            let s = PatchSpec::for_density(size, rho);
+            let tiled = s.blades as f32 / (s.side * s.side);
+            assert!((tiled / rho - 1.0).abs() < 1e-5, "{size} m at {rho}: {s:?}");
+            assert!(s.blades >= 1);
+            // Within half a blade of the side asked for (a single blade may stretch it more).
+            let asked = rho * size * size;
+            assert!(
+                (s.blades as f32 - asked).abs() <= 0.5 || asked < 1.0,
+                "{s:?}"
+            );
+        }
+        assert_eq!(PatchSpec::for_density(0.5, 87_800.0).blades, 21_950);
+        assert_eq!(PatchSpec::for_density(0.5, 0.0).blades, 0);
+        for count in [0, 2, 5, 21_950] {
+            assert_eq!(patch_of(count).blades.len(), count as usize);
+        }
+        let empty = patch_of(0);
+        assert!(empty.block_ranges.iter().all(|r| r.is_empty()));
+        assert_eq!(empty.threshold_range(3, 0.0, 1.0), 0..0);
+    }
+
+    /// A count that is not a square takes that many strata of the `⌈√N⌉²`, at most one root
+    /// each, and the drawn strata differ from one seed to another.
+    #[test]
+    fn a_non_square_count_leaves_strata_empty_but_never_doubles_one() {
+        for count in [2, 5, 10, 21_950] {
+            let p = patch_of(count);
+            let n = p.strata;
+            assert_eq!(n, (f64::from(count).sqrt().ceil()) as u32);
+            let mut seen = vec![0u32; (n * n) as usize];
+            for b in &p.blades {
+                let (i, j) = p.stratum_of(Vec2::from(b.root));
+                seen[(j * n + i) as usize] += 1;
+            }
+            assert!(seen.iter().all(|&c| c <= 1), "{count}: {seen:?}");
+            assert_eq!(seen.iter().sum::<u32>(), count);
+        }
+        let strata = |seed| occupied_strata(3, 5, seed).unwrap();
+        assert!((0..8).any(|seed| strata(seed) != strata(0)));
     }
 
     #[test]

@@ -13,7 +13,7 @@
 
 use glam::{Vec2, Vec3};
 use grassbench::camera::{Aabb, Frustum};
-use grassbench::terrain::{Terrain, covering};
+use grassbench::terrain::Terrain;
 
 /// The uniform grid of cells over the terrain.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,6 +73,17 @@ impl CellRect {
 
 const NONE: u32 = u32::MAX;
 
+/// How far a cell's bounds reach beyond its sampled ground.
+#[derive(Clone, Copy)]
+struct Reach {
+    /// Vertical margin on the sampled heights, m.
+    margin: f32,
+    /// How far blades lean past the cell, m.
+    overhang: f32,
+    /// How high blades stand, m.
+    height: f32,
+}
+
 #[derive(Clone, Debug)]
 struct Node {
     rect: CellRect,
@@ -83,8 +94,8 @@ struct Node {
     center: Vec3,
     radius: f32,
     children: [u32; 4],
-    /// Σ over the cells of (mean density x fraction covered by grass): patches' worth of blades.
-    density: f32,
+    /// Blades that grow in its cells ([`crate::population`]).
+    blades: u64,
     /// Lowest and highest local density under the node (sampled, with a margin).
     density_range: [f32; 2],
 }
@@ -98,8 +109,8 @@ pub struct Selected {
     pub near: f32,
     /// Distance from the eye to the farthest point of its ground, m.
     pub far: f32,
-    /// Patches' worth of blades it holds (Σ mean density x grass fraction over its cells).
-    pub density: f32,
+    /// Blades that grow in its cells ([`crate::population`]).
+    pub blades: u64,
     /// Lowest and highest local density under it (3x3 samples per cell, ± 0.05).
     pub density_range: [f32; 2],
     /// Lowest and highest ground under it, m.
@@ -140,9 +151,16 @@ pub struct Quadtree {
 }
 
 impl Quadtree {
-    /// Builds the tree: leaves sample the terrain's height, density and covering at 3x3 points
-    /// per cell; `overhang` is how far blades reach past their cell and `height` how high.
-    pub fn build(terrain: &Terrain, grid: CellGrid, overhang: f32, height: f32) -> Self {
+    /// Builds the tree: leaves sample the terrain's height and density at 3x3 points
+    /// per cell; `overhang` is how far blades reach past their cell and `height` how high;
+    /// `cell_blades(i, j)` is how many blades grow in cell `(i, j)`, summed up the tree.
+    pub fn build(
+        terrain: &Terrain,
+        grid: CellGrid,
+        overhang: f32,
+        height: f32,
+        cell_blades: &dyn Fn(u32, u32) -> u64,
+    ) -> Self {
         let side = grid.nx.max(grid.nz).next_power_of_two();
         let (lo, hi) = terrain.height_range();
         // Bilinear heights peak at map samples; 3x3 points per cell can miss a sample inside
@@ -153,21 +171,29 @@ impl Quadtree {
             nodes: Vec::new(),
             root: NONE,
         };
-        tree.root = tree.build_node(terrain, 0, 0, side, margin, overhang, height);
+        let reach = Reach {
+            margin,
+            overhang,
+            height,
+        };
+        tree.root = tree.build_node(terrain, 0, 0, side, &reach, cell_blades);
         tree
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn build_node(
         &mut self,
         terrain: &Terrain,
         i0: u32,
         j0: u32,
         side: u32,
-        margin: f32,
-        overhang: f32,
-        height: f32,
+        reach: &Reach,
+        cell_blades: &dyn Fn(u32, u32) -> u64,
     ) -> u32 {
+        let Reach {
+            margin,
+            overhang,
+            height,
+        } = *reach;
         let g = self.grid;
         if i0 >= g.nx || j0 >= g.nz {
             return NONE;
@@ -178,10 +204,9 @@ impl Quadtree {
             ni: side.min(g.nx - i0),
             nj: side.min(g.nz - j0),
         };
-        let (ground, children, density, density_range) = if side == 1 {
+        let (ground, children, blades, density_range) = if side == 1 {
             let min = g.cell_min(i0, j0);
             let (mut h_lo, mut h_hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            let (mut dens, mut grass) = (0.0, 0.0);
             let mut range = [f32::INFINITY, f32::NEG_INFINITY];
             for b in 0..3 {
                 for a in 0..3 {
@@ -190,10 +215,7 @@ impl Quadtree {
                     h_lo = h_lo.min(h);
                     h_hi = h_hi.max(h);
                     let rho = terrain.density_at(p);
-                    dens += rho;
                     range = [range[0].min(rho), range[1].max(rho)];
-                    let grows = terrain.contains(p) && terrain.covering_at(p) == covering::GRASS;
-                    grass += f32::from(u8::from(grows));
                 }
             }
             let ground = Aabb {
@@ -202,18 +224,17 @@ impl Quadtree {
             };
             // Bilinear densities between samples: a margin covers a map finer than 3x3 a cell.
             let range = [(range[0] - 0.05).max(0.0), (range[1] + 0.05).min(1.0)];
-            (ground, [NONE; 4], dens / 9.0 * grass / 9.0, range)
+            (ground, [NONE; 4], cell_blades(i0, j0), range)
         } else {
             let h = side / 2;
-            let children = [(0, 0), (h, 0), (0, h), (h, h)].map(|(a, b)| {
-                self.build_node(terrain, i0 + a, j0 + b, h, margin, overhang, height)
-            });
+            let children = [(0, 0), (h, 0), (0, h), (h, h)]
+                .map(|(a, b)| self.build_node(terrain, i0 + a, j0 + b, h, reach, cell_blades));
             let mut ground: Option<Aabb> = None;
-            let mut density = 0.0;
+            let mut blades = 0;
             let mut range = [f32::INFINITY, f32::NEG_INFINITY];
             for &c in children.iter().filter(|&&c| c != NONE) {
                 let n = &self.nodes[c as usize];
-                density += n.density;
+                blades += n.blades;
                 range = [
                     range[0].min(n.density_range[0]),
                     range[1].max(n.density_range[1]),
@@ -229,7 +250,7 @@ impl Quadtree {
             let Some(ground) = ground else {
                 return NONE;
             };
-            (ground, children, density, range)
+            (ground, children, blades, range)
         };
         let bounds = Aabb {
             min: ground.min - Vec3::new(overhang, 0.0, overhang),
@@ -243,7 +264,7 @@ impl Quadtree {
             center,
             radius: 0.5 * (bounds.max - bounds.min).length(),
             children,
-            density,
+            blades,
             density_range,
         });
         (self.nodes.len() - 1) as u32
@@ -283,7 +304,7 @@ impl Quadtree {
                 rect: n.rect,
                 near,
                 far,
-                density: n.density,
+                blades: n.blades,
                 density_range: n.density_range,
                 ground_y: [n.ground.min.y, n.ground.max.y],
             };
@@ -351,7 +372,7 @@ mod tests {
         ) {
             let terrain = hills();
             let grid = CellGrid::new(&terrain, 1.0);
-            let tree = Quadtree::build(&terrain, grid, 0.3, 0.6);
+            let tree = Quadtree::build(&terrain, grid, 0.3, 0.6, &|_, _| 1);
             let forward = Vec3::new(yaw.cos() * pitch.cos(), pitch.sin(), yaw.sin() * pitch.cos());
             let eye = Vec3::new(x, terrain.height_at(Vec2::new(x, z)) + y, z);
             let camera = Camera::look_at(eye, eye + forward, fov.to_radians(), 0.1, 300.0, 16.0 / 9.0);
@@ -380,7 +401,7 @@ mod tests {
         let terrain = Terrain::flat(Vec2::new(105.0, 68.0));
         let grid = CellGrid::new(&terrain, 0.5);
         assert_eq!((grid.nx, grid.nz), (210, 136));
-        let tree = Quadtree::build(&terrain, grid, 0.2, 0.2);
+        let tree = Quadtree::build(&terrain, grid, 0.2, 0.2, &|_, _| 1);
         let eye = Vec3::new(-50.0, 1.7, 0.0);
         let camera = Camera::look_at(eye, Vec3::new(0.0, 0.0, 0.0), 0.87, 0.1, 500.0, 16.0 / 9.0);
         let walk = Walk {
@@ -401,6 +422,14 @@ mod tests {
             .sum();
         // Thousands of cells in view, drawn as a few hundred pieces.
         assert!(covered > 5_000, "{covered}");
+        // One blade a cell: a node holds its cells' blades.
+        let blades: u64 = sel
+            .cells
+            .iter()
+            .chain(&sel.macro_cells)
+            .map(|s| s.blades)
+            .sum();
+        assert_eq!(blades, covered);
         assert!(sel.cells.len() + sel.macro_cells.len() < 1_000);
         assert!(sel.macro_cells.iter().any(|s| s.rect.ni >= 8));
     }

@@ -35,6 +35,8 @@ pub struct CellRecord {
     pub center_signs: [f32; 4],
     /// x = 1 when baking; then y = projection (0 top, 1 across x, 2 across z), z = the
     /// slice's coordinate on its axis (m from the patch centre), w = side of the camera (±1).
+    /// Otherwise yzw = the cell's weights ([`crate::lod::CellWeights::encode`]): `(0, 0, 0)`
+    /// by distance, `(1, w_g, far fade)` fixed for the cell.
     pub mode: [f32; 4],
 }
 
@@ -55,7 +57,7 @@ pub struct SliceQuad {
     pub rect: [f32; 4],
     /// First cell (i, j) and cells covered (ni, nj).
     pub cells: [f32; 4],
-    /// Quads per side; yzw unused.
+    /// Quads per side; yzw = the weights of its cells ([`crate::lod::CellWeights::encode`]).
     pub tess: [f32; 4],
 }
 

@@ -6,21 +6,22 @@ use grassbench::Scene;
 
 use crate::lod::LodDistances;
 use crate::params::Params;
-use crate::patch::{self, Patch};
+use crate::patch::{self, Patch, PatchSpec};
+use crate::population::Population;
 use crate::quadtree::{CellGrid, Quadtree};
 
 /// Blocks per side of the patch: geometry is culled and cut per block (Sec. 4.1's culling at a
 /// finer grain than the cell, since a cell may hold 20 000 blades).
 pub const BLOCKS: u32 = 4;
 
-/// The patch of a scene (Sec. 3.1): the scene's grass at the parameters' density.
+/// The patch of a scene (Sec. 3.1): the scene's grass at the parameters' density. `params` are
+/// [`Params::for_scene`]'s: `patch_size` the patch's side, `blades_per_m2` its density.
 pub fn scene_patch(params: &Params, scene: &Scene) -> Patch {
     let grass = &scene.config.grass;
-    let density = params.effective_blades_per_m2(grass.density);
-    let strata = Patch::strata_for(params.patch_size, density);
+    let spec = PatchSpec::for_density(params.patch_size, params.blades_per_m2);
     Patch::new(
         params.patch_size,
-        strata,
+        spec.blades,
         BLOCKS,
         grass,
         patch::BladeShape {
@@ -36,12 +37,16 @@ pub struct Tiling {
     pub tree: Quadtree,
     /// The patch (blades by block, sorted by threshold within a block), for per-block ranges.
     pub patch: Patch,
+    /// How many of the patch's blades grow in each cell (the frame's counts).
+    pub population: Population,
     /// The four LOD distances (Fig. 13).
     pub lod: LodDistances,
     /// The scene's seed: it picks each cell's mirror ([`patch::Orientation::of_cell`]).
     pub seed: u64,
     /// Eq. 5's ω.
     pub omega: f32,
+    /// Sec. 3.4's seamless transitions, or levels switched per cell ([`Params::transitions`]).
+    pub transitions: bool,
     /// A macro-cell is drawn whole only when this many times its side away.
     pub macro_factor: f32,
     /// Opacity under which a blade is alpha-tested away whatever its texture (the shader's
@@ -54,8 +59,9 @@ pub struct Tiling {
 }
 
 impl Tiling {
-    /// The quadtree over `grid` for `patch` on `scene`'s terrain; `alpha_floor` is the
-    /// shader's alpha-test threshold.
+    /// The quadtree over `grid` for `patch` on `scene`'s terrain, with the blades that grow in
+    /// each cell; `alpha_floor` is the shader's alpha-test threshold. `params` are
+    /// [`Params::for_scene`]'s.
     pub fn new(
         params: &Params,
         scene: &Scene,
@@ -65,9 +71,14 @@ impl Tiling {
     ) -> Self {
         let tallest = scene.config.grass.height[1];
         let (overhang, reach_up) = (1.5 * tallest, 1.2 * tallest);
+        let population = Population::new(&scene.terrain, grid, &patch, scene.config.seed);
+        let tree = Quadtree::build(&scene.terrain, grid, overhang, reach_up, &|i, j| {
+            u64::from(population.cell(i, j))
+        });
         Self {
-            tree: Quadtree::build(&scene.terrain, grid, overhang, reach_up),
+            tree,
             patch,
+            population,
             lod: LodDistances {
                 min_geom: params.min_geom,
                 max_geom: params.max_geom,
@@ -76,6 +87,7 @@ impl Tiling {
             },
             seed: scene.config.seed,
             omega: params.omega,
+            transitions: params.transitions,
             macro_factor: params.macro_factor,
             alpha_floor,
             overhang,
@@ -122,11 +134,11 @@ mod tests {
         }
     }
 
-    /// The patch `p` makes with `seed`, one blade a stratum.
+    /// The patch `p` makes with `seed` ([`PatchSpec::for_density`]).
     fn paper_patch(p: &Params, seed: u64) -> Patch {
         Patch::new(
             p.patch_size,
-            Patch::strata_for(p.patch_size, p.blades_per_m2),
+            PatchSpec::for_density(p.patch_size, p.blades_per_m2).blades,
             BLOCKS,
             &grassbench::grass::GrassConfig::default(),
             patch::BladeShape { max_tilt: 0.4 },
@@ -136,7 +148,7 @@ mod tests {
 
     /// A density map of constant 0.6 draws 60 % of the blades, whatever the distance: the
     /// patch's thresholds are drawn uniformly, so the fraction under 0.6 is binomial with
-    /// standard deviation sqrt(0.6·0.4/N) = 0.0033 for the N = 21 904 blades of the default
+    /// standard deviation sqrt(0.6·0.4/N) = 0.0033 for the N = 21 950 blades of the paper's
     /// patch. The tolerance, 0.015, is 4.5 standard deviations (a false failure about once in
     /// 150 000 seeds); a bias in the thresholds or in the LOD share of 1.5 % fails it.
     #[test]
@@ -174,8 +186,10 @@ mod tests {
 
     /// Sec. 5: the paper tiles "about 627 million" blades over a football field. At the
     /// density its parameter names (87 800 blades/m², 0.5 m patches) the tiling built on a
-    /// 105 x 68 m field (cell grid, quadtree and the generated patch, one blade a stratum)
-    /// holds that many virtual blades: 28 560 cells x 148² blades = 625.6 M, 0.2 % under.
+    /// 105 x 68 m field (cell grid, quadtree and the generated patch) holds that many virtual
+    /// blades: 28 560 cells x 21 950 blades = 626.9 M, 0.02 % under (before issue 19 the patch
+    /// held the square 148² = 21 904: 625.6 M). On the pitch's uniform density of 1 every one
+    /// of them grows, and the population counts them all.
     #[test]
     fn the_paper_density_tiles_627_million_blades_over_a_football_field() {
         let terrain = flat([105.0, 68.0], 1.0);
@@ -183,9 +197,13 @@ mod tests {
         let patch = paper_patch(&p, 1);
         let grid = CellGrid::new(&terrain, p.patch_size);
         let cells = grid.count();
-        let tree = Quadtree::build(&terrain, grid, 1.0, 1.0);
+        let population = Population::new(&terrain, grid, &patch, 1);
+        let tree = Quadtree::build(&terrain, grid, 1.0, 1.0, &|i, j| {
+            u64::from(population.cell(i, j))
+        });
         let virtual_blades = tree.grid().count() * patch.blades.len() as u64;
         assert_eq!(cells, 210 * 136);
+        assert_eq!(population.total(), virtual_blades);
         assert!(
             (virtual_blades as f64 / 627e6 - 1.0).abs() < 0.01,
             "{virtual_blades} virtual blades"
