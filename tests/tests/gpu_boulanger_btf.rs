@@ -289,7 +289,11 @@ fn popping_across_the_lod_bands_with_and_without_the_seamless_transition() -> an
     // change is compared with the reference's (`compare::temporal_change`): spurious change
     // is change the reference does not have. The seamless transition (Sec. 3.4, ω = 0.4)
     // must show less of it than the hard switch (`no_transitions`: no blend, no density
-    // split). Measured: see the "measured:" lines of `--nocapture` and `HARD_OVER_SEAMLESS`.
+    // split, every cell wholly one level). Measured on lavapipe at 320x180, 8 steps, the
+    // scene's own density: at 1/4 scale spurious peak 0.599 seamless against 0.729 hard
+    // (x1.22; means 0.578 and 0.701), at full scale 0.853 against 0.918 (blade placement
+    // differs from the reference's there, which both share). Before issue 19 the hard switch
+    // kept the density split and the two differed by 2 % in the old ratio metric.
     use grassbench::compare::{self, CameraMotion, Scale};
     let gpu = gpu()?;
     let scene = scene("football_field_human", 1.0)?;
@@ -334,7 +338,8 @@ fn popping_across_the_lod_bands_with_and_without_the_seamless_transition() -> an
     Ok(())
 }
 
-/// How much more spurious change (peak over the steps, 1/4 scale) the hard switch must show.
+/// How much more spurious change (peak over the steps, 1/4 scale) the hard switch must show:
+/// half the measured x1.22, so a seamless transition that stopped working (x1.0) fails.
 const HARD_OVER_SEAMLESS: f64 = 1.1;
 
 #[test]
