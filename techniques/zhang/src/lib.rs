@@ -242,7 +242,6 @@ pub mod params;
 pub mod pipelines;
 pub mod plants;
 pub mod prairie;
-pub mod props;
 pub mod shader_data;
 pub mod textures;
 pub mod wing_trim;
@@ -256,10 +255,8 @@ use grassbench::{
 
 pub use animate::Animation;
 pub use params::Params;
-pub use pipelines::{BILLBOARD_SHADER, PROPS_SHADER, SHADER};
-pub use shader_data::{
-    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
-};
+pub use pipelines::{BILLBOARD_SHADER, SHADER};
+pub use shader_data::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
 
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Zhang>();
@@ -299,8 +296,8 @@ impl Technique for Zhang {
     /// Plants the prairie, builds the animation state, textures and pipelines.
     fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         let scene = ctx.scene;
-        let grass = &scene.config.grass;
-        let (layout, planted) = prairie::plant(&params, grass, &scene.terrain, scene.config.seed);
+        let (layout, planted) =
+            prairie::plant(&params, &scene.blades, &scene.terrain, scene.config.seed);
         // The per-frame control points of every blade must fit in one buffer.
         let per_frame = (planted.len() * std::mem::size_of::<BladeDynamic>()) as u64;
         let max = ctx.gpu.device.limits().max_buffer_size;
@@ -325,7 +322,7 @@ impl Technique for Zhang {
     }
 
     fn estimate(scene: &Scene, params: &Params) -> Result<GpuEstimate> {
-        Ok(gpu::estimate(params, &scene.terrain))
+        Ok(gpu::estimate(params, scene))
     }
 
     fn params(&self) -> &Params {
@@ -396,8 +393,7 @@ impl GrassTechnique for Zhang {
             blades_represented: self.frame.plan.billboard_blades,
             triangles: blades * u64::from(2 * (self.params.backbone_points - 1))
                 + 2 * flowers
-                + 2 * self.frame.wings.len() as u64
-                + self.gpu.prop_triangles(),
+                + 2 * self.frame.wings.len() as u64,
             gpu_bytes: self.gpu.bytes,
         }
     }
