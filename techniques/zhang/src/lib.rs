@@ -214,7 +214,13 @@
 //! engineer's jobs running: load average 1.5-1.9; 13 runs of 30 frames per binary,
 //! alternating): median of the runs' medians 5.2 ms against 13.4 ms before hidden blades and
 //! batched breeze samples (at load 3.5-3.8: 8.6 against 21.8 ms; the quiet-machine figure
-//! before was 10.0 ms, `results/zhang_lod/README.md`); UPDATE_N48. Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
+//! before was 10.0 ms, `results/zhang_lod/README.md`). With the scene's population (`n = 48`,
+//! issue 19) it takes about 2.3 times as long: in alternating runs of 20 frames (640x360, a
+//! load average of 9-10 on the 2 vCPUs from other sessions' builds and tests, so every figure
+//! is inflated) 72-82 ms against 29-39 ms with `blades_per_side = 32`, and 915-919 ms of GPU
+//! wall against 500-503 ms; in one interleaved run at that load zhang took 774 ms a frame
+//! against the reference's 4 769 on the meadow (6.2x) and 456 against 3 783 on the prairie
+//! flyover (8.3x). Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
 //! and with sorting 80 bytes per drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`)
 //! per visible near blade, 2 per petal and 2 per wing (at most `6·n'²` wings per far grid);
 //! 3-5 draws. On a software rasteriser the wings' fill dominates: on the meadow's walk at
