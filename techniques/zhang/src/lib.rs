@@ -44,7 +44,8 @@
 //!   row and column of grids reach past the terrain and hold fewer plants. The meadow (80 m
 //!   at 90 blades/m², 760 strata a side) has 16 x 16 grids of 48 x 48 (5.06 m), the
 //!   prairie flyover (240 m at 14) 16 x 16 of 57 x 57 (15.2 m), the football field (105 x
-//!   68 m at 40) 16 x 11 of 42 x 42 (6.6 m); `grass.density = 0` has no grids and draws
+//!   68 m at 40) 16 x 11 of 42 x 42 (6.6 m), and 433 720, 449 282 and 285 605 blades grow
+//!   on them, the reference's counts exactly; `grass.density = 0` has no grids and draws
 //!   nothing. Flowers, the thesis' addition to the grass, are hashed per lattice point.
 //!   `blades_per_side > 0` plants the thesis' lattice instead (`grids x grids` grids of
 //!   `blades_per_side²` jittered candidates fitted over the terrain, sizes from the scene's
