@@ -323,8 +323,7 @@ fn on_a_grid_corner(scene: grassbench::Scene) -> anyhow::Result<grassbench::Scen
         &scene.terrain,
     );
     let mut config = scene.config.clone();
-    let grassbench::camera::CameraPath::Walker { waypoints, .. } = &mut config.camera.path
-    else {
+    let grassbench::camera::CameraPath::Walker { waypoints, .. } = &mut config.camera.path else {
         anyhow::bail!("the meadow's camera is not a walker");
     };
     let k = ((Vec2::from(waypoints[0]) - layout.origin) / layout.grid_size).round();
