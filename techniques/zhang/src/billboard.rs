@@ -61,7 +61,7 @@ pub struct GridLevel {
     pub anchors: Range<u32>,
     /// Its wings.
     pub wings: Vec<Wing>,
-    /// Billboards with at least one wing.
+    /// Billboards with at least one wing that shows something.
     pub billboards: u32,
     /// Wing range of each billboard block, row-major (`bz·n' + bx`), for the pre-computed
     /// far-to-near orders of Sec. 5.4.2.
@@ -443,7 +443,8 @@ mod tests {
         }
         eprintln!("measured: {dropped} of {represented}");
         // Most plants stand in a block with a wing; those whose whole block lost its wings
-        // to the gaps do not.
+        // to the gaps do not: measured 1 813 against 37 058 over the three levels (4.9 %);
+        // the bound is twice that share.
         assert!(
             dropped > 0 && dropped * 10 < represented,
             "{dropped} of {represented}"
