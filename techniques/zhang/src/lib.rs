@@ -347,7 +347,7 @@ impl Technique for Zhang {
             return Err(Error::Technique {
                 technique: Self::INFO.id.into(),
                 message: format!(
-                    "{} blades need {per_frame} bytes of instance data but this adapter allows buffers of {max} bytes; lower zhang.blades_per_side or zhang.grids",
+                    "{} blades need {per_frame} bytes of instance data but this adapter allows buffers of {max} bytes; lower grass.density (or zhang.blades_per_side on the thesis' lattice)",
                     planted.len()
                 ),
             });
