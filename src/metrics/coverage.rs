@@ -1,5 +1,5 @@
 //! Grass coverage: the fraction of the image a technique's grass changed compared with the
-//! same frame drawn without grass (sky and ground only). Technique-agnostic: no colour
+//! same frame drawn without grass (the core's background only). Technique-agnostic: no colour
 //! classification, just "did something get drawn here".
 
 use super::same_size;

@@ -209,9 +209,7 @@ impl<'g> World<'g> {
                 {
                     let mut pass =
                         enc.render_pass_with("background", Some(wgpu::Color::BLACK), true);
-                    self.scene_gpu
-                        .background
-                        .draw(&mut pass, &self.scene_gpu.terrain);
+                    self.scene_gpu.draw_background(&mut pass);
                 }
                 enc.set_label_prefix(&prefix);
                 let core_draws = enc.counts().draws;

@@ -1,20 +1,23 @@
-//! The sky and the ground, drawn the same way before every technique's grass, so differences
-//! between images come from the grass alone.
+//! The sky, the ground, the scene's props (trees and stones, [`super::props`]) and its moving
+//! object, drawn the same way before every technique's grass, so differences between images
+//! come from the grass alone.
 
+use super::props::{PropVertex, PropsGpu};
 use crate::shaders;
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT};
 use crate::terrain::{GroundVertex, TerrainGpu};
 
-/// Sky and ground pipelines.
+/// Sky, ground, prop and object pipelines.
 pub struct Background {
     sky: wgpu::RenderPipeline,
     apron: wgpu::RenderPipeline,
     ground: wgpu::RenderPipeline,
+    props: wgpu::RenderPipeline,
     object: wgpu::RenderPipeline,
 }
 
 impl Background {
-    /// Builds both pipelines for `sample_count`.
+    /// Builds the pipelines for `sample_count`.
     pub fn new(
         device: &wgpu::Device,
         scene_layout: &wgpu::BindGroupLayout,
@@ -100,6 +103,15 @@ impl Background {
                 wgpu::CompareFunction::Less,
                 list,
             ),
+            props: pipeline(
+                "trees and stones",
+                "vs_prop",
+                "fs_prop",
+                &[Some(PropVertex::LAYOUT)],
+                true,
+                wgpu::CompareFunction::Less,
+                list,
+            ),
             object: pipeline(
                 "object",
                 "vs_object",
@@ -112,10 +124,16 @@ impl Background {
         }
     }
 
-    /// Draws the sky, the apron beyond the terrain, the ground, then the scene's moving object
-    /// (a sphere ray-cast on a camera-facing quad; nothing when it has none). Bind group 0 must
-    /// be set.
-    pub fn draw(&self, pass: &mut crate::technique::RenderPass<'_>, terrain: &TerrainGpu) {
+    /// Draws the sky, the apron beyond the terrain, the ground, the scene's trees and stones
+    /// (Zhang Sec. 5.5.2: opaque and depth-tested, for every technique; none when the covering
+    /// map has none), then the scene's moving object (a sphere ray-cast on a camera-facing
+    /// quad; nothing when it has none). Bind group 0 must be set.
+    pub fn draw(
+        &self,
+        pass: &mut crate::technique::RenderPass<'_>,
+        terrain: &TerrainGpu,
+        props: &PropsGpu,
+    ) {
         pass.set_pipeline(&self.sky);
         pass.draw(0..3, 0..1);
         pass.set_pipeline(&self.apron);
@@ -124,6 +142,11 @@ impl Background {
         pass.set_vertex_buffer(0, terrain.ground_vertices.slice(..));
         pass.set_index_buffer(terrain.ground_indices.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..terrain.ground_index_count, 0, 0..1);
+        if let Some(vertices) = &props.vertices {
+            pass.set_pipeline(&self.props);
+            pass.set_vertex_buffer(0, vertices.slice(..));
+            pass.draw(0..props.count, 0..1);
+        }
         pass.set_pipeline(&self.object);
         pass.draw(0..6, 0..1);
     }

@@ -1,9 +1,11 @@
 //! What the core keeps on the GPU for a scene: bind group 0 (frame globals, terrain maps,
-//! wind texture), the ground mesh and the background pipelines. Techniques borrow it.
+//! wind texture), the ground mesh, the props (trees and stones of the covering map) and the
+//! background pipelines. Techniques borrow it.
 
 use wgpu::util::DeviceExt as _;
 
 use super::Background;
+use super::props::PropsGpu;
 use crate::frame::{FrameGlobals, FrameInputs};
 use crate::terrain::TerrainGpu;
 use crate::wind::{WindField, WindTexture};
@@ -21,7 +23,10 @@ pub struct SceneGpu {
     pub terrain: TerrainGpu,
     /// The baked wind.
     pub wind: WindTexture,
-    /// Sky and ground pipelines.
+    /// The trees and stones of the covering map (Zhang Sec. 5.5.2), drawn with the
+    /// background for every technique.
+    pub props: PropsGpu,
+    /// Sky, ground, prop and object pipelines.
     pub background: Background,
     /// Sample count the background pipelines were built for.
     pub sample_count: u32,
@@ -99,12 +104,14 @@ impl SceneGpu {
                 ],
             });
             let background = Background::new(device, &layout, sample_count);
+            let props = PropsGpu::new(device, &scene.terrain, scene.config.seed);
             Self {
                 layout,
                 bind_group,
                 globals,
                 terrain,
                 wind,
+                props,
                 background,
                 sample_count,
             }
@@ -123,10 +130,19 @@ impl SceneGpu {
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
     }
 
+    /// Draws the background (sky, ground, props, moving object; [`Background::draw`]) into
+    /// `pass`, which must have bind group 0 set.
+    pub fn draw_background(&self, pass: &mut crate::technique::RenderPass<'_>) {
+        self.background.draw(pass, &self.terrain, &self.props);
+    }
+
     /// GPU memory held by the shared scene resources, bytes.
     pub fn bytes(&self) -> u64 {
         let (w, h) = self.wind.resolution();
-        self.terrain.bytes() + u64::from(w * h * 16) + std::mem::size_of::<FrameGlobals>() as u64
+        self.terrain.bytes()
+            + u64::from(w * h * 16)
+            + std::mem::size_of::<FrameGlobals>() as u64
+            + self.props.bytes()
     }
 
     /// A pipeline layout with bind group 0 followed by a technique's own groups.

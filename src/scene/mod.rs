@@ -5,6 +5,7 @@
 mod background;
 mod gpu;
 mod lighting;
+pub mod props;
 
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,6 @@
 //! WGSL shared by every shader: the prelude (bind group 0, terrain and wind lookups, lighting,
-//! fog) and the background (sky and ground); and [`pipeline`], the one description of a
-//! render pipeline every technique builds on.
+//! fog) and the background (sky, ground, props, moving object); and [`pipeline`], the one
+//! description of a render pipeline every technique builds on.
 //!
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
@@ -17,7 +17,8 @@ pub use pipeline::{PipelineSpec, depth_less, depth_test, render_pipeline};
 /// `apply_fog` (`fog_factor`), hashes.
 pub const PRELUDE: &str = include_str!("prelude.wgsl");
 
-/// The core's sky and ground shader (without the prelude).
+/// The core's background shader: sky, ground, props (trees and stones) and moving object
+/// (without the prelude).
 pub const BACKGROUND: &str = include_str!("background.wgsl");
 
 /// Prelude + `source`.

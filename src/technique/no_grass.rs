@@ -1,4 +1,5 @@
-//! The empty technique: sky and ground only. Coverage is measured against it.
+//! The empty technique: the core's background only (sky, ground, the covering map's trees and
+//! stones, the moving object). Coverage is measured against it.
 
 use serde::{Deserialize, Serialize};
 

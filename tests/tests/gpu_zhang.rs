@@ -52,9 +52,11 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
     let entry = grassbench_cli::registry::find("zhang")?;
     let mut zhang = harness.create(entry, &toml::Table::new())?;
     let (image, culled_record) = render_record(&mut harness, zhang.as_mut(), 30)?;
-    // Measured 0.30 at 640x360 (reference: 0.47 with 2.2x the blades). Nothing drawn gives 0;
-    // more than 0.7 means grass (or garbage) in the sky.
+    // Measured 0.478 (at 640x360 too, against the reference's 0.467: the same blades; 0.30
+    // before issue 19, when zhang drew 41 of the meadow's 90 blades/m²). Nothing drawn gives
+    // 0; more than 0.7 means grass (or garbage) in the sky.
     let coverage = grass_coverage(&image, &background, 6)?;
+    eprintln!("measured: coverage {coverage:.3}");
     assert!((0.15..0.7).contains(&coverage), "coverage {coverage:.3}");
     let mask = coverage_mask(&image, &background, 6)?;
     let (w, h) = (TEST_SIZE.width as usize, TEST_SIZE.height as usize);
@@ -120,30 +122,31 @@ fn zhang_meadow_has_grass_below_and_sky_above() -> anyhow::Result<()> {
 ///
 /// | zhang parameters | 1/1 | 1/4 | 1/16 | coverage (ref 0.467) |
 /// |---|---|---|---|---|
-/// | defaults (32 x 32 per grid, billboards beyond the 3 x 3 near grids, sorted, fades) | 0.165 | 0.114 | 0.097 | 0.329 |
-/// | `blades_per_side = 47` (as many candidates as the reference), same | 0.165 | 0.104 | 0.076 | 0.473 |
-/// | billboards without sorting or fades (alpha test), defaults | 0.167 | 0.117 | 0.104 | 0.310 |
-/// | the same, `blades_per_side = 47` | 0.168 | 0.105 | 0.081 | 0.465 |
-/// | part 1 / `lod = false`: single plants everywhere, defaults | 0.162 | 0.108 | 0.091 | 0.302 |
-/// | part 1 / `lod = false`, `blades_per_side = 47` | 0.165 | 0.095 | 0.067 | 0.462 |
+/// | defaults (the scene's blades, billboards beyond the 3 x 3 near grids, sorted, fades) | 0.157 | 0.094 | 0.077 | 0.478 |
+/// | `blades_per_side = 32` (the thesis' lattice, 41 blades/m² here), same | 0.166 | 0.115 | 0.097 | 0.328 |
 ///
-/// The billboards (Ch. 4) cost 0.01-0.015 of FLIP at the reduced scales. Thresholds sit
-/// ~20 % above the measurements: they catch a broken picture (missing blades, wrong colours,
-/// black frames), not the placement difference. The matched run must also cover the same
+/// Before issue 19 the defaults were the thesis' lattice (the second row; then 0.165, 0.114,
+/// 0.097, coverage 0.329) and `blades_per_side = 47` gave as many candidates as the
+/// reference on a lattice of its own (0.165, 0.104, 0.076, coverage 0.473); without sorting or
+/// fades 0.167, 0.117, 0.104 and 0.168, 0.105, 0.081; with `lod = false` 0.162, 0.108, 0.091
+/// and 0.165, 0.095, 0.067: the billboards (Ch. 4) cost 0.01-0.015 of FLIP at the reduced
+/// scales. Thresholds sit ~20 % above the measurements: they catch a broken picture (missing
+/// blades, wrong colours, black frames), not the placement difference. The defaults stand
+/// their single plants where the reference's blades stand, so they must also cover the same
 /// share of the image as the reference (±0.05).
 #[test]
 fn zhang_compares_with_reference_on_the_meadow() -> anyhow::Result<()> {
     let gpu = gpu()?;
     let none = toml::Table::new();
     let reference = render(&gpu, "reference", scene("meadow", 1.0)?, 30, SIZE, &none)?;
-    let mut matched = toml::Table::new();
-    matched.insert("blades_per_side".into(), 47.into());
+    let mut thesis = toml::Table::new();
+    thesis.insert("blades_per_side".into(), 32.into());
     let mut harness = Harness::new(&gpu, scene("meadow", 1.0)?, SIZE, false)?;
     let background = render_with(&mut harness, &mut NoGrass, 30)?;
     let ref_coverage = grass_coverage(&reference, &background, 6)?;
     for (overrides, limits) in [
-        (&none, [0.20, 0.14, 0.125]),
-        (&matched, [0.20, 0.13, 0.097]),
+        (&none, [0.19, 0.115, 0.095]),
+        (&thesis, [0.20, 0.14, 0.125]),
     ] {
         let z = render(&gpu, "zhang", scene("meadow", 1.0)?, 30, SIZE, overrides)?;
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
@@ -156,7 +159,7 @@ fn zhang_compares_with_reference_on_the_meadow() -> anyhow::Result<()> {
         }
         let c = grass_coverage(&z, &background, 6)?;
         eprintln!("measured: {overrides:?} coverage {c:.3} (reference {ref_coverage:.3})");
-        if overrides == &matched {
+        if overrides == &none {
             assert!(
                 (c - ref_coverage).abs() < 0.05,
                 "coverage {c:.3} vs {ref_coverage:.3}"
@@ -227,12 +230,17 @@ fn bad_parameters_are_refused_naming_the_key() -> anyhow::Result<()> {
 /// Billboards (Ch. 4) stand in for the far grids (Sec. 5.2): the counters say what was drawn,
 /// far fewer triangles are submitted, and the picture stays close to single plants everywhere
 /// (`lod = false`, the `finest` variant). Measured on the meadow, frame 30 at 640x360 on
-/// lavapipe (sorted and blended, the default): FLIP against the finest 0.042 at full scale,
-/// 0.031 at 1/4, 0.029 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn both
-/// ways, their single plants and billboards blended into each other). Without fades
-/// (`fade_radius = 0`) 0.028, 0.0195, 0.023 (the near grids are the same blades). Thresholds
-/// ~25 % above. 3 232 single plants (those of the near grids left by culling single plants)
-/// and 2 224 billboards (13 295 wings) represent 114 k blades: 53 k triangles against 803 k.
+/// lavapipe (sorted and blended, the default): FLIP against the finest 0.0433 at full scale,
+/// 0.0353 at 1/4, 0.0353 at 1/16; frame 30 stands in a fade band (Sec. 6.1: 4 grids drawn
+/// both ways, their single plants and billboards blended into each other). Without fades
+/// (`fade_radius = 0`) 0.0402, 0.0255, 0.0270 (the near grids are the same blades).
+/// Thresholds ~25 % above. (On the thesis' lattice, before issue 19, the grids lay elsewhere
+/// and held 32 x 32 plants: 0.042, 0.031, 0.029 and without fades 0.028, 0.0195, 0.023.)
+/// On the scene's population (issue 19: the meadow's 90 blades/m², grids of
+/// 48 x 48 strata) 7 061 single plants (those of the near grids left by culling single
+/// plants) and 4 972 billboards (29 683 wings) represent 232 k blades: 116 k triangles
+/// against 1.77 M (before, on the thesis' 32 x 32 lattice: 3 232 single plants and 2 224
+/// billboards for 114 k blades, 53 k triangles against 803 k).
 #[test]
 fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let gpu = gpu()?;
@@ -255,9 +263,10 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let billboards = counter(lod.as_ref(), "billboards_l5")
         + counter(lod.as_ref(), "billboards_l9")
         + counter(lod.as_ref(), "billboards_l17");
-    // At most the 4 x 4 grids around a border corner (fading, Sec. 6.1) are single plants.
+    // At most the 4 x 4 grids around a border corner (fading, Sec. 6.1) are single plants:
+    // the meadow's grids are 48 x 48 strata.
     assert!(
-        singles > 1000.0 && singles <= 16384.0,
+        singles > 1000.0 && singles <= 16.0 * 48.0 * 48.0,
         "{singles} single plants"
     );
     assert!(billboards > 100.0, "{billboards} billboards");
@@ -266,10 +275,17 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     // arithmetic, so equating them here would hold by construction).
     assert!(level_blades(lod.as_ref(), "billboards")? > 0);
     assert!(level_blades(lod.as_ref(), "single_plants")? > 0);
-    // The same grids drawn, far fewer triangles.
-    assert_eq!(
+    // The same grids drawn, far fewer triangles. The boxes the grids are culled with hold
+    // their billboards' anchors too with LOD (lattice points whether their blade grows or
+    // not), so LOD may keep a grid whose blades alone are just out of view: measured 145
+    // grids drawn against the finest's 144 (equal before issue 19's lattice).
+    let (lod_grids, finest_grids) = (
         counter(lod.as_ref(), "grids_drawn"),
-        counter(finest.as_ref(), "grids_drawn")
+        counter(finest.as_ref(), "grids_drawn"),
+    );
+    assert!(
+        lod_grids >= finest_grids && lod_grids <= finest_grids + 2.0,
+        "{lod_grids} grids drawn with LOD, {finest_grids} without"
     );
     assert!(s.triangles * 5 < f.triangles, "{s:?} against {f:?}");
     let mut no_fade_params = toml::Table::new();
@@ -278,8 +294,8 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     let switched = render_with(&mut harness, no_fade.as_mut(), 30)?;
     let mut failures = Vec::new();
     for (what, image, limits) in [
-        ("LOD", &image, [0.052, 0.039, 0.036]),
-        ("LOD without fades", &switched, [0.035, 0.025, 0.029]),
+        ("LOD", &image, [0.054, 0.044, 0.044]),
+        ("LOD without fades", &switched, [0.050, 0.032, 0.034]),
     ] {
         for (factor, limit) in [1u32, 4, 16].into_iter().zip(limits) {
             let mean = flip(&downsample(&fine, factor), &downsample(image, factor))?.mean;
@@ -293,12 +309,37 @@ fn billboards_stand_in_for_far_grids() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Across a grid border: the meadow's walker starts on a grid corner, and a dolly of 1 mm per
-/// frame (so parallax changes little) crosses the border at the first step. Without fades
-/// (`fade_radius = 0`) billboards and single plants switch there; with them (Sec. 6.1) both
-/// sides draw each representation at alpha ½ at the border. Measured on lavapipe at 320x180,
-/// quarter density, calm air (mean absolute change per channel, 0-255): at the crossing 2.07
-/// without fades against 1.26 with, 1.1-1.2 on the other steps of either. (At the comparison
+/// `scene` with its walker starting at the corner of zhang's grass grids nearest its first
+/// waypoint (the grids lie on the scene's strata: `grassbench_zhang::prairie::Layout`): a
+/// tenth of a millimetre inside it along x, a quarter of a millimetre before the border along
+/// z, so a dolly of 1 mm a frame towards the next waypoint (+x, −z on the meadow) crosses the
+/// z border at the first step, within the fade band of the x border.
+fn on_a_grid_corner(scene: grassbench::Scene) -> anyhow::Result<grassbench::Scene> {
+    use grassbench::glam::Vec2;
+    use grassbench_zhang::prairie::Layout;
+    let layout = Layout::new(
+        &grassbench_zhang::Params::default(),
+        &scene.blades,
+        &scene.terrain,
+    );
+    let mut config = scene.config.clone();
+    let grassbench::camera::CameraPath::Walker { waypoints, .. } = &mut config.camera.path else {
+        anyhow::bail!("the meadow's camera is not a walker");
+    };
+    let k = ((Vec2::from(waypoints[0]) - layout.origin) / layout.grid_size).round();
+    let corner = layout.origin + k * layout.grid_size;
+    waypoints[0] = [corner.x + 1e-4, corner.y + 2.5e-4];
+    Ok(grassbench::Scene::from_config(config, scene.base_dir)?)
+}
+
+/// Across a grid border: the meadow's walker starts beside a grid corner
+/// ([`on_a_grid_corner`]), and a dolly of 1 mm per frame (so parallax changes little) crosses
+/// the border at the first step. Without fades (`fade_radius = 0`) billboards and single
+/// plants switch there; with them (Sec. 6.1) both sides draw each representation at alpha ½
+/// at the border. Measured on lavapipe at 320x180, quarter density, calm air (mean absolute
+/// change per channel, 0-255): at the crossing 1.40 without fades against 0.84 with,
+/// 0.69-0.76 on the other steps of either (on the thesis' lattice, before issue 19: 2.07
+/// against 1.26, 1.1-1.2 on the other steps). (At the comparison
 /// suite's 0.25 m per frame the switch drowns in parallax: 7.6 without against 8.3 with, the
 /// fade band's two layers adding change; see `ENTRY`.)
 #[test]
@@ -306,7 +347,7 @@ fn fades_soften_the_switch_at_a_grid_crossing() -> anyhow::Result<()> {
     use grassbench::compare::{CameraMotion, frame_differences};
     let gpu = gpu()?;
     let entry = grassbench_cli::registry::find("zhang")?;
-    let scene = scene("meadow", 0.25)?;
+    let scene = on_a_grid_corner(scene("meadow", 0.25)?)?;
     let mut no_fade = toml::Table::new();
     no_fade.insert("fade_radius".into(), 0.0.into());
     let motion = CameraMotion::Dolly(0.001);
@@ -337,13 +378,14 @@ fn fades_soften_the_switch_at_a_grid_crossing() -> anyhow::Result<()> {
 /// Wings cut down to their texels (`trim_wings`, `techniques/zhang/src/wing_trim.rs`) draw what
 /// whole wings draw. In calm air with upright blades every wing is planar (its two tops are its
 /// roots raised by the same height), and the cut keeps every texel the whole wing shows.
-/// Measured on lavapipe (640x360, full meadow): calm, frame 0, 26 of 230 400 pixels differ by
-/// more than 2 levels (texel lookups along the cut's edges), FLIP 0.00022; 226 of 12 140 wings
-/// can show nothing and are not drawn. In the wind (frame 30) a wing's two tops sway apart,
-/// the wing is no longer planar, and the cut rectangle's diagonal is not the whole one's: 8.6 %
-/// of the pixels differ (nearest-texel lookups shifted), FLIP 0.0178 between the two, but both
-/// are about as far from the finest image (`lod = false`): FLIP 0.0422 cut against 0.0420
-/// whole.
+/// Measured on lavapipe (640x360, full meadow, the scene's population): calm, frame 0, 56 of
+/// 230 400 pixels differ by more than 2 levels (texel lookups along the cut's edges), FLIP
+/// 0.00032; 290 of 25 177 wings can show nothing and are not drawn. In the wind (frame 30) a
+/// wing's two tops sway apart, the wing is no longer planar, and the cut rectangle's diagonal
+/// is not the whole one's: 8.2 % of the pixels differ (nearest-texel lookups shifted), FLIP
+/// 0.0167 between the two, but both are about as far from the finest image (`lod = false`):
+/// FLIP 0.0433 cut against 0.0436 whole. (On the thesis' lattice, before issue 19: 26 pixels,
+/// FLIP 0.00022, 226 of 12 140 wings; 8.6 %, 0.0178, 0.0422 against 0.0420.)
 #[test]
 fn trimmed_wings_draw_what_whole_wings_draw() -> anyhow::Result<()> {
     let gpu = gpu()?;
@@ -386,7 +428,7 @@ fn trimmed_wings_draw_what_whole_wings_draw() -> anyhow::Result<()> {
             "measured: {what}: {drawn} of {wings} wings drawn; {differ} pixels differ, FLIP {mean:.5}; against finest: trimmed {to_cut:.5}, whole {to_full:.5}"
         );
         if what == "calm" {
-            // Limits: about 10x the measured differences (rounding along the cut's edges).
+            // Limits: about 4x the measured differences (rounding along the cut's edges).
             assert!(
                 differ < 230 && mean < 0.0015,
                 "{differ} pixels, FLIP {mean}"
@@ -408,8 +450,9 @@ fn trimmed_wings_draw_what_whole_wings_draw() -> anyhow::Result<()> {
 /// and its neighbours end within 10 m), brightens the wings around it and not those across
 /// the field. The ground is lit by the sun alone, so what brightens there is the billboards.
 /// Measured on lavapipe (320x180, still camera, quarter density; sum of the RGB means in a
-/// 24 x 16 window, 8-bit levels): +7.4 around the light, +1.2 110 pixels to the side; with
-/// the sun-only wing pipeline drawn instead, +0.2.
+/// 24 x 16 window, 8-bit levels): +6.2 around the light, +0.9 110 pixels to the side (on the
+/// thesis' lattice, before issue 19: +7.4 and +1.2; with the sun-only wing pipeline drawn
+/// instead, +0.2).
 #[test]
 fn a_point_light_lights_the_billboards_around_it() -> anyhow::Result<()> {
     use grassbench::glam::{Vec2, Vec3};
@@ -465,7 +508,8 @@ fn a_point_light_lights_the_billboards_around_it() -> anyhow::Result<()> {
     eprintln!(
         "measured: light at pixel ({px}, {py}): brightening {near:.1} there, {across:.1} across the field"
     );
-    // Limits: half the measured brightening; the fall-off with twice the measured room.
+    // Limits: 3.7, about half the measured brightening (6.2; 7.4 before issue 19); the
+    // fall-off with twice the measured room.
     assert!(
         near > 3.7,
         "the point light does not light the billboards: {near:.1}"

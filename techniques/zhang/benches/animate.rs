@@ -10,18 +10,21 @@ use std::time::Duration;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use grassbench::glam::Vec2;
-use grassbench::grass::GrassConfig;
+use grassbench::grass::{BladeField, GrassConfig};
 use grassbench::terrain::Terrain;
 use grassbench::wind::{Breeze, BreezeConfig, Calm, FluidConfig, FluidWind, WindField};
 use grassbench_zhang::{Animation, Params, prairie};
 
 fn bench_animate(c: &mut Criterion) {
     let terrain = Terrain::flat(Vec2::new(20.0, 20.0));
+    // The thesis' lattice (32 x 32 a grid), whatever the density.
     let params = Params {
         grids: 4,
+        blades_per_side: 32,
         ..Params::default()
     };
-    let (_, planted) = prairie::plant(&params, &GrassConfig::default(), &terrain, 1);
+    let field = BladeField::new(GrassConfig::default(), 1);
+    let (_, planted) = prairie::plant(&params, &field, &terrain, 1);
     let Ok(mut fluid) = FluidWind::new(FluidConfig::default(), 1, &terrain) else {
         return;
     };

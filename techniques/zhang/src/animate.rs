@@ -470,7 +470,8 @@ mod tests {
             flower_fraction: 0.1,
             ..Params::default()
         };
-        let planted = plant(&params, &GrassConfig::default(), &terrain, 5).1;
+        let field = grassbench::grass::BladeField::new(GrassConfig::default(), 5);
+        let planted = plant(&params, &field, &terrain, 5).1;
         (params, planted)
     }
 

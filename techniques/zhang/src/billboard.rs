@@ -20,11 +20,17 @@
 //! its middle, so gaps, trees and stones "separate the billboard into several parts". The
 //! density map thins the texture's blades with the shared threshold rule (see
 //! [`crate::billboard_texture`]).
+//!
+//! A billboard stands for the plants that grow in its block: each lattice point belongs to one
+//! block (the block whose lower corner is at or before it; the grid's last point to the last
+//! block), and a block where none grows (the covering map's gaps, the density map, the part of
+//! an edge grid beyond the terrain) has no billboard. A grid where no plant grows has no
+//! anchors. [`GridLevel::represented`] counts the plants of the blocks that draw a wing.
 
 use std::ops::Range;
 
 use grassbench::glam::{Vec2, Vec3};
-use grassbench::grass::GrassConfig;
+use grassbench::grass::BladeField;
 use grassbench::rng::hash_f32;
 use grassbench::terrain::{Terrain, covering};
 
@@ -55,11 +61,32 @@ pub struct GridLevel {
     pub anchors: Range<u32>,
     /// Its wings.
     pub wings: Vec<Wing>,
-    /// Billboards with at least one wing.
+    /// Billboards with at least one wing that shows something.
     pub billboards: u32,
     /// Wing range of each billboard block, row-major (`bz·n' + bx`), for the pre-computed
     /// far-to-near orders of Sec. 5.4.2.
     pub blocks: Vec<Range<u32>>,
+    /// Plants growing in each block (same order).
+    pub grown: Vec<u32>,
+    /// Plants the drawn billboards stand for: those growing in the blocks with a wing that
+    /// shows something (after [`Billboards::cut_wings`]).
+    pub represented: u64,
+}
+
+impl GridLevel {
+    /// Recounts [`Self::billboards`] and [`Self::represented`] from the wings drawn.
+    fn tally(&mut self) {
+        let (mut billboards, mut represented) = (0, 0);
+        for (r, &grown) in self.blocks.iter().zip(&self.grown) {
+            let wings = &self.wings[r.start as usize..r.end as usize];
+            if wings.iter().any(|w| w.cut.is_some()) {
+                billboards += 1;
+                represented += u64::from(grown);
+            }
+        }
+        self.billboards = billboards;
+        self.represented = represented;
+    }
 }
 
 /// Every grid's billboards at every step.
@@ -67,7 +94,7 @@ pub struct GridLevel {
 pub struct Billboards {
     /// The anchor plants, grid by grid, coarsest class first within a grid.
     pub anchors: Vec<Planted>,
-    /// Per grid index (`gz·grids + gx`), per level `k` (step `4·2^k`).
+    /// Per grid index (`gz·grids.x + gx`), per level `k` (step `4·2^k`).
     pub grids: Vec<Vec<GridLevel>>,
     /// Steps of the levels (`4, 8, ...` up to the power of two covering a grid).
     pub steps: Vec<u32>,
@@ -94,31 +121,57 @@ pub fn steps(n: u32, grids: u32) -> Vec<u32> {
 }
 
 impl Billboards {
-    /// Plants the anchors and cuts every grid into billboards at every step.
+    /// Plants the anchors and cuts every grid into billboards at every step; `planted` are the
+    /// plants that grow ([`crate::prairie::plant`]'s, grid by grid), which the billboards stand
+    /// for.
     pub fn new(
         layout: &Layout,
         params: &Params,
-        grass: &GrassConfig,
+        field: &BladeField,
         terrain: &Terrain,
         seed: u64,
+        planted: &[Planted],
     ) -> Self {
         let n = layout.per_side;
-        let steps = steps(n, layout.grids);
+        let steps = steps(n, layout.grids.max_element());
         let mut anchors = Vec::new();
-        let mut grids = Vec::with_capacity((layout.grids * layout.grids) as usize);
+        let mut grids = Vec::with_capacity(layout.grid_count() as usize);
         let spacing = layout.spacing().x.min(layout.spacing().y);
         let grass_at = |p: Vec3| {
             let xz = Vec2::new(p.x, p.z);
             terrain.contains(xz) && terrain.covering_at(xz) == covering::GRASS
         };
-        for grid in 0..layout.grids * layout.grids {
-            let (gx, gz) = (grid % layout.grids, grid / layout.grids);
+        // Which lattice points of the current grid grow (`planted` is grid by grid).
+        let mut grown = vec![false; (n * n) as usize];
+        let mut rest = planted;
+        for grid in 0..layout.grid_count() {
+            let (gx, gz) = (grid % layout.grids.x, grid / layout.grids.x);
+            let here = rest.iter().take_while(|p| p.grid <= grid).count();
+            let (mine, after) = rest.split_at(here);
+            rest = after;
+            grown.fill(false);
+            let mut any = false;
+            for p in mine.iter().filter(|p| p.grid == grid) {
+                grown[p.cell as usize] = true;
+                any = true;
+            }
+            if !any {
+                // Nothing grows here: no anchors, no billboards.
+                grids.push(vec![GridLevel::default(); steps.len()]);
+                continue;
+            }
+            // The grid's lattice: `n x n` points, fewer in a last row or column of grids that
+            // ends with the terrain's strata; its blocks end with it.
+            let (mx, mz) = (
+                n.min(layout.extent.x.saturating_sub(gx * n)),
+                n.min(layout.extent.y.saturating_sub(gz * n)),
+            );
             // Anchor classes: the largest half-step t (2, 4, ...) whose lattice holds the point.
             let halves: Vec<u32> = steps.iter().map(|s| s / 2).collect();
-            let class = |i: u32, j: u32| halves.iter().rposition(|&t| on(i, t, n) && on(j, t, n));
-            let mut points: Vec<(usize, u32, u32)> = (0..n * n)
+            let class = |i: u32, j: u32| halves.iter().rposition(|&t| on(i, t, mx) && on(j, t, mz));
+            let mut points: Vec<(usize, u32, u32)> = (0..mx * mz)
                 .filter_map(|k| {
-                    let (i, j) = (k % n, k / n);
+                    let (i, j) = (k % mx, k / mx);
                     class(i, j).map(|c| (c, i, j))
                 })
                 .collect();
@@ -130,7 +183,7 @@ impl Billboards {
                 let mut plant = candidate(
                     layout,
                     params,
-                    grass,
+                    field,
                     terrain,
                     seed,
                     grid,
@@ -146,21 +199,41 @@ impl Billboards {
                 .map(|(level, &s)| {
                     let needed = points.iter().filter(|&&(c, ..)| c >= level).count() as u32;
                     let mut wings = Vec::new();
-                    let mut billboards = 0;
                     let mut block_ranges = Vec::new();
                     let blocks = crate::lod::billboards_per_side(n, s + 1);
+                    // The last block along an axis of `m` points: the last that spans a
+                    // spacing (Eq. 9's `⌈(m−1)/s⌉`-th); those after it are empty.
+                    let last = |m: u32| m.saturating_sub(2) / s;
+                    // Plants growing per block: each lattice point in the block at or before
+                    // it (the last block takes the rest of its row and column).
+                    let block_of = |i: u32, m: u32| (i / s).min(last(m));
+                    let mut in_block = vec![0u32; (blocks * blocks) as usize];
+                    for (k, _) in grown.iter().enumerate().filter(|(_, g)| **g) {
+                        let (i, j) = (k as u32 % n, k as u32 / n);
+                        in_block[(block_of(j, mz) * blocks + block_of(i, mx)) as usize] += 1;
+                    }
                     for bz in 0..blocks {
                         for bx in 0..blocks {
+                            let before = wings.len();
+                            if bx > last(mx)
+                                || bz > last(mz)
+                                || in_block[(bz * blocks + bx) as usize] == 0
+                            {
+                                // Beyond the grid's lattice, or no plant to stand for.
+                                block_ranges.push(before as u32..before as u32);
+                                continue;
+                            }
                             let (i0, j0) = (bx * s, bz * s);
-                            let (i1, j1) = ((i0 + s).min(n - 1), (j0 + s).min(n - 1));
-                            let (ci, cj) = ((i0 + s / 2).min(n - 1), (j0 + s / 2).min(n - 1));
+                            let (i1, j1) = ((i0 + s).min(mx - 1), (j0 + s).min(mz - 1));
+                            let (ci, cj) = ((i0 + s / 2).min(mx - 1), (j0 + s / 2).min(mz - 1));
                             let at = |i: u32, j: u32| local[(j * n + i) as usize];
                             let centre = at(ci, cj);
-                            let before = wings.len();
-                            for (oi, oj) in
-                                [(i0, cj), (i1, cj), (ci, j0), (ci, j1), (i0, j0), (i1, j1)]
-                            {
-                                if (oi, oj) == (ci, cj) {
+                            let outers =
+                                [(i0, cj), (i1, cj), (ci, j0), (ci, j1), (i0, j0), (i1, j1)];
+                            for (k, &(oi, oj)) in outers.iter().enumerate() {
+                                // A block one point wide or deep has its corners on its
+                                // middle line: each wing once.
+                                if (oi, oj) == (ci, cj) || outers[..k].contains(&(oi, oj)) {
                                     continue;
                                 }
                                 let outer = at(oi, oj);
@@ -188,16 +261,19 @@ impl Billboards {
                                     cut: Some(Cut::WHOLE),
                                 });
                             }
-                            billboards += u32::from(wings.len() > before);
                             block_ranges.push(before as u32..wings.len() as u32);
                         }
                     }
-                    GridLevel {
+                    let mut level = GridLevel {
                         anchors: first..first + needed,
                         wings,
-                        billboards,
+                        billboards: 0,
                         blocks: block_ranges,
-                    }
+                        grown: in_block,
+                        represented: 0,
+                    };
+                    level.tally();
+                    level
                 })
                 .collect();
             grids.push(levels);
@@ -241,6 +317,7 @@ impl Billboards {
                 for w in &mut level.wings {
                     w.cut = skyline.cut(k as u32, w.u, w.density);
                 }
+                level.tally();
             }
         }
     }
@@ -257,6 +334,7 @@ impl Billboards {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use grassbench::grass::GrassConfig;
 
     fn prairie(grids: u32, n: u32) -> (Layout, Billboards) {
         let terrain = Terrain::flat(Vec2::new(80.0, 80.0));
@@ -265,8 +343,9 @@ mod tests {
             blades_per_side: n,
             ..Params::default()
         };
-        let layout = Layout::new(&params, &terrain);
-        let b = Billboards::new(&layout, &params, &GrassConfig::default(), &terrain, 7);
+        let field = BladeField::new(GrassConfig::default(), 7);
+        let (layout, planted) = crate::prairie::plant(&params, &field, &terrain, 7);
+        let b = Billboards::new(&layout, &params, &field, &terrain, 7, &planted);
         (layout, b)
     }
 
@@ -297,14 +376,86 @@ mod tests {
                         "level {k}"
                     );
                 }
+                // Every plant grows (flat, full density): the billboards stand for all
+                // 32 x 32 of them, at every level.
+                assert_eq!(l.grown.iter().sum::<u32>(), 32 * 32);
+                assert_eq!(l.represented, 32 * 32);
+                assert_eq!(l.billboards as usize, l.blocks.len());
             }
         }
+    }
+
+    #[test]
+    fn billboards_stand_for_the_plants_that_grow_in_their_blocks() {
+        // The scene's strata on a rectangle with gaps, trees, stones and a thinning density
+        // map: each level's blocks hold every plant of its grid once, and the billboards
+        // drawn stand for those of the blocks that have a wing.
+        let config = grassbench::terrain::TerrainConfig {
+            size: [40.0, 24.0],
+            max_height: 0.0,
+            samples_per_metre: 1.0,
+            height: grassbench::terrain::MapSource::default(),
+            density: grassbench::terrain::MapSource::Constant { value: 0.5 },
+            covering: grassbench::terrain::CoveringSource::Procedural {
+                gaps: 0.2,
+                trees: 0.02,
+                stones: 0.02,
+                frequency: 0.1,
+            },
+        };
+        let terrain = Terrain::build(&config, 3, std::path::Path::new(".")).unwrap();
+        let field = BladeField::new(
+            GrassConfig {
+                density: 30.0,
+                ..GrassConfig::default()
+            },
+            3,
+        );
+        let params = Params::default();
+        let (layout, planted) = crate::prairie::plant(&params, &field, &terrain, 3);
+        let b = Billboards::new(&layout, &params, &field, &terrain, 3, &planted);
+        assert_eq!(b.grids.len() as u32, layout.grid_count());
+        let mut per_grid = vec![0u32; b.grids.len()];
+        for p in &planted {
+            per_grid[p.grid as usize] += 1;
+        }
+        let (mut dropped, mut represented) = (0u64, 0u64);
+        for (levels, &plants) in b.grids.iter().zip(&per_grid) {
+            for l in levels {
+                assert_eq!(l.grown.iter().sum::<u32>(), plants);
+                let expect: u64 = l
+                    .blocks
+                    .iter()
+                    .zip(&l.grown)
+                    .filter(|(r, _)| !r.is_empty())
+                    .map(|(_, &g)| u64::from(g))
+                    .sum();
+                assert_eq!(l.represented, expect);
+                for (r, &g) in l.blocks.iter().zip(&l.grown) {
+                    assert!(g > 0 || r.is_empty(), "a billboard standing for nothing");
+                }
+                dropped += u64::from(plants) - l.represented;
+                represented += l.represented;
+            }
+            if plants == 0 {
+                assert!(levels.iter().all(|l| l.anchors.is_empty()));
+            }
+        }
+        eprintln!("measured: {dropped} of {represented}");
+        // Most plants stand in a block with a wing; those whose whole block lost its wings
+        // to the gaps do not: measured 1 813 against 37 058 over the three levels (4.9 %);
+        // the bound is twice that share.
+        assert!(
+            dropped > 0 && dropped * 10 < represented,
+            "{dropped} of {represented}"
+        );
     }
 
     #[test]
     fn wings_join_lattice_plants_of_their_grid() {
         let (layout, b) = prairie(8, 32);
         let size = layout.grid_size;
+        assert_eq!(b.grids.len(), 64);
         for (grid, levels) in b.grids.iter().enumerate() {
             let min = layout.origin
                 + Vec2::new((grid as u32 % 8) as f32, (grid as u32 / 8) as f32) * size;

@@ -184,7 +184,8 @@ mod tests {
             flower_fraction: 0.2,
             ..Params::default()
         };
-        plant(&params, &GrassConfig::default(), &terrain, 3).1
+        let field = grassbench::grass::BladeField::new(GrassConfig::default(), 3);
+        plant(&params, &field, &terrain, 3).1
     }
 
     #[test]

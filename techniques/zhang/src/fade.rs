@@ -83,10 +83,12 @@ mod tests {
 
     fn layout() -> Layout {
         Layout {
-            grids: 16,
+            grids: grassbench::glam::UVec2::splat(16),
             per_side: 32,
             grid_size: Vec2::splat(5.0),
             origin: Vec2::splat(-40.0),
+            extent: grassbench::glam::UVec2::splat(16 * 32),
+            lattice: crate::prairie::Lattice::Thesis,
         }
     }
 

@@ -27,7 +27,7 @@ use crate::shader_data::{BladeDynamic, WingInstance};
 pub struct NearGrid {
     /// Non-empty grid number in the [`GridIndex`].
     pub k: usize,
-    /// Grid index (`gz·grids + gx`).
+    /// Grid index (`gz·grids.x + gx`).
     pub grid: u32,
     /// Offset from the camera grid, in grids.
     pub delta: IVec2,
@@ -38,7 +38,7 @@ pub struct NearGrid {
 /// A far grid drawn as billboards this frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FarGrid {
-    /// Grid index (`gz·grids + gx`).
+    /// Grid index (`gz·grids.x + gx`).
     pub grid: u32,
     /// Offset from the camera grid, in grids.
     pub delta: IVec2,
@@ -77,7 +77,9 @@ pub struct Plan {
     pub grids: usize,
     /// Grids culled.
     pub culled: usize,
-    /// Blades standing in the billboards drawn (those of the far grids drawn).
+    /// Blades the billboards drawn stand for: those growing in the blocks of the far grids
+    /// drawn ([`crate::billboard::GridLevel::represented`]); a grid fading (drawn both ways,
+    /// Sec. 6.1) counts its blades once, as single plants.
     pub billboard_blades: u64,
     /// Grids drawn both ways, fading between billboards and single plants (Sec. 6.1).
     pub fading: usize,
@@ -166,8 +168,9 @@ impl Plan {
                 });
             }
             if let (Some(level), true) = (step, single < 1.0) {
-                let r = index.blades(k);
-                plan.billboard_blades += u64::from(r.end - r.start);
+                if single == 0.0 {
+                    plan.billboard_blades += billboards.grids[grid as usize][level].represented;
+                }
                 plan.far.push(FarGrid {
                     grid,
                     delta,
@@ -410,17 +413,20 @@ mod tests {
     use crate::params::Params;
     use crate::prairie::plant;
     use grassbench::camera::Camera;
-    use grassbench::grass::GrassConfig;
+    use grassbench::grass::{BladeField, GrassConfig};
     use grassbench::terrain::Terrain;
 
     #[test]
     fn wings_on_two_threads_are_the_wings_of_one() {
         let terrain = Terrain::flat(Vec2::new(80.0, 80.0));
-        let params = Params::default();
-        let grass = GrassConfig::default();
-        let (layout, planted) = plant(&params, &grass, &terrain, 3);
+        let params = Params {
+            blades_per_side: 32,
+            ..Params::default()
+        };
+        let field = BladeField::new(GrassConfig::default(), 3);
+        let (layout, planted) = plant(&params, &field, &terrain, 3);
         let index = GridIndex::new(&planted);
-        let billboards = Billboards::new(&layout, &params, &grass, &terrain, 3);
+        let billboards = Billboards::new(&layout, &params, &field, &terrain, 3, &planted);
         let mut anchors = crate::animate::Animation::new(&billboards.anchors, params.flower_mass);
         let rest: Vec<Vec3> = anchors
             .blade_out
@@ -481,9 +487,10 @@ mod tests {
             blades_per_side: 12,
             ..Params::default()
         };
-        let (layout, planted) = plant(&params, &GrassConfig::default(), &terrain, 3);
+        let field = BladeField::new(GrassConfig::default(), 3);
+        let (layout, planted) = plant(&params, &field, &terrain, 3);
         let index = GridIndex::new(&planted);
-        let billboards = Billboards::new(&layout, &params, &GrassConfig::default(), &terrain, 3);
+        let billboards = Billboards::new(&layout, &params, &field, &terrain, 3, &planted);
         let n = layout.per_side;
         let mut slots = vec![u32::MAX; (64 * n * n) as usize];
         for (b, p) in planted.iter().enumerate() {

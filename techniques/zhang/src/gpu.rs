@@ -1,7 +1,8 @@
 //! What the technique keeps on the GPU and how a frame uses it: the blades' static and
 //! per-frame instance buffers, the flowers', the wings', the far-to-near copies of the single
-//! plants (with sorting, Sec. 5.4), the trees and stones (Sec. 5.5.2), and the
-//! [`Pipelines`] with their textures and uniform. Set up once; `prepare` uploads what the
+//! plants (with sorting, Sec. 5.4), and the [`Pipelines`] with their textures and uniform.
+//! (The covering map's trees and stones of Sec. 5.5.2 are the core's: it draws them for every
+//! technique, `grassbench::scene::props`.) Set up once; `prepare` uploads what the
 //! frame animated ([`PrairieGpu::upload`]), `encode` draws it ([`PrairieGpu::encode`]).
 
 use std::ops::Range;
@@ -9,20 +10,17 @@ use std::ops::Range;
 use grassbench::glam::Vec3;
 use grassbench::gpu::GpuEstimate;
 use grassbench::technique::RenderPass;
-use grassbench::terrain::Terrain;
 use grassbench::wgpu::util::DeviceExt as _;
-use grassbench::{FrameEncoder, GpuContext, InitContext, bytemuck, wgpu};
+use grassbench::{FrameEncoder, GpuContext, InitContext, Scene, bytemuck, wgpu};
 
 use crate::animate::Animation;
 use crate::frame_plan::FramePlan;
 use crate::params::{Params, Sorting};
 use crate::pipelines::Pipelines;
 use crate::plants::{BillboardTexels, Plants, blade_static};
-use crate::prairie::Planted;
-use crate::shader_data::{
-    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
-};
-use crate::{billboard, lod, props};
+use crate::prairie::{Layout, Planted};
+use crate::shader_data::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
+use crate::{billboard, lod};
 
 /// Pipelines, textures, uniform and every buffer the technique draws from.
 pub struct PrairieGpu {
@@ -35,9 +33,6 @@ pub struct PrairieGpu {
     flowers: wgpu::Buffer,
     /// The frame's wings (room for the most a frame can draw).
     wings: wgpu::Buffer,
-    /// The trees and stones (Sec. 5.5.2) and their vertex count.
-    props: wgpu::Buffer,
-    prop_count: u32,
     /// With sorting: the frame's single plants far to near (static data, control points).
     sorted: Option<(wgpu::Buffer, wgpu::Buffer)>,
     /// GPU memory held, bytes.
@@ -104,7 +99,7 @@ fn uniform(params: &Params, scene: &grassbench::Scene, billboard_height: f32) ->
 
 impl PrairieGpu {
     /// Uploads the blades `planted` and `plants`' animation at rest, allocates the per-frame
-    /// buffers, builds the trees and stones and the pipelines with the billboard `texture`.
+    /// buffers, builds the pipelines with the billboard `texture`.
     pub fn new(
         ctx: &InitContext<'_>,
         params: &Params,
@@ -143,17 +138,6 @@ impl PrairieGpu {
             bytemuck::cast_slice(&vec![WingInstance::default(); wing_count]),
             usage,
         );
-        let prop_vertices = if params.props {
-            props::meshes(&scene.terrain, scene.config.seed)
-        } else {
-            Vec::new()
-        };
-        let props = buffer(
-            device,
-            "zhang trees and stones",
-            bytemuck::cast_slice(&prop_vertices),
-            wgpu::BufferUsages::VERTEX,
-        );
         let uniform = uniform(params, scene, plants.billboard_height);
         let pipelines = Pipelines::new(
             ctx,
@@ -163,7 +147,7 @@ impl PrairieGpu {
             sort,
         );
         let sorted = sort.then(|| {
-            let capacity = sorted_capacity(params, planted.len() as u64) as usize;
+            let capacity = sorted_capacity(params, &plants.layout, planted.len() as u64) as usize;
             (
                 buffer(
                     device,
@@ -183,7 +167,6 @@ impl PrairieGpu {
             + dynamics.size()
             + flowers.size()
             + wings.size()
-            + props.size()
             + sorted.as_ref().map_or(0, |(s, d)| s.size() + d.size())
             + pipelines.bytes;
         Self {
@@ -192,8 +175,6 @@ impl PrairieGpu {
             dynamics,
             flowers,
             wings,
-            props,
-            prop_count: prop_vertices.len() as u32,
             sorted,
             bytes,
         }
@@ -221,24 +202,17 @@ impl PrairieGpu {
         }
     }
 
-    /// Draws `frame` with blades of `backbone_points` backbone points. Trees and stones
-    /// first (opaque). Without sorting: wings, then the near grids' blade ranges, then petals
+    /// Draws `frame` with blades of `backbone_points` backbone points. Without sorting: wings, then the near grids' blade ranges, then petals
     /// (all alpha-tested). Sorting (Sec. 5.4): petals first (alpha-tested, they need no
     /// order), then the wings and the single plants far to near, blended (Eq. 10).
     pub fn encode(&self, encoder: &mut FrameEncoder<'_>, frame: &FramePlan, backbone_points: u32) {
         let v = &frame.plan;
         let blades = frame.blade_count();
-        if blades == 0 && v.flowers.is_empty() && frame.wings.is_empty() && self.prop_count == 0 {
+        if blades == 0 && v.flowers.is_empty() && frame.wings.is_empty() {
             return;
         }
         let mut pass = encoder.render_pass("plants");
         pass.set_bind_group(1, &self.pipelines.bind_group, &[]);
-        // Trees and stones first: opaque, they need no order.
-        if self.prop_count > 0 {
-            pass.set_pipeline(&self.pipelines.props);
-            pass.set_vertex_buffer(0, self.props.slice(..));
-            pass.draw(0..self.prop_count, 0..1);
-        }
         let flowers = |pass: &mut RenderPass<'_>| {
             if !v.flowers.is_empty() {
                 pass.set_pipeline(&self.pipelines.flowers);
@@ -282,34 +256,31 @@ impl PrairieGpu {
             }
         }
     }
-
-    /// Triangles of the trees and stones.
-    pub fn prop_triangles(&self) -> u64 {
-        u64::from(self.prop_count / 3)
-    }
 }
 
-/// An upper bound on the GPU memory of `params` on `terrain` (the registry's estimate).
-pub fn estimate(params: &Params, terrain: &Terrain) -> GpuEstimate {
-    // At most one blade per lattice point; each carries a flower with probability
-    // `flower_fraction`: the expected count plus four standard deviations (and the 64 bytes
-    // an empty buffer keeps).
-    let side = u64::from(params.grids) * u64::from(params.blades_per_side);
-    let blades = side * side;
+/// An upper bound on the GPU memory of `params` on `scene` (the registry's estimate), from
+/// the grids' layout alone (nothing planted).
+pub fn estimate(params: &Params, scene: &Scene) -> GpuEstimate {
+    let layout = Layout::new(params, &scene.blades, &scene.terrain);
+    // At most one blade per candidate (and the 64 bytes an empty buffer keeps); each carries
+    // a flower with probability `flower_fraction`: the expected count plus four standard
+    // deviations.
+    let blades = layout.candidates();
     let (n, f) = (blades as f64, f64::from(params.flower_fraction));
     let flowers = (n * f + 4.0 * (n * f * (1.0 - f)).sqrt()).ceil() as u64 + 2;
+    let blades = blades.max(2);
     let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
     // Billboard wings: at most six per billboard of the finest step in every grid.
-    let (wings, layers) = if params.lod {
-        let steps = billboard::steps(params.blades_per_side, params.grids);
-        let per_side = u64::from(lod::billboards_per_side(params.blades_per_side, 5));
-        let grids = u64::from(params.grids).pow(2);
+    let (wings, layers) = if params.lod && layout.grid_count() > 0 {
+        let steps = billboard::steps(layout.per_side, layout.grids.max_element());
+        let per_side = u64::from(lod::billboards_per_side(layout.per_side, 5));
+        let grids = u64::from(layout.grid_count());
         (6 * per_side * per_side * grids, steps.len() as u32)
     } else {
         (1, 0)
     };
     let sorted = if params.sorting == Sorting::Sort {
-        sorted_capacity(params, blades)
+        sorted_capacity(params, &layout, blades)
     } else {
         0
     };
@@ -318,30 +289,17 @@ pub fn estimate(params: &Params, terrain: &Terrain) -> GpuEstimate {
         .plus(size(sorted.max(1), std::mem::size_of::<BladeStatic>()))
         .plus(size(sorted.max(1), std::mem::size_of::<BladeDynamic>()))
         .plus(size(flowers, std::mem::size_of::<FlowerInstance>()))
-        .plus(size(wings, std::mem::size_of::<WingInstance>()))
-        .plus(size(
-            prop_vertices(params, terrain),
-            std::mem::size_of::<PropVertex>(),
-        ))
+        .plus(size(wings.max(1), std::mem::size_of::<WingInstance>()))
         .plus(GpuEstimate::textures(Pipelines::bytes(layers.max(1))))
-}
-
-/// Vertices of the trees and stones (Sec. 5.5.2; at least one: an empty buffer keeps 64 bytes).
-fn prop_vertices(params: &Params, terrain: &Terrain) -> u64 {
-    let (trees, stones) = if params.props {
-        props::count(terrain)
-    } else {
-        (0, 0)
-    };
-    ((trees * props::TREE_VERTICES + stones * props::STONE_VERTICES) as u64).max(2)
 }
 
 /// Instances of the far-to-near blade buffers. With LOD, single plants are drawn in the grids
 /// next to the camera grid or, fading near a border corner (Sec. 6.1), next to any of the
-/// 2 x 2 camera grids around the corner: at most 4 x 4 grids. Without, every blade.
-fn sorted_capacity(params: &Params, blades: u64) -> u64 {
+/// 2 x 2 camera grids around the corner: at most 4 x 4 grids of `layout`. Without, every
+/// blade.
+fn sorted_capacity(params: &Params, layout: &Layout, blades: u64) -> u64 {
     if params.lod {
-        blades.min(16 * u64::from(params.blades_per_side).pow(2))
+        blades.min(16 * u64::from(layout.per_side).pow(2))
     } else {
         blades
     }

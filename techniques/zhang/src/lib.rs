@@ -9,7 +9,12 @@
 //! Grids are culled against the view frustum, single plants of the near grids too (Sec. 5.3);
 //! everything is drawn far to near and blended (Sec. 5.4), and grids crossing between the two
 //! representations fade (Sec. 6.1); the scene's moving object pushes blades aside (Sec. 6.2),
-//! and the covering map's trees and stones are simple meshes (Sec. 5.5.2).
+//! and the covering map's gaps, trees and stones leave the grass out (Sec. 5.5.2). The blades
+//! are the scene's: the same blades, at the same places, as the reference's.
+//!
+//! The trees and stones themselves (Sec. 5.5.2's simple meshes) were drawn here until issue
+//! 19; they are part of the scene, so the core now draws them for every technique
+//! (`grassbench::scene::props`), and `zhang` draws grass only.
 //!
 //! ## Algorithm
 //! - **Wind (Ch. 2, Sec. 3.2.2).** Whatever [`WindField`](grassbench::wind::WindField) the
@@ -20,16 +25,31 @@
 //!   (one batched `inputs.wind.velocities(points, time)` call per thread's share; the breeze
 //!   computes its per-time constants once and reuses its noise cells, bit for bit equal to
 //!   `velocity`); blades animated but not drawn read it once, at `P2` (see Animation).
-//! - **Prairie (Sec. 3.1.2, 5.1).** `grids x grids` grass grids (16 x 16) fitted over the
-//!   terrain (grid size = terrain size / grids), `n x n` blades per grid (32 x 32) on a
-//!   jittered lattice with random facing, heights on the shared terrain, gaps where the
-//!   covering map is not grass (ID 0, trees, stones). The density map thins blades with the
-//!   shared threshold rule of `grassbench::grass` (a hashed per-blade threshold in [0, 1)
-//!   below the map's value), so `zhang` keeps the same fraction of its candidates as
-//!   `reference`; candidate densities differ: `(16·32)² = 262 144` candidates here against
-//!   `grass.density · area` there (576 000 on the meadow; `blades_per_side = 47` matches it).
-//!   Heights, widths, stiffness, lean and colour variation are drawn from the scene's
-//!   `[grass]` ranges, like the reference's.
+//! - **Prairie (Sec. 3.1.2, 5.1, [`prairie`]).** Grass grids of `n x n` lattice points, and
+//!   the lattice is the scene's population: lattice point `(i, j)` is stratum `(i, j)` of the
+//!   scene's [`BladeField`](grassbench::grass::BladeField) (cells of `1/density` m², one
+//!   candidate blade each), its plant that stratum's candidate (root, height, width, facing,
+//!   lean, stiffness, colour variation, density threshold), and it grows exactly where the
+//!   shared rule says (on the terrain, covering map grass, threshold below the density map).
+//!   So `zhang`'s single plants are the reference's blades, one for one, and its population
+//!   follows `grass.density` and both maps like every technique's. Why: the thesis plants a
+//!   fixed 32 x 32 jittered lattice per grid (Sec. 3.1.2, 5.1), and so did `zhang` until
+//!   issue 19: `(16·32)² = 262 144` candidates whatever the scene asked, about 41 blades/m² on
+//!   the meadow whose scene asks for 90 (a full image at `grass.density = 0`, the same one at
+//!   30 and at 90), and part of its speed-up over the reference was fewer blades; a
+//!   comparison must differ in how the blades are drawn, not in how many there are. The
+//!   grids keep the thesis' count: `grids` (16) along the terrain's longer side, square,
+//!   `n = ⌈cells/grids⌉` strata a side (no more than the shorter side has), as many along the
+//!   shorter side as it takes to cover it, the grid origin on the strata lattice; the last
+//!   row and column of grids reach past the terrain and hold fewer plants. The meadow (80 m
+//!   at 90 blades/m², 760 strata a side) has 16 x 16 grids of 48 x 48 (5.06 m), the
+//!   prairie flyover (240 m at 14) 16 x 16 of 57 x 57 (15.2 m), the football field (105 x
+//!   68 m at 40) 16 x 11 of 42 x 42 (6.6 m), and 433 720, 449 282 and 285 605 blades grow
+//!   on them, the reference's counts exactly; `grass.density = 0` has no grids and draws
+//!   nothing. Flowers, the thesis' addition to the grass, are hashed per lattice point.
+//!   `blades_per_side > 0` plants the thesis' lattice instead (`grids x grids` grids of
+//!   `blades_per_side²` jittered candidates fitted over the terrain, sizes from the scene's
+//!   `[grass]` ranges, thinned by the same rule), for paper-like figures.
 //! - **Blade (Sec. 3.1.1, Fig. 5).** Four control points `P0..P3`; `P0` is the root (inverse
 //!   mass 0, Sec. 3.4). The vertex shader samples the backbone at `n` points with Eq. (5)
 //!   (`t = i/(n−1)`) and extends each backbone point sideways into two segment points along
@@ -58,8 +78,10 @@
 //!   instance ranges. `culling = false` draws every grid.
 //! - **Billboards (Sec. 4.1-4.2, [`billboard`], [`billboard_texture`]).** A grid `g` grids from
 //!   the camera grid (`g = max(|Δx|, |Δz|)`) is cut into `n' x n'` blocks of
-//!   `l' = 2·2^⌊log2 g⌋ + 1` plants per side (Eq. 8-9: 8 x 8 blocks of 5 at `g = 2, 3`, 4 x 4
-//!   of 9 at `g = 4..7`, 2 x 2 of 17 beyond; the last block of a row shorter). Each block's
+//!   `l' = 2·2^⌊log2 g⌋ + 1` plants per side (Eq. 8-9: for the thesis' `n = 32`, 8 x 8 blocks
+//!   of 5 at `g = 2, 3`, 4 x 4 of 9 at `g = 4..7`, 2 x 2 of 17 beyond; for the meadow's
+//!   `n = 48`, 12 x 12, 6 x 6 and 3 x 3; the last block of a row shorter, and in a grid that
+//!   the terrain's edge cuts short, the last block ends at its last stratum). Each block's
 //!   billboard is six rectangles ("wings") joined at a vertical middle line on the block's
 //!   centre plant, reaching to the middles of its four edges and two opposite corners. Every
 //!   wing corner is a lattice plant ("anchor"), so a wing joins the root and top points of two
@@ -69,10 +91,15 @@
 //!   their plants' displacement. The texture (Fig. 11) is composed at start-up from the blade
 //!   and petal textures with the scene's blade sizes, one layer per step with `s/(2+√2)`
 //!   blades per spacing (what a billboard standing for `s²` plants on `(2+√2)·s` spacings of
-//!   wings must show); its texels carry luminance, a density threshold, colour variation or
-//!   petal colour, and alpha, so wings are coloured like blades and thinned by the density
-//!   map with the shared threshold rule. Gaps, trees and stones in the covering map drop the
-//!   wings that touch them, splitting billboards (Sec. 5.5.2). Each wing is cut down at
+//!   wings must show), the spacing being the lattice's (the scene's strata: one blade per
+//!   `spacing²`), so a billboard shows as many blades as grow in its block; its texels carry
+//!   luminance, a density threshold, colour variation or petal colour, and alpha, so wings
+//!   are coloured like blades and thinned by the density map with the shared threshold
+//!   rule. Gaps, trees and stones in the covering map drop the wings that touch them,
+//!   splitting billboards (Sec. 5.5.2); a block where no plant grows has no billboard. A
+//!   billboard stands for the plants growing in its block (`blades_represented` counts those
+//!   of the blocks drawn; a grid fading both ways counts once, as its single plants, which
+//!   `blades_drawn` counts). Each wing is cut down at
 //!   start-up to the texels it can show ([`wing_trim`]; see Deviations), and lit per vertex
 //!   by the ambient and the sun, per pixel by the point light.
 //! - **Level of detail (Sec. 5.2, [`lod`], [`frame`]).** `g ≤ 1`: single plants; otherwise
@@ -110,6 +137,11 @@
 //!   textures.
 //!
 //! ## Deviations and interpretations
+//! - The population is the scene's (see Prairie), not the thesis' 32 x 32 lattice per grid:
+//!   the grids are as many, but each holds the strata of the scene's blade field that fall in
+//!   it (`n x n` of them), so the grid size and the billboards' blocks scale with the density
+//!   (`blades_per_side = 32` gives the thesis' lattice back). Billboards of blocks where no
+//!   plant grows are left out: they would stand for nothing.
 //! - The thesis' Verlet step has no restoring force and no damping: blades return only when
 //!   the (random, zero-mean) fluid wind pushes them back, and a steady wind of any other
 //!   model would lay them flat. We add a spring to the rest pose (`spring`, scaled by the
@@ -152,7 +184,7 @@
 //!   `1 − exp(−k·d)` departs from a line by at most `k²·1.8²/8`, 2·10⁻⁶ at the default
 //!   `k` = 0.002/m), per pixel for the point light (a second pipeline, drawn only in frames
 //!   that have one). The per-pixel `shade_leaf` made zhang's frame 17 % longer on the meadow
-//!   on lavapipe (13 k wings, five screens of fill); the blades keep it.
+//!   on lavapipe (13 k wings with `n = 32`, five screens of fill); the blades keep it.
 //! - The thesis steps every animated blade every frame with the wind at each control point.
 //!   Blades that are animated but not drawn this frame (about two thirds of them on the
 //!   meadow: grids behind the camera, grids two away, the finer billboard step's extra
@@ -165,26 +197,36 @@
 //! ## Cost model
 //! CPU per frame: animated are the blades of the (at most 5 x 5) grids up to two away, their
 //! flowers, and the anchors of the far grids (289 per grid at `l' = 5`, 81 at 9, 25 at 17,
-//! for `n = 32`). The drawn ones (`B_draw`: the visible near grids' blades and the anchors
+//! for `n = 32`; 625, 169 and 49 for the meadow's `n = 48`). The drawn ones (`B_draw`: the visible near grids' blades and the anchors
 //! the visible wings read) cost 3 wind samples + Verlet + 3 length constraints each (and one
 //! `acos` for θ, blades only); the hidden ones (`B_hid`) half of one sample + Verlet each
-//! frame. On the meadow walk (16 x 16 grids of `n = 32`): 21 320 blades and 31 117 anchors
-//! animated, of which 6 256 blades and 11 183 anchors drawn, 15 064 and 19 934 hidden, so
-//! about 70 k wind samples and 35 k Verlet steps a frame (part 2 took 157 k and 52 k). A
+//! frame. On the meadow walk with the thesis' lattice (16 x 16 grids of `n = 32`, before
+//! issue 19): 21 320 blades and 31 117 anchors animated, of which 6 256 blades and 11 183
+//! anchors drawn, 15 064 and 19 934 hidden, so about 70 k wind samples and 35 k Verlet steps
+//! a frame (part 2 took 157 k and 52 k); the scene's population (`n = 48`) has 2.25 times
+//! the blades and about twice the anchors per grid, and costs about that much more. A
 //! breeze sample (3 `sin`, 2 value noises, mostly from the cached cell) costs about as much
 //! as a blade's Verlet step; both are spread over the cores, and so are the wings
-//! (13 k on the meadow: one top point per anchor per grid, then 80 bytes each). Sorting: a
-//! quicksort of the camera grid's `≤ n²` plants, line walks of the surrounding grids, a sort
-//! of the visible grids (0.2-0.3 ms measured on the meadow). Measured `update` on the meadow
-//! at 640x360 (2 shared vCPUs, lavapipe, another engineer's jobs running: load average
-//! 1.5-1.9; 13 runs of 30 frames per binary, alternating): median of the runs' medians
-//! 5.2 ms against 13.4 ms before hidden blades and batched breeze samples (at load 3.5-3.8:
-//! 8.6 against 21.8 ms; the quiet-machine figure before was 10.0 ms,
-//! `results/zhang_lod/README.md`). Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
+//! (13 k on the meadow with `n = 32`, 30 k with the scene's `n = 48`: one top point per
+//! anchor per grid, then 80 bytes each). Sorting: a quicksort of the camera grid's `≤ n²`
+//! plants, line walks of the surrounding grids, a sort of the visible grids (0.2-0.3 ms
+//! measured on the meadow with `n = 32`, 0.57 ms in one frame with `n = 48`). Measured
+//! `update` on the meadow at 640x360 with `n = 32` (2 shared vCPUs, lavapipe, another
+//! engineer's jobs running: load average 1.5-1.9; 13 runs of 30 frames per binary,
+//! alternating): median of the runs' medians 5.2 ms against 13.4 ms before hidden blades and
+//! batched breeze samples (at load 3.5-3.8: 8.6 against 21.8 ms; the quiet-machine figure
+//! before was 10.0 ms, `results/zhang_lod/README.md`). With the scene's population (`n = 48`,
+//! issue 19) it takes about 2.3 times as long: in alternating runs of 20 frames (640x360, a
+//! load average of 9-10 on the 2 vCPUs from other sessions' builds and tests, so every figure
+//! is inflated) 72-82 ms against 29-39 ms with `blades_per_side = 32`, and 915-919 ms of GPU
+//! wall against 500-503 ms; in one interleaved run at that load zhang took 774 ms a frame
+//! against the reference's 4 769 on the meadow (6.2x) and 456 against 3 783 on the prairie
+//! flyover (8.3x). Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
 //! and with sorting 80 bytes per drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`)
 //! per visible near blade, 2 per petal and 2 per wing (at most `6·n'²` wings per far grid);
 //! 3-5 draws. On a software rasteriser the wings' fill dominates: on the meadow's walk at
-//! 640x360 they cover 5.4 screens whole and 4.0 cut (on the prairie's flight 1.1 and 0.6),
+//! 640x360 with `n = 32` they covered 5.4 screens whole and 4.0 cut (on the prairie's flight
+//! 1.1 and 0.6; measured before issue 19's population),
 //! most of it in the nearest billboards (`l' = 5`). Memory: `80·B + 32·F` bytes of
 //! instances, 80 per wing, 80 per sorted single plant (16 near grids' worth), 91 KB of
 //! textures plus 128 KB per billboard layer (3 on the canonical scenes). Measured numbers:
@@ -242,7 +284,6 @@ pub mod params;
 pub mod pipelines;
 pub mod plants;
 pub mod prairie;
-pub mod props;
 pub mod shader_data;
 pub mod textures;
 pub mod wing_trim;
@@ -256,10 +297,8 @@ use grassbench::{
 
 pub use animate::Animation;
 pub use params::Params;
-pub use pipelines::{BILLBOARD_SHADER, PROPS_SHADER, SHADER};
-pub use shader_data::{
-    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
-};
+pub use pipelines::{BILLBOARD_SHADER, SHADER};
+pub use shader_data::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
 
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Zhang>();
@@ -299,8 +338,8 @@ impl Technique for Zhang {
     /// Plants the prairie, builds the animation state, textures and pipelines.
     fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         let scene = ctx.scene;
-        let grass = &scene.config.grass;
-        let (layout, planted) = prairie::plant(&params, grass, &scene.terrain, scene.config.seed);
+        let (layout, planted) =
+            prairie::plant(&params, &scene.blades, &scene.terrain, scene.config.seed);
         // The per-frame control points of every blade must fit in one buffer.
         let per_frame = (planted.len() * std::mem::size_of::<BladeDynamic>()) as u64;
         let max = ctx.gpu.device.limits().max_buffer_size;
@@ -308,7 +347,7 @@ impl Technique for Zhang {
             return Err(Error::Technique {
                 technique: Self::INFO.id.into(),
                 message: format!(
-                    "{} blades need {per_frame} bytes of instance data but this adapter allows buffers of {max} bytes; lower zhang.blades_per_side or zhang.grids",
+                    "{} blades need {per_frame} bytes of instance data but this adapter allows buffers of {max} bytes; lower grass.density (or zhang.blades_per_side on the thesis' lattice)",
                     planted.len()
                 ),
             });
@@ -325,7 +364,7 @@ impl Technique for Zhang {
     }
 
     fn estimate(scene: &Scene, params: &Params) -> Result<GpuEstimate> {
-        Ok(gpu::estimate(params, &scene.terrain))
+        Ok(gpu::estimate(params, scene))
     }
 
     fn params(&self) -> &Params {
@@ -387,7 +426,8 @@ impl GrassTechnique for Zhang {
     }
 
     /// Blades drawn as single plants (Bezier geometry), and those the billboards drawn stand
-    /// for (`billboard_blades`: a billboard stands for the plants of its grid's share).
+    /// for (`billboard_blades`: a billboard stands for the plants growing in its block, each
+    /// counted once; a grid fading between both counts as its single plants).
     fn stats(&self) -> TechniqueStats {
         let blades = self.frame.blade_count();
         let flowers = self.frame.plan.flower_count();
@@ -396,8 +436,7 @@ impl GrassTechnique for Zhang {
             blades_represented: self.frame.plan.billboard_blades,
             triangles: blades * u64::from(2 * (self.params.backbone_points - 1))
                 + 2 * flowers
-                + 2 * self.frame.wings.len() as u64
-                + self.gpu.prop_triangles(),
+                + 2 * self.frame.wings.len() as u64,
             gpu_bytes: self.gpu.bytes,
         }
     }

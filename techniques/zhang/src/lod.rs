@@ -59,7 +59,7 @@ pub fn camera_grid(layout: &Layout, eye: Vec3) -> IVec2 {
     IVec2::new(cell.x.floor() as i32, cell.y.floor() as i32)
 }
 
-/// Grid offset `g = max(|Δx|, |Δz|)` of grid `grid` (index `gz·grids + gx`) from `camera`.
+/// Grid offset `g = max(|Δx|, |Δz|)` of grid `grid` (index `gz·grids.x + gx`) from `camera`.
 pub fn grid_offset(layout: &Layout, grid: u32, camera: IVec2) -> u32 {
     let g = grid_coords(layout, grid);
     (g - camera).abs().max_element() as u32
@@ -67,7 +67,8 @@ pub fn grid_offset(layout: &Layout, grid: u32, camera: IVec2) -> u32 {
 
 /// `(gx, gz)` of grid index `grid`.
 pub fn grid_coords(layout: &Layout, grid: u32) -> IVec2 {
-    IVec2::new((grid % layout.grids) as i32, (grid / layout.grids) as i32)
+    let columns = layout.grids.x.max(1);
+    IVec2::new((grid % columns) as i32, (grid / columns) as i32)
 }
 
 #[cfg(test)]
@@ -102,10 +103,12 @@ mod tests {
     #[test]
     fn near_grids_are_single_plants_and_offsets_are_chebyshev() {
         let layout = Layout {
-            grids: 16,
+            grids: grassbench::glam::UVec2::splat(16),
             per_side: 32,
             grid_size: Vec2::splat(5.0),
             origin: Vec2::splat(-40.0),
+            extent: grassbench::glam::UVec2::splat(16 * 32),
+            lattice: crate::prairie::Lattice::Thesis,
         };
         // Camera grid (7, 8), as in Fig. 13.
         let cam = camera_grid(

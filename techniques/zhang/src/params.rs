@@ -21,11 +21,18 @@ pub enum Sorting {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
-    /// Grass grids per terrain side (Sec. 5.1: 16 x 16).
+    /// Grass grids along the terrain's longer side (Sec. 5.1: 16 x 16).
     pub grids: u32,
-    /// Blades per grass-grid side (Sec. 3.1.2 and 5.1: 32 x 32 per grid).
+    /// Lattice points per grass-grid side. 0 (the default): the scene's blade strata
+    /// (`grassbench::grass::BladeField`), as many a side as it takes `grids` grids to cover
+    /// the terrain, so zhang draws the scene's population, the same blades as the reference.
+    /// Above 0: the thesis' fixed lattice of that many jittered candidates a side per grid
+    /// (Sec. 3.1.2 and 5.1: 32 x 32), whatever the scene's `grass.density` (paper-like
+    /// figures; see [`crate::prairie`]).
     pub blades_per_side: u32,
-    /// Random placement offset, as a fraction of the blade spacing (1 = anywhere in its cell).
+    /// On the thesis' lattice (`blades_per_side > 0`): random placement offset, as a fraction
+    /// of the spacing (1 = anywhere in its cell). The scene's strata are jittered by the
+    /// scene's blade field (anywhere in their cell).
     pub jitter: f32,
     /// Backbone points per blade, `n` of Eq. (5) (Fig. 5 uses 4; segments = n − 1).
     pub backbone_points: u32,
@@ -64,8 +71,6 @@ pub struct Params {
     /// of a grid border, grids that switch between billboards and single plants there are
     /// drawn both ways, fading. 0 switches at once (the `no_transitions` variant).
     pub fade_radius: f32,
-    /// Simple tree and stone meshes where the covering map holds IDs 253 and 254 (Sec. 5.5.2).
-    pub props: bool,
     /// Draw each billboard wing cut down to the texels it can show (the same image where a
     /// wing is planar, a quarter less fill; [`crate::wing_trim`]); off draws whole
     /// rectangles as the thesis does.
@@ -76,7 +81,7 @@ impl Default for Params {
     fn default() -> Self {
         Self {
             grids: 16,
-            blades_per_side: 32,
+            blades_per_side: 0,
             jitter: 1.0,
             backbone_points: 5,
             wind_response: 2.5,
@@ -92,7 +97,6 @@ impl Default for Params {
             billboard_sway: 0.05,
             sorting: Sorting::Sort,
             fade_radius: 0.25,
-            props: true,
             trim_wings: true,
         }
     }
@@ -116,7 +120,7 @@ impl Params {
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
         check_int("zhang.grids", self.grids, 1..=256)?;
-        check_int("zhang.blades_per_side", self.blades_per_side, 1..=512)?;
+        check_int("zhang.blades_per_side", self.blades_per_side, 0..=512)?;
         check("zhang.jitter", self.jitter, 0.0..=1.0)?;
         check_int("zhang.backbone_points", self.backbone_points, 2..=16)?;
         check("zhang.wind_response", self.wind_response, 0.0..=1000.0)?;
@@ -150,6 +154,23 @@ mod tests {
         bad(|p| p.wind_response = f32::NAN, "zhang.wind_response");
         bad(|p| p.flower_fraction = 2.0, "zhang.flower_fraction");
         bad(|p| p.blades_per_side = 100_000, "zhang.blades_per_side");
+        bad(|p| p.blades_per_side = 513, "zhang.blades_per_side");
+        bad(|p| p.jitter = -0.1, "zhang.jitter");
+        bad(|p| p.spring = f32::NAN, "zhang.spring");
+        bad(|p| p.damping = -1.0, "zhang.damping");
+        bad(|p| p.flower_mass = 0.0, "zhang.flower_mass");
+        bad(|p| p.petal_size = 0.0, "zhang.petal_size");
+        bad(|p| p.translucency = 1.5, "zhang.translucency");
+        bad(|p| p.alpha_cutoff = 1.0, "zhang.alpha_cutoff");
+        // 0 is the scene's strata, any count up to 512 the thesis' lattice.
+        for n in [0, 1, 32, 512] {
+            Params {
+                blades_per_side: n,
+                ..Params::default()
+            }
+            .validate()
+            .unwrap();
+        }
         bad(|p| p.billboard_sway = f32::INFINITY, "zhang.billboard_sway");
         bad(|p| p.fade_radius = 0.75, "zhang.fade_radius");
     }

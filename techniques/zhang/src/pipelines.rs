@@ -1,5 +1,5 @@
 //! The shaders, the vertex layouts of the instance data ([`shader_data`](crate::shader_data)),
-//! the procedural textures, and the blade, flower, billboard and tree-and-stone pipelines
+//! the procedural textures, and the blade, flower and billboard pipelines
 //! (group 1 = uniform + blade texture + petal texture array + sampler + billboard texture
 //! array).
 
@@ -8,17 +8,13 @@ use grassbench::{InitContext, bytemuck, shaders, wgpu};
 
 use crate::billboard_texture;
 use crate::prairie::PETAL_TEXTURES;
-use crate::shader_data::{
-    BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, PropVertex, WingInstance,
-};
+use crate::shader_data::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
 use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
 
 /// The blade and flower shader (without the prelude).
 pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
 /// The billboard shader (without the prelude).
 pub const BILLBOARD_SHADER: &str = include_str!("../shaders/billboard.wgsl");
-/// The tree and stone shader (without the prelude).
-pub const PROPS_SHADER: &str = include_str!("../shaders/props.wgsl");
 
 const BLADE_LAYOUTS: [wgpu::VertexBufferLayout<'static>; 2] = [
     wgpu::VertexBufferLayout {
@@ -45,12 +41,6 @@ const WING_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout 
     attributes: &wgpu::vertex_attr_array![
         0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4
     ],
-};
-
-const PROP_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: std::mem::size_of::<PropVertex>() as u64,
-    step_mode: wgpu::VertexStepMode::Vertex,
-    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4],
 };
 
 /// Blending of Eq. (10): `C = S·S_a + D·(1 − S_a)` for colour and alpha alike.
@@ -80,8 +70,6 @@ pub struct Pipelines {
     pub wings: wgpu::RenderPipeline,
     /// Billboard wings with the point light added per pixel, for frames that have one.
     pub wings_point_lit: wgpu::RenderPipeline,
-    /// Trees and stones (Sec. 5.5.2).
-    pub props: wgpu::RenderPipeline,
     /// Group 1.
     pub bind_group: wgpu::BindGroup,
     /// Bytes of textures and uniform.
@@ -305,33 +293,11 @@ impl Pipelines {
             blend,
             &[Some(WING_LAYOUT.clone())],
         );
-        let props_module = shaders::module(device, "zhang props", PROPS_SHADER);
-        let props_buffers = [Some(PROP_LAYOUT.clone())];
-        let props_spec = shaders::PipelineSpec::new(
-            "zhang trees and stones",
-            &pipeline_layout,
-            &props_module,
-            ("vs_prop", "fs_prop"),
-            &props_buffers,
-            ctx.sample_count,
-        );
-        let props = shaders::render_pipeline(
-            device,
-            &shaders::PipelineSpec {
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    cull_mode: Some(wgpu::Face::Back),
-                    ..Default::default()
-                },
-                ..props_spec
-            },
-        );
         Self {
             blades,
             flowers,
             wings,
             wings_point_lit,
-            props,
             bind_group,
             bytes: Self::bytes(layers),
         }

@@ -82,8 +82,15 @@ impl Plants {
         let blades = Animation::new(planted, params.flower_mass);
         // Billboards (Ch. 4): anchors, wings and the start-up texture of Fig. 11.
         let billboard_height = grass.height[1];
-        let mut billboards = if params.lod {
-            Billboards::new(&layout, params, grass, &scene.terrain, seed)
+        let mut billboards = if params.lod && layout.grid_count() > 0 {
+            Billboards::new(
+                &layout,
+                params,
+                &scene.blades,
+                &scene.terrain,
+                seed,
+                planted,
+            )
         } else {
             Billboards::empty()
         };
@@ -94,6 +101,9 @@ impl Plants {
             .iter()
             .map(|d| Vec3::from_slice(&d.p3[..3]))
             .collect();
+        // The texture's blades per metre of wing follow the lattice spacing (one plant per
+        // spacing², the scene's strata by default), so a billboard shows as many blades as
+        // grow in its block.
         let look = Look {
             grass,
             spacing: layout.spacing().min_element(),
@@ -137,7 +147,7 @@ impl SortLookup {
     /// The lookups of `planted` on `layout` and the block orders of `billboards`.
     fn new(layout: &Layout, planted: &[Planted], billboards: &Billboards) -> Self {
         let n = layout.per_side;
-        let mut slots = vec![u32::MAX; (layout.grids * layout.grids * n * n) as usize];
+        let mut slots = vec![u32::MAX; (layout.grid_count() * n * n) as usize];
         for (b, p) in planted.iter().enumerate() {
             slots[(p.grid * n * n + p.cell) as usize] = b as u32;
         }

@@ -58,18 +58,6 @@ pub struct WingInstance {
     pub fade: [f32; 4],
 }
 
-/// One vertex of the trees and stones (Sec. 5.5.2; vertex step, a triangle list).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct PropVertex {
-    /// Position xyz; w = 1.
-    pub position: [f32; 4],
-    /// Face normal xyz; w unused.
-    pub normal: [f32; 4],
-    /// Albedo rgb; w unused.
-    pub color: [f32; 4],
-}
-
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]

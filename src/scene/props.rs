@@ -1,15 +1,80 @@
-//! Trees and stones of the covering map (Sec. 5.5.2, Table 2): where the covering map holds
-//! ID 253 a simple tree stands, where it holds 254 a stone lies, "rendered with a random offset
-//! for orientation, size, and rotation": stones turn about all three axes, trees about Y only.
-//! The thesis loads 3D models; these are built at start-up from a few primitives (a hexagonal
-//! trunk under a cone crown, a jittered icosahedron) and baked into one static vertex buffer,
-//! drawn opaque before the plants.
+//! The scene's props: the trees and stones of the covering map (Zhang 2006, Sec. 5.5.2,
+//! Table 2). Where the covering map holds ID 253 a simple tree stands, where it holds 254 a
+//! stone lies, "rendered with a random offset for orientation, size, and rotation": stones
+//! turn about all three axes, trees about Y only. The thesis loads 3D models; these are built
+//! once per scene from a few primitives (a hexagonal trunk under a cone crown, a jittered
+//! icosahedron) and baked into one static vertex buffer ([`PropsGpu`]).
+//!
+//! Zhang's thesis is the paper that has props, and `zhang` drew them alone until issue 19:
+//! its images then held trees that no other technique's did, which biased every comparison.
+//! The props are part of the scene, like the sky, the ground and the moving object, so the
+//! core draws them for every technique (the `none` technique included) in the background pass
+//! ([`super::Background::draw`]: opaque, depth-tested, after the ground), and a technique
+//! draws grass only (leaving it out where the covering map is not grass).
 
-use grassbench::glam::{EulerRot, Quat, Vec2, Vec3};
-use grassbench::rng::hash_f32;
-use grassbench::terrain::{Terrain, covering};
+use glam::{EulerRot, Quat, Vec2, Vec3};
+use wgpu::util::DeviceExt as _;
 
-use crate::shader_data::PropVertex;
+use crate::rng::hash_f32;
+use crate::terrain::{Terrain, covering};
+
+/// One vertex of the trees and stones (a triangle list, flat-shaded: each triangle's three
+/// vertices carry its face normal).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PropVertex {
+    /// Position xyz; w = 1.
+    pub position: [f32; 4],
+    /// Face normal xyz; w unused.
+    pub normal: [f32; 4],
+    /// Albedo rgb; w unused.
+    pub color: [f32; 4],
+}
+
+impl PropVertex {
+    /// Vertex layout: location 0 = position, 1 = normal, 2 = albedo.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Self>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4],
+    };
+}
+
+/// The props of a scene on the GPU: one static triangle list.
+pub struct PropsGpu {
+    /// The vertices ([`PropVertex`]); `None` when the scene has no props.
+    pub vertices: Option<wgpu::Buffer>,
+    /// Number of vertices.
+    pub count: u32,
+}
+
+impl PropsGpu {
+    /// Builds and uploads the props of `terrain`'s covering map, placed with `seed`.
+    pub fn new(device: &wgpu::Device, terrain: &Terrain, seed: u64) -> Self {
+        let mesh = meshes(terrain, seed);
+        let vertices = (!mesh.is_empty()).then(|| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("trees and stones"),
+                contents: bytemuck::cast_slice(&mesh),
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+        });
+        Self {
+            vertices,
+            count: mesh.len() as u32,
+        }
+    }
+
+    /// GPU memory held, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.vertices.as_ref().map_or(0, wgpu::Buffer::size)
+    }
+
+    /// Triangles drawn.
+    pub fn triangles(&self) -> u64 {
+        u64::from(self.count / 3)
+    }
+}
 
 /// Sides of a trunk and of a crown.
 const TRUNK_SIDES: usize = 6;
