@@ -117,7 +117,10 @@ pub struct Bakay {
     params: Params,
     gpu: gpu::ShellGpu,
     triangles_per_shell: u64,
+    /// Blades the tiled texture puts on grass-covered terrain under the density map.
     blades: u64,
+    /// Blades in one tile of the texture.
+    texture_blades: usize,
 }
 
 impl Technique for Bakay {
@@ -147,6 +150,7 @@ impl Technique for Bakay {
         let gpu = gpu::ShellGpu::new(ctx, &uniform, &texture, params.mipmaps, params.anisotropy)?;
         Ok(Self {
             blades: count_blades(&texture, params.tile_size, &scene.terrain),
+            texture_blades: texture.blades.len(),
             triangles_per_shell: u64::from(ctx.scene_gpu.terrain.ground_index_count / 3),
             params,
             gpu,
@@ -172,6 +176,13 @@ impl Technique for Bakay {
 
     fn params(&self) -> &Params {
         &self.params
+    }
+}
+
+impl Bakay {
+    /// Whether the shells are drawn: only when the texture holds blades.
+    fn drawn(&self) -> bool {
+        self.texture_blades > 0
     }
 }
 
@@ -264,15 +275,19 @@ impl GrassTechnique for Bakay {
     }
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
-        self.gpu.encode(encoder, self.params.shells);
+        // A texture without blades (`grass.density = 0`) would only discard: no shells.
+        if self.drawn() {
+            self.gpu.encode(encoder, self.params.shells);
+        }
     }
 
     fn stats(&self) -> TechniqueStats {
+        let shells = if self.drawn() { self.params.shells } else { 0 };
         TechniqueStats {
             // Every blade is in the shells' texture, none is geometry.
             blades_drawn: 0,
             blades_represented: self.blades,
-            triangles: self.triangles_per_shell * u64::from(self.params.shells),
+            triangles: self.triangles_per_shell * u64::from(shells),
             gpu_bytes: self.gpu.bytes,
         }
     }

@@ -54,11 +54,14 @@ pub struct Params {
     pub texture_size: u32,
     /// World size of one texture tile, m.
     pub tile_size: f32,
-    /// Blades in the texture per m², relative to the scene's `grass.density`. Shells show a
-    /// blade only where a shell cuts it, so at a walker's grazing view the scene's own density
-    /// looks sparse (Sec. 5: "making the grass more dense on textures"); the default 9 was
-    /// measured to give `reference`'s grass coverage on the meadow (frame 3, 640x360:
-    /// coverage 0.344 at 6, 0.432 at 8, 0.458 at 9, 0.484 at 10, 0.531 at 12; reference 0.463).
+    /// Blades in the texture per m², relative to the scene's `grass.density`: 1 (the default)
+    /// is the scene's population, which every technique shows. Anything else is a departure
+    /// from the scene, for looks only: shells show a blade only where a shell cuts it, so at
+    /// a walker's grazing view the scene's own density looks sparser than blade geometry
+    /// (Sec. 5: "making the grass more dense on textures"). Before issue 19 the default was 9,
+    /// measured to give `reference`'s grass coverage on the meadow (frame 3, 640x360: coverage
+    /// 0.344 at 6, 0.432 at 8, 0.458 at 9, 0.484 at 10, 0.531 at 12; reference 0.463); the
+    /// blade counts then reported 9 times the scene's blades.
     pub density_scale: f32,
     /// Blade heights are `min + (max − min)·u^height_skew` for uniform `u` over the scene's
     /// height range: 1 = uniform (as the scene's blade field), > 1 = mostly short blades.
@@ -102,7 +105,7 @@ impl Default for Params {
             shells: 16,
             texture_size: 512,
             tile_size: 2.0,
-            density_scale: 9.0,
+            density_scale: 1.0,
             height_skew: 1.0,
             blade_aspect: 0.5,
             mipmaps: Mipmaps::Custom,
