@@ -11,9 +11,10 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Mipmaps {
-    /// Representative blades: each coarse texel is one of its four children, chosen by a seeded
-    /// hash, so every level keeps real blades and the base level's height distribution (and so
-    /// every shell's coverage) in expectation.
+    /// Representative blades: each coarse texel is one of its four children, so every level
+    /// keeps real blades; as many coarse texels as the base level's coverage asks for are
+    /// blade texels, with the base level's height quantiles, so every level keeps every
+    /// shell's coverage to half a texel a tile.
     Custom,
     /// The automatic kind: 2x2 box averages of colour, height and blade attributes.
     Box,
