@@ -297,11 +297,11 @@ impl FrameBlades {
         } else {
             self.represented += growing;
         }
-        for (sum, drawn) in self.levels.iter_mut().zip([
-            r.geometry.is_some(),
-            r.strips.is_some(),
-            r.flat.is_some(),
-        ]) {
+        for (sum, drawn) in
+            self.levels
+                .iter_mut()
+                .zip([r.geometry.is_some(), r.strips.is_some(), r.flat.is_some()])
+        {
             *sum += growing * u64::from(drawn);
         }
     }

@@ -97,7 +97,15 @@ mod tests {
         // Measured 4 568 of 9 206 (0.496); 1 200 distinct blades give σ 0.014, the bound is
         // four of those.
         let half: u32 = growing(&tiling, &patches, &terrain(0.5)).iter().sum();
-        assert!((f64::from(half) / f64::from(total) - 0.5).abs() < 0.06, "{half}");
-        assert_eq!(growing(&tiling, &patches, &terrain(0.0)).iter().sum::<u32>(), 0);
+        assert!(
+            (f64::from(half) / f64::from(total) - 0.5).abs() < 0.06,
+            "{half}"
+        );
+        assert_eq!(
+            growing(&tiling, &patches, &terrain(0.0))
+                .iter()
+                .sum::<u32>(),
+            0
+        );
     }
 }
