@@ -89,8 +89,10 @@ mod tests {
             }
         }
         // In all, the terrain's share of the tiling's area: 144 / 156.25 of 10 000 blades,
-        // 9 216. Measured 9 206 (−0.1 %); the edge patches' blades fall off by chance (σ about
-        // 40 blades, 0.4 %, for 9 edge patches of 3 variants), so 2 % is five of those.
+        // 9 216. Measured 9 206 (−0.1 %). The edge patches' blades fall off by chance: each of
+        // the 9 loses a binomial share of its 400 (σ 8 blades), so the total's σ is 24 blades
+        // (0.26 %) for independent patches and 72 (0.8 %) were they all one variant: 2 % is
+        // 2.5 of the worst case.
         let total: u32 = n.iter().sum();
         assert!((f64::from(total) / 9216.0 - 1.0).abs() < 0.02, "{total}");
         // A density map of 0.5 keeps the blades whose threshold is below it: about half.
