@@ -360,14 +360,14 @@ impl GrassTechnique for Perbet {
         self.lists.clear();
         self.blades = FrameBlades::default();
         for &(_, i) in &order {
-            let state = self.frozen.unwrap_or_else(|| self.lod.state(i));
-            self.transitions += u64::from(state.transition.is_some());
             let growing = u64::from(self.growing.get(i).copied().unwrap_or(0));
             if growing == 0 {
                 // No blade of this patch grows (off the grass, under a bare density map, or
                 // `grass.density = 0`): it would draw nothing but discarded fragments.
                 continue;
             }
+            let state = self.frozen.unwrap_or_else(|| self.lod.state(i));
+            self.transitions += u64::from(state.transition.is_some());
             let representation =
                 frame::representation(state, self.params.transition_steps, self.params.fade);
             self.blades.count(&representation, growing);
