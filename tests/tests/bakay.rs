@@ -63,15 +63,19 @@ fn more_shells_cover_more_at_a_grazing_view() -> anyhow::Result<()> {
     let background = render_with(&mut harness, &mut NoGrass, 3)?;
     let entry = grassbench_cli::registry::find("bakay")?;
     let mut coverage = Vec::new();
-    for shells in [2, 8, 32] {
+    for shells in [2, 16, 64] {
         let mut t = harness.create(entry, &params(&[("shells", shells.into())]))?;
         let image = render_with(&mut harness, t.as_mut(), 3)?;
         coverage.push(grass_coverage(&image, &background, 6)?);
     }
-    // Measured 0.159, 0.211, 0.416 (lavapipe, 320x180, frame 3; 2 shells already show the
-    // roots and a half-height section of every blade).
+    eprintln!("measured: coverage with 2, 16, 64 shells {coverage:.4?}");
+    // Measured 0.0182, 0.0357, 0.0904 (lavapipe, 320x180, frame 3, the scene's density: x1.96
+    // and x2.53 from one to the next; 2 shells already show the roots and a half-height
+    // section of every blade). With the texture 9 times denser (the default before issue 19):
+    // 0.162, 0.290, 0.533 (x1.79, x1.84). Shells that added nothing (all at one height, or
+    // the alpha test ignoring the shell) would give x1.
     assert!(
-        coverage[0] + 0.03 < coverage[1] && coverage[1] + 0.1 < coverage[2],
+        coverage[1] > 1.5 * coverage[0] && coverage[2] > 1.5 * coverage[1],
         "{coverage:?}"
     );
     // Grass stays on the ground: the top eighth (sky) is untouched.
@@ -93,8 +97,13 @@ fn wind_animates_shells_and_zero_wind_leaves_them_still() -> anyhow::Result<()> 
     let f0 = render(&gpu, "bakay", still_meadow()?, 0, TEST_SIZE, &windy)?;
     let f20 = render(&gpu, "bakay", still_meadow()?, 20, TEST_SIZE, &windy)?;
     let psnr = grassbench::metrics::psnr(&f0, &f20)?;
+    eprintln!("measured: frames 0 and 20 in the scene's wind, PSNR {psnr:.2} dB");
+    // Measured 45.6 dB at the scene's density (605 of 57 600 pixels differ; 33.8 dB with the
+    // texture 9 times denser, the default before issue 19): the grass is sparse, so the wind
+    // moves few pixels. Still shells give identical frames (infinite PSNR, as the calm case
+    // below checks byte for byte).
     assert!(
-        psnr.is_finite() && psnr < 40.0,
+        psnr.is_finite() && psnr < 50.0,
         "scene wind did not move the shells (PSNR {psnr:.1} dB)"
     );
     // With the intensity clamped to 0 the shells stand straight: only the wind depends on time.
@@ -161,9 +170,14 @@ fn density_and_covering_maps_are_respected() -> anyhow::Result<()> {
             frequency: 0.05,
         },
     )?)?;
-    // Measured 0.272 (meadow at half the scene's density, constant density map, TEST_SIZE,
-    // lavapipe); the bound only asks for clearly visible grass.
-    assert!(full > 0.2, "full density covers only {full}");
+    eprintln!(
+        "measured: coverage at density maps 1, 0.5, 0: {full:.4}, {half:.4}, {zero:.4}; bare covering {bare:.4}"
+    );
+    // Measured at density maps 1, 0.5 and 0 and on bare covering: 0.0391, 0.0218 (0.56 of
+    // full), 0 and 0 (meadow at half the scene's density, constant density map, TEST_SIZE,
+    // lavapipe; full was 0.272 with the texture 9 times denser, the default before issue
+    // 19). The first bound only asks for visible grass: half of 0.039.
+    assert!(full > 0.02, "full density covers only {full}");
     assert!(
         half < 0.9 * full && half > 0.3 * full,
         "half density: {half} vs {full}"
@@ -173,12 +187,12 @@ fn density_and_covering_maps_are_respected() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Mean FLIP of bakay against reference on the meadow, frame 30, 320x180, lavapipe, measured
-/// before setting the bounds: 0.132 at full scale, 0.071 at 1/4, 0.051 at 1/16 (bare ground
-/// against reference at 1/16: 0.067). Blades stand in different places by design, so
-/// full-scale FLIP says little; at 1/16 bakay's grass is clearly nearer the reference than no
-/// grass. Bounds: the first measurements (0.149, 0.088 on the earlier, sparser meadow) plus
-/// ~20 %.
+/// Mean FLIP of bakay against reference on the meadow, frame 30, 320x180, lavapipe. At the
+/// scene's density (the default since issue 19): 0.113 at full scale, 0.071 at 1/4, 0.063 at
+/// 1/16 (bare ground against reference at 1/16: 0.067). With the texture 9 times denser (the
+/// default before): 0.132, 0.071, 0.052. Blades stand in different places by design, so
+/// full-scale FLIP says little. Bounds: the first measurements (0.149, 0.088 on an earlier,
+/// sparser meadow) plus ~20 %.
 const FLIP_FULL: f32 = 0.18;
 /// See [`FLIP_FULL`].
 const FLIP_QUARTER: f32 = 0.105;
@@ -196,6 +210,14 @@ fn image_is_close_to_reference_at_reduced_scale() -> anyhow::Result<()> {
         &none,
     )?;
     let bakay = render(&gpu, "bakay", scene("meadow", 0.5)?, 30, TEST_SIZE, &none)?;
+    let dense = render(
+        &gpu,
+        "bakay",
+        scene("meadow", 0.5)?,
+        30,
+        TEST_SIZE,
+        &params(&[("density_scale", 9.0.into())]),
+    )?;
     let mut harness = Harness::new(&gpu, scene("meadow", 0.5)?, TEST_SIZE, false)?;
     let bare = render_with(&mut harness, &mut NoGrass, 30)?;
     let full = flip(&reference, &bakay)?.mean;
@@ -203,18 +225,41 @@ fn image_is_close_to_reference_at_reduced_scale() -> anyhow::Result<()> {
     let sixteenth = flip(&downsample(&reference, 16), &downsample(&bakay, 16))?.mean;
     let bare_sixteenth = flip(&downsample(&reference, 16), &downsample(&bare, 16))?.mean;
     eprintln!(
-        "bakay vs reference, meadow frame 30: FLIP {full:.4} full, {quarter:.4} at 1/4, {sixteenth:.4} at 1/16 (bare ground {bare_sixteenth:.4})"
+        "measured: bakay vs reference, meadow frame 30: FLIP {full:.4} full, {quarter:.4} at 1/4, {sixteenth:.4} at 1/16 (bare ground {bare_sixteenth:.4})"
     );
     assert!(full < FLIP_FULL, "FLIP {full}");
     assert!(quarter < FLIP_QUARTER, "FLIP at 1/4 scale {quarter}");
+    // The walker's grazing view of the scene's population: shells show a blade only where
+    // they cut it, so bakay shows little grass (coverage 0.036 against the reference's 0.323
+    // at frame 3) and is only a little nearer the reference than bare ground at 1/16
+    // (measured 0.063 against 0.067). Wrong colours or grass off the ground would put it
+    // farther.
     assert!(
-        sixteenth < 0.8 * bare_sixteenth,
-        "at 1/16 bakay {sixteenth} is no nearer the reference than bare ground {bare_sixteenth}"
+        sixteenth < bare_sixteenth,
+        "at 1/16 bakay {sixteenth} is farther from the reference than bare ground {bare_sixteenth}"
     );
-    // The mean colour is nearer the reference's than bare ground's is.
+    // The mean colour is nearer the reference's than bare ground's is: measured 3.28 against
+    // 3.90 (8-bit levels). A texture 9 times denser than the scene's (`density_scale`, the
+    // departure the paper suggests for such views, Sec. 5) brings it to 1.10: more than
+    // halves bare ground's distance.
     let m = grassbench::metrics::mean_color;
     let dist = |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
-    assert!(dist(m(&bakay), m(&reference)) < dist(m(&bare), m(&reference)));
+    let (ours, denser, ground) = (
+        dist(m(&bakay), m(&reference)),
+        dist(m(&dense), m(&reference)),
+        dist(m(&bare), m(&reference)),
+    );
+    eprintln!(
+        "measured: mean colour from the reference's: bakay {ours:.2}, 9x denser texture {denser:.2}, bare ground {ground:.2}"
+    );
+    assert!(
+        ours < ground,
+        "mean colour {ours:.2} vs bare ground {ground:.2}"
+    );
+    assert!(
+        denser < 0.5 * ground,
+        "9x denser texture: mean colour {denser:.2} vs bare ground {ground:.2}"
+    );
     Ok(())
 }
 

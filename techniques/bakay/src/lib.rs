@@ -22,14 +22,25 @@
 //!   that ground, identically for every technique, so shell 0 keeps only the blades' roots
 //!   (alpha > 0) and lets the shared ground show between them.
 //! - **Texture (Sec. 3, Fig. 3; [`texture`]).** One seeded, tileable texture: colour in RGB,
-//!   height in alpha, 0 on the ground; blades from the scene's density (times `density_scale`),
-//!   height range (skewed by `height_skew`), widths and colours. Each blade is an elliptic
-//!   section that tapers to a point with height (alpha falls from the blade's height at its
-//!   centre to 0 at its rim), so upper shells cut thinner sections. A second plane holds each
-//!   blade's density threshold and facing.
+//!   height in alpha, 0 on the ground; blades from the scene's population: a tile of
+//!   `tile_size` holds `round(grass.density · tile_size²)` blades (so the tiled texture has the
+//!   scene's density to half a blade a tile; none at `grass.density = 0`), with the scene's
+//!   height range (skewed by `height_skew`), widths and colours, each attribute stratified over
+//!   the tile's blades so every tile has the scene's distribution of them. Each blade is an
+//!   elliptic section that tapers to a point with height (alpha falls from the blade's height
+//!   at its centre to 0 at its rim), so upper shells cut thinner sections. A second plane holds
+//!   each blade's density threshold and facing. `density_scale` (default 1) multiplies the
+//!   texture's density: any other value departs from the scene's population (see Known
+//!   artifacts for what the earlier 9 was for).
 //! - **Mipmaps (Sec. 5; [`texture`]).** `custom` (default): representative blades, each coarse
-//!   texel is one of its children, which keeps every shell's coverage at every level;
-//!   `box`: the automatic average the paper warns about; `none`: base level only.
+//!   texel is one of its children (those with the most blade children become blade texels) and
+//!   the blade texels take the base level's height quantiles, so every shell keeps the base
+//!   level's coverage at every level, exactly to half a texel a tile; `box`: the automatic
+//!   average the paper warns about; `none`: base level only. The paper only asks for custom
+//!   levels "likely retaining representative blades"; until issue 19 each coarse texel was a
+//!   child picked by a hash, which kept coverage in expectation only: with the scene's
+//!   density a tile holds few blades, every tile repeats the same draw, and the 8 blades/m²
+//!   lawn of `tests/scenes/counts.toml` seen from 25 m showed no grass at all.
 //! - **Wind vectors (Sec. 3; [`wind`]).** `V_w = W − (W·N)N`, normalised. With
 //!   `wind = "point_source"`, `W` points to the technique's own source, the vertex's animation
 //!   step is its distance band from the source and the intensity is the periodic function
@@ -52,6 +63,11 @@
 //! - **Density, covering (Boulanger Sec. 3.4, Zhang Sec. 5.5.2).** A texel is drawn only where
 //!   the covering map says grass and where the density map exceeds its blade's threshold, the
 //!   rule the scene's blade field (and so `reference`) uses per blade.
+//! - **Counts.** `blades_represented` is the number of the tiled texture's blades whose centre
+//!   lies on grass-covered terrain under the density map (counted once at start-up; none is
+//!   geometry, so `blades_drawn` is 0). On the 12 x 12 m lawn of `tests/scenes/counts.toml`:
+//!   2 880 against the scene's 2 875 blades; on the meadow 433 827 against the reference's
+//!   433 720. With no blade in the texture (`grass.density = 0`) no shell is drawn.
 //! - **Shading.** The prelude's `shade_leaf` with the normal of a flat blade (its facing from
 //!   the texture, its direction bent by the wind), colour from root to tip along the blade with
 //!   the scene's colours, ambient darkened towards the root, the shared fog: as `reference`.
@@ -64,13 +80,17 @@
 //! texture (`6 bytes · size² · 4/3` with mips: 2 MiB at 512²) plus `16·V + 8·V·N` bytes of
 //! per-vertex wind and offsets.
 //!
-//! Measured (lavapipe, `results/bakay_table2/`): 8.0 ms of CPU rasteriser work per shell per
-//! frame at 640x480 and 17.3 ms at 1024x768 on average from 1 to 65 shells (the paper: 2.2 and
-//! 4.6 ms on a GeForce3); cost grows with the shells but not in equal steps (12.0, 9.8, 5.0 and
-//! 8.1 ms per added shell between 1, 9, 17, 33 and 65 shells at 640x480), and a little less
-//! than in proportion to pixels, as Sec. 4 found; at 1280x720 with 16 shells 1.7x faster than
-//! `reference`, far from the hoped-for 10x, because a software rasteriser has no cheap fill
-//! rate. 3.0 MB of GPU memory on the meadow.
+//! Measured (lavapipe, `results/bakay_table2/`, before issue 19, with the texture 9 times the
+//! scene's density, `density_scale = 9`; not re-measured since): 8.0 ms of CPU rasteriser
+//! work per shell per frame at 640x480 and 17.3 ms at 1024x768 on average from 1 to 65 shells
+//! (the paper: 2.2 and 4.6 ms on a GeForce3); cost grows with the shells but not in equal
+//! steps (12.0, 9.8, 5.0 and 8.1 ms per added shell between 1, 9, 17, 33 and 65 shells at
+//! 640x480), and a little less than in proportion to pixels, as Sec. 4 found; at 1280x720 with
+//! 16 shells 1.7x faster than `reference`, far from the hoped-for 10x, because a software
+//! rasteriser has no cheap fill rate. With the scene's density most shell fragments fail the
+//! alpha test before the second lookup and the shading, so these figures are likely upper
+//! bounds now. 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not
+//! depend on its blades).
 //!
 //! ## Known artifacts
 //! - Shells seen edge-on at grazing angles (the walker's horizon) show as separate layers with
@@ -84,10 +104,23 @@
 //!   own mip choice (`lod = "hardware"`) follows the footprint's major axis, many levels too
 //!   coarse at grazing angles, and smears custom levels into blotches; the default
 //!   `lod = "minor_axis"` picks the level anisotropic filtering would, with one tap.
-//! - The texture's blades are denser than the scene's (`density_scale`, default 9, measured to
-//!   match `reference`'s coverage on the meadow): at 6 times the scene's density a walker's
-//!   grazing view through 16 shells covers 0.344 of the frame against reference's 0.463, since
-//!   a shell shows a blade only where it cuts it.
+//! - **Grazing views show the scene's population sparsely.** A shell shows a blade only where
+//!   it cuts it, so seen edge-on a blade is a dotted column of sections, not a silhouette.
+//!   On the meadow's walker view (frame 3, 640x360, lavapipe) 16 shells at the scene's
+//!   density cover 0.068 of the frame against `reference`'s 0.463; 64 shells 0.195. Seen from
+//!   above it is sparser too: on the meadow at half its density from 8 m up, looking 70° down
+//!   (frame 30, 320x180), 0.035 against 0.108 (the texture's blades stand straight while the
+//!   reference's lean, and a coarse texel shows one blade of the several it covers). Until
+//!   issue 19 the texture held 9 times the scene's blades (`density_scale = 9`, measured to
+//!   match the reference's coverage on the walker view: 0.454 there now; 0.250 at 4 times):
+//!   the paper's own remedy ("making the grass more dense on textures", Sec. 5), kept as an
+//!   override, but a different population from the scene's, and it made the counts 9 times
+//!   the scene's blades.
+//! - **Sparse tiles at a distance.** A tile holds few blades at the scene's density (14 at
+//!   3.5 blades/m² on 2 m tiles), and a custom level keeps a tile's coverage only to half a
+//!   texel: where a tile's grass covers less than half a texel of a coarse level (the prairie
+//!   flyover's far field) that level shows none of it, while the reference's sub-pixel blades
+//!   still hit pixels here and there.
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
@@ -117,7 +150,10 @@ pub struct Bakay {
     params: Params,
     gpu: gpu::ShellGpu,
     triangles_per_shell: u64,
+    /// Blades the tiled texture puts on grass-covered terrain under the density map.
     blades: u64,
+    /// Blades in one tile of the texture.
+    texture_blades: usize,
 }
 
 impl Technique for Bakay {
@@ -147,6 +183,7 @@ impl Technique for Bakay {
         let gpu = gpu::ShellGpu::new(ctx, &uniform, &texture, params.mipmaps, params.anisotropy)?;
         Ok(Self {
             blades: count_blades(&texture, params.tile_size, &scene.terrain),
+            texture_blades: texture.blades.len(),
             triangles_per_shell: u64::from(ctx.scene_gpu.terrain.ground_index_count / 3),
             params,
             gpu,
@@ -172,6 +209,13 @@ impl Technique for Bakay {
 
     fn params(&self) -> &Params {
         &self.params
+    }
+}
+
+impl Bakay {
+    /// Whether the shells are drawn: only when the texture holds blades.
+    fn drawn(&self) -> bool {
+        self.texture_blades > 0
     }
 }
 
@@ -264,15 +308,19 @@ impl GrassTechnique for Bakay {
     }
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
-        self.gpu.encode(encoder, self.params.shells);
+        // A texture without blades (`grass.density = 0`) would only discard: no shells.
+        if self.drawn() {
+            self.gpu.encode(encoder, self.params.shells);
+        }
     }
 
     fn stats(&self) -> TechniqueStats {
+        let shells = if self.drawn() { self.params.shells } else { 0 };
         TechniqueStats {
             // Every blade is in the shells' texture, none is geometry.
             blades_drawn: 0,
             blades_represented: self.blades,
-            triangles: self.triangles_per_shell * u64::from(self.params.shells),
+            triangles: self.triangles_per_shell * u64::from(shells),
             gpu_bytes: self.gpu.bytes,
         }
     }

@@ -11,9 +11,10 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Mipmaps {
-    /// Representative blades: each coarse texel is one of its four children, chosen by a seeded
-    /// hash, so every level keeps real blades and the base level's height distribution (and so
-    /// every shell's coverage) in expectation.
+    /// Representative blades: each coarse texel is one of its four children, so every level
+    /// keeps real blades; as many coarse texels as the base level's coverage asks for are
+    /// blade texels, with the base level's height quantiles, so every level keeps every
+    /// shell's coverage to half a texel a tile.
     Custom,
     /// The automatic kind: 2x2 box averages of colour, height and blade attributes.
     Box,
@@ -54,11 +55,14 @@ pub struct Params {
     pub texture_size: u32,
     /// World size of one texture tile, m.
     pub tile_size: f32,
-    /// Blades in the texture per m², relative to the scene's `grass.density`. Shells show a
-    /// blade only where a shell cuts it, so at a walker's grazing view the scene's own density
-    /// looks sparse (Sec. 5: "making the grass more dense on textures"); the default 9 was
-    /// measured to give `reference`'s grass coverage on the meadow (frame 3, 640x360:
-    /// coverage 0.344 at 6, 0.432 at 8, 0.458 at 9, 0.484 at 10, 0.531 at 12; reference 0.463).
+    /// Blades in the texture per m², relative to the scene's `grass.density`: 1 (the default)
+    /// is the scene's population, which every technique shows. Anything else is a departure
+    /// from the scene, for looks only: shells show a blade only where a shell cuts it, so at
+    /// a walker's grazing view the scene's own density looks sparser than blade geometry
+    /// (Sec. 5: "making the grass more dense on textures"). Before issue 19 the default was 9,
+    /// measured to give `reference`'s grass coverage on the meadow (frame 3, 640x360: coverage
+    /// 0.344 at 6, 0.432 at 8, 0.458 at 9, 0.484 at 10, 0.531 at 12; reference 0.463); the
+    /// blade counts then reported 9 times the scene's blades.
     pub density_scale: f32,
     /// Blade heights are `min + (max − min)·u^height_skew` for uniform `u` over the scene's
     /// height range: 1 = uniform (as the scene's blade field), > 1 = mostly short blades.
@@ -102,7 +106,7 @@ impl Default for Params {
             shells: 16,
             texture_size: 512,
             tile_size: 2.0,
-            density_scale: 9.0,
+            density_scale: 1.0,
             height_skew: 1.0,
             blade_aspect: 0.5,
             mipmaps: Mipmaps::Custom,

@@ -355,8 +355,13 @@ impl Gpu {
             + self.edge_receivers.buffer.size()
     }
 
-    /// Records the frame: 2D, then strips, then 3D blades (far to near, Sec. 2.2).
+    /// Records the frame: 2D, then strips, then 3D blades (far to near, Sec. 2.2); nothing when
+    /// there is nothing to draw.
     pub fn encode(&self, encoder: &mut FrameEncoder<'_>, draws: &Draws) {
+        if draws.geometry == 0 && draws.strips == 0 && draws.flat == 0 {
+            // Nothing in view grows (e.g. `grass.density = 0`): no pass at all.
+            return;
+        }
         let mut pass = encoder.render_pass("prairie");
         pass.set_bind_group(1, &self.bind_group, &[]);
         let [blade_vertices, strip_vertices, flat_vertices] = draws.vertices;

@@ -56,12 +56,23 @@
 //!   fade out", Sec. 4.2). 2.5D ↔ 2D: strips sink into (grow out of) the ground while the 2D
 //!   texture fades in (out) on its offset surface (Sec. 4.3). A transition the camera turns back
 //!   on runs backwards from where it is.
+//! - **Counts** ([`population`]). A tiled patch shows the blades of its variant, but only those
+//!   rooted on the terrain, on ground the covering map calls grass and under the density map
+//!   grow (the vertex shader's rule per 3D blade; strips and 2D texels test the same
+//!   thresholds). Those are counted per tiled patch at start-up, and a frame's
+//!   `blades_drawn` sums them over the patches drawn as 3D blades (alone or morphing into their
+//!   strips), `blades_represented` over the other patches drawn (strips, 2D, or both while one
+//!   grows out of the other), so each blade counts once. A patch none of whose blades grows is
+//!   not drawn at all. On the 12 x 12 m lawn of `tests/scenes/counts.toml` (2 875 blades,
+//!   tiled by 5 x 5 patches reaching 0.5 m past two edges): 2 834 (−1.4 %; before issue 19,
+//!   `patches x blades_per_patch` = 3 125, +8.7 %, counting the overhang).
 //!
 //! ## Quality presets (Sec. 5.1)
 //! `quality = "low" | "medium" | "high"`: 160 / 320 / 500 blades a patch, 3 / 4 / 8 segments,
 //! strips from distance 3-8 / 2-12 / 3-20. By default (`density = "scene"`) a patch holds the
-//! scene's `[grass] density` instead of the preset's blade count, so perbet is compared with the
-//! other techniques on the same population; `density = "preset"` takes the table's.
+//! scene's `[grass] density` times its area, rounded (so none at `grass.density = 0`: nothing
+//! is drawn), instead of the preset's blade count, so perbet is compared with the other
+//! techniques on the same population; `density = "preset"` takes the table's.
 //! `blades_per_patch`, `segments` and `strip_range` override both (0 keeps them).
 //! `experiments/perbet_quality.toml` reproduces the table.
 //!
@@ -99,6 +110,7 @@ pub mod morph;
 pub mod paint;
 pub mod params;
 pub mod patch;
+pub mod population;
 pub mod precompute;
 pub mod receiver;
 pub mod tiling;
@@ -147,7 +159,22 @@ pub struct Perbet {
     culled: u64,
     transitions: u64,
     frozen: Option<lod::PatchLod>,
-    blades_per_patch: u32,
+    /// Blades that grow on each patch of the tiling ([`population`]).
+    growing: Vec<u32>,
+    /// Blades of the last frame: drawn as 3D blades, represented by impostors, and per level
+    /// (3D, 2.5D, 2D; a patch between two levels counts in both).
+    blades: FrameBlades,
+}
+
+/// Blades of one frame, summed over the patches it draws.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct FrameBlades {
+    /// Blades of patches drawn as 3D blades (alone or in a transition).
+    drawn: u64,
+    /// Blades of the other patches drawn: strips and 2D textures stand for them.
+    represented: u64,
+    /// Blades per level: 3D, 2.5D, 2D.
+    levels: [u64; 3],
 }
 
 impl Technique for Perbet {
@@ -220,6 +247,7 @@ impl Technique for Perbet {
             params.transition_steps,
         );
         let n_patches = tiling.len();
+        let growing = population::growing(&tiling, &patches, &scene.terrain);
         Ok(Self {
             draws: Draws {
                 vertices: [
@@ -247,7 +275,8 @@ impl Technique for Perbet {
             culled: 0,
             transitions: 0,
             frozen: None,
-            blades_per_patch,
+            growing,
+            blades: FrameBlades::default(),
         })
     }
 
@@ -257,6 +286,24 @@ impl Technique for Perbet {
 
     fn params(&self) -> &Params {
         &self.params
+    }
+}
+
+impl FrameBlades {
+    /// Adds a patch of `growing` blades drawn as `r`.
+    fn count(&mut self, r: &frame::Representation, growing: u64) {
+        if r.geometry.is_some() {
+            self.drawn += growing;
+        } else {
+            self.represented += growing;
+        }
+        for (sum, drawn) in
+            self.levels
+                .iter_mut()
+                .zip([r.geometry.is_some(), r.strips.is_some(), r.flat.is_some()])
+        {
+            *sum += growing * u64::from(drawn);
+        }
     }
 }
 
@@ -311,9 +358,19 @@ impl GrassTechnique for Perbet {
         self.culled = (self.tiling.len() - order.len()) as u64;
         self.transitions = 0;
         self.lists.clear();
+        self.blades = FrameBlades::default();
         for &(_, i) in &order {
+            let growing = u64::from(self.growing.get(i).copied().unwrap_or(0));
+            if growing == 0 {
+                // No blade of this patch grows (off the grass, under a bare density map, or
+                // `grass.density = 0`): it would draw nothing but discarded fragments.
+                continue;
+            }
             let state = self.frozen.unwrap_or_else(|| self.lod.state(i));
             self.transitions += u64::from(state.transition.is_some());
+            let representation =
+                frame::representation(state, self.params.transition_steps, self.params.fade);
+            self.blades.count(&representation, growing);
             let o = self.orient(i, eye);
             let centre = self.tiling.centre(i);
             // Strips are numbered along their normal; far to near is descending when the eye
@@ -333,10 +390,7 @@ impl GrassTechnique for Perbet {
                 flags,
                 ..Default::default()
             };
-            self.lists.push(
-                base,
-                frame::representation(state, self.params.transition_steps, self.params.fade),
-            );
+            self.lists.push(base, representation);
         }
         self.order = order;
         let [strips_base, flat_base] = self.lists.concatenate(&mut self.entries);
@@ -393,16 +447,17 @@ impl GrassTechnique for Perbet {
 
     fn stats(&self) -> TechniqueStats {
         let d = &self.draws;
-        let blades = u64::from(self.blades_per_patch);
+        let blades = u64::from(d.per_entry[0]);
         let n = u64::from(self.layout.segments);
-        let patches = self.tiling.len() as u64 - self.culled;
         let strip_triangles =
             2 * u64::from(self.layout.strips) * u64::from(self.layout.columns) * n;
         TechniqueStats {
-            // A patch drawn as 3D blades (alone, or in a transition beside its strips or its
-            // 2D texture) counts as geometry; every other patch in view is an impostor's.
-            blades_drawn: u64::from(d.geometry) * blades,
-            blades_represented: patches.saturating_sub(u64::from(d.geometry)) * blades,
+            // A patch drawn as 3D blades (alone, or in a transition beside its strips) counts
+            // its growing blades as geometry; every other patch drawn, its impostor's.
+            blades_drawn: self.blades.drawn,
+            blades_represented: self.blades.represented,
+            // Every blade of a 3D patch is submitted (those that do not grow collapse in the
+            // vertex shader).
             triangles: u64::from(d.geometry) * blades * (2 * n - 1)
                 + u64::from(d.strips) * strip_triangles
                 + u64::from(d.flat) * 2 * u64::from(gpu::FLAT_CELLS * gpu::FLAT_CELLS),
@@ -411,15 +466,12 @@ impl GrassTechnique for Perbet {
     }
 
     fn levels(&self) -> Vec<LevelBlades> {
-        let blades = u64::from(self.blades_per_patch);
-        let level = |level, patches: u32| LevelBlades {
-            level,
-            blades: u64::from(patches) * blades,
-        };
+        let [geometry, strips, flat] = self.blades.levels;
+        let level = |level, blades| LevelBlades { level, blades };
         vec![
-            level("3d", self.draws.geometry),
-            level("2_5d", self.draws.strips),
-            level("2d", self.draws.flat),
+            level("3d", geometry),
+            level("2_5d", strips),
+            level("2d", flat),
         ]
     }
 

@@ -154,13 +154,15 @@ impl Default for Params {
 }
 
 impl Params {
-    /// Blades per patch for a scene of `density` blades per m² (at least 1).
+    /// Blades per patch for a scene of `density` blades per m²: with `density = "scene"`,
+    /// `density · patch_size²` rounded, so 0 when the scene has no grass (or less than half a
+    /// blade a patch).
     pub fn blades(&self, density: f32) -> u32 {
         let from = match self.density {
             Density::Preset => self.quality.preset().blades_per_patch,
             Density::Scene => (density * self.patch_size * self.patch_size)
                 .round()
-                .clamp(1.0, MAX_BLADES_PER_PATCH as f32) as u32,
+                .clamp(0.0, MAX_BLADES_PER_PATCH as f32) as u32,
         };
         or_preset(self.blades_per_patch, from)
     }
@@ -252,8 +254,10 @@ mod tests {
     #[test]
     fn zero_means_preset_and_overrides_win() {
         let mut p = Params::default();
-        // The scene's 90 blades/m² on 2.5 m patches; the preset's 320 when asked for.
+        // The scene's 90 blades/m² on 2.5 m patches; none without grass; the preset's 320
+        // when asked for.
         assert_eq!(p.blades(90.0), 563);
+        assert_eq!((p.blades(0.0), p.blades(0.07), p.blades(0.09)), (0, 0, 1));
         p.density = Density::Preset;
         assert_eq!(
             (p.blades(90.0), p.blade_segments(), p.strips_from_to()),
