@@ -41,6 +41,9 @@ pub struct GpuContext {
     /// Adapter facts for result files.
     pub summary: AdapterSummary,
     sink: ErrorSink,
+    /// Bytes written through [`Self::write_buffer`] and [`Self::write_texture`] since the last
+    /// [`Self::take_uploaded_bytes`].
+    uploaded: std::sync::atomic::AtomicU64,
 }
 
 /// Features grassbench uses when the adapter has them; none is required.
@@ -126,7 +129,40 @@ impl GpuContext {
             queue,
             summary,
             sink,
+            uploaded: std::sync::atomic::AtomicU64::new(0),
         }
+    }
+
+    /// Writes `data` into `buffer` at `offset` (see [`wgpu::Queue::write_buffer`]), counting
+    /// the bytes: every per-frame upload of a technique goes through here (or
+    /// [`Self::write_texture`]), so the harness measures what each frame uploads
+    /// (`upload_bytes`) for every technique alike.
+    pub fn write_buffer(&self, buffer: &wgpu::Buffer, offset: wgpu::BufferAddress, data: &[u8]) {
+        self.count_upload(data.len());
+        self.queue.write_buffer(buffer, offset, data);
+    }
+
+    /// Writes `data` into `texture` (see [`wgpu::Queue::write_texture`]), counting the bytes.
+    pub fn write_texture(
+        &self,
+        texture: wgpu::TexelCopyTextureInfo<'_>,
+        data: &[u8],
+        layout: wgpu::TexelCopyBufferLayout,
+        size: wgpu::Extent3d,
+    ) {
+        self.count_upload(data.len());
+        self.queue.write_texture(texture, data, layout, size);
+    }
+
+    fn count_upload(&self, bytes: usize) {
+        self.uploaded
+            .fetch_add(bytes as u64, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Bytes uploaded through [`Self::write_buffer`] and [`Self::write_texture`] since the
+    /// last call, and starts counting again.
+    pub fn take_uploaded_bytes(&self) -> u64 {
+        self.uploaded.swap(0, std::sync::atomic::Ordering::Relaxed)
     }
 
     /// Runs `f` inside validation, out-of-memory and internal error scopes and returns the first

@@ -142,7 +142,7 @@ impl<'g> World<'g> {
         let prefix = format!("{}.", technique.info().id);
         gpu.scoped("recording a frame", || -> Result<_> {
             let inputs = self.inputs(view, frame);
-            self.scene_gpu.upload(&gpu.queue, &inputs);
+            self.scene_gpu.upload(gpu, &inputs);
             technique.prepare(gpu, &inputs)?;
             let mut enc =
                 FrameEncoder::new(gpu, &view.target, &self.scene_gpu, None, None, &prefix);
@@ -185,7 +185,7 @@ impl<'g> World<'g> {
 
         let gpu = self.gpu;
         let prefix = format!("{}.", info.id);
-        let (update_ms, upload_ms, encode_ms, submit_at, readback, draw_calls) =
+        let ((update_ms, upload_ms, encode_ms), submit_at, readback, (core_draws, draw_calls), upload_bytes) =
             gpu.scoped(&during, || -> Result<_> {
                 let inputs = self.inputs(view, frame);
                 let t = Instant::now();
@@ -193,9 +193,11 @@ impl<'g> World<'g> {
                 let update_ms = ms(t);
 
                 let t = Instant::now();
-                self.scene_gpu.upload(&gpu.queue, &inputs);
+                gpu.take_uploaded_bytes();
+                self.scene_gpu.upload(gpu, &inputs);
                 technique.prepare(gpu, &inputs)?;
                 let upload_ms = ms(t);
+                let upload_bytes = gpu.take_uploaded_bytes();
 
                 let t = Instant::now();
                 let mut enc = FrameEncoder::new(
@@ -223,7 +225,11 @@ impl<'g> World<'g> {
                 let submit_at = Instant::now();
                 gpu.queue.submit([command_buffer]);
                 Ok((
-                    update_ms, upload_ms, encode_ms, submit_at, readback, draw_calls,
+                    (update_ms, upload_ms, encode_ms),
+                    submit_at,
+                    readback,
+                    (core_draws, draw_calls),
+                    upload_bytes,
                 ))
             })??;
         gpu.wait_idle(&during)?;
@@ -249,6 +255,15 @@ impl<'g> World<'g> {
             })
         };
         let (grass, background) = (work_of(false), work_of(true));
+        // The technique's fragment invocations of one kind (its segments of that kind).
+        let fragments_of = |kind: crate::shaders::FragmentKind| -> Option<u64> {
+            work.as_ref().map(|w| {
+                w.iter()
+                    .filter(|p| !p.label.starts_with("core.") && p.fragments == Some(kind))
+                    .map(|p| p.work.fragment_invocations)
+                    .sum()
+            })
+        };
         let pixels = f64::from(view.target.size.width * view.target.size.height);
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
@@ -278,9 +293,15 @@ impl<'g> World<'g> {
             clipper_invocations: grass.map(|w| w.clipper_invocations),
             clipper_primitives_out: grass.map(|w| w.clipper_primitives_out),
             fragment_invocations: grass.map(|w| w.fragment_invocations),
+            fragments_opaque: fragments_of(crate::shaders::FragmentKind::Opaque),
+            fragments_alpha_tested: fragments_of(crate::shaders::FragmentKind::AlphaTested),
+            fragments_blended: fragments_of(crate::shaders::FragmentKind::Blended),
             compute_invocations: grass.map(|w| w.compute_invocations),
             background_vertex_invocations: background.map(|w| w.vertex_invocations),
+            background_primitives: background.map(|w| w.clipper_primitives_out),
             background_fragment_invocations: background.map(|w| w.fragment_invocations),
+            background_draw_calls: Some(core_draws),
+            upload_bytes: Some(upload_bytes),
             overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
             grass_pixels: None,
             fragments_per_grass_pixel: None,

@@ -79,15 +79,36 @@ pub struct FrameRecord {
     /// Fragment shader invocations of the technique's passes.
     #[serde(default)]
     pub fragment_invocations: Option<u64>,
+    /// Of `fragment_invocations`, those of pipelines whose fragments are opaque
+    /// ([`crate::shaders::FragmentKind`]: no discard, no blending).
+    #[serde(default)]
+    pub fragments_opaque: Option<u64>,
+    /// Of `fragment_invocations`, those of alpha-tested pipelines (discard, alpha to coverage).
+    #[serde(default)]
+    pub fragments_alpha_tested: Option<u64>,
+    /// Of `fragment_invocations`, those of blended pipelines.
+    #[serde(default)]
+    pub fragments_blended: Option<u64>,
     /// Compute shader invocations of the technique's passes.
     #[serde(default)]
     pub compute_invocations: Option<u64>,
     /// Vertex shader invocations of the core's background pass (sky, ground, props, object).
     #[serde(default)]
     pub background_vertex_invocations: Option<u64>,
+    /// Primitives of the core's background pass that reached rasterisation.
+    #[serde(default)]
+    pub background_primitives: Option<u64>,
     /// Fragment shader invocations of the core's background pass.
     #[serde(default)]
     pub background_fragment_invocations: Option<u64>,
+    /// Draw calls of the core's background pass.
+    #[serde(default)]
+    pub background_draw_calls: Option<u64>,
+    /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
+    /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
+    /// [`crate::GpuContext::write_texture`].
+    #[serde(default)]
+    pub upload_bytes: Option<u64>,
     /// The technique's fragment invocations per target pixel: its overdraw.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -246,6 +267,18 @@ pub struct RunSummary {
     /// Median compute shader invocations of the technique's passes.
     #[serde(default)]
     pub compute_invocations: Option<u64>,
+    /// Median opaque fragment invocations of the technique's passes.
+    #[serde(default)]
+    pub fragments_opaque: Option<u64>,
+    /// Median alpha-tested fragment invocations of the technique's passes.
+    #[serde(default)]
+    pub fragments_alpha_tested: Option<u64>,
+    /// Median blended fragment invocations of the technique's passes.
+    #[serde(default)]
+    pub fragments_blended: Option<u64>,
+    /// Median bytes uploaded per frame (core and technique).
+    #[serde(default)]
+    pub upload_bytes: Option<u64>,
     /// Median fragment invocations of the core's background pass.
     #[serde(default)]
     pub background_fragment_invocations: Option<u64>,
@@ -348,6 +381,10 @@ impl RunSummary {
             vertex_invocations: median_u64(&|r| r.vertex_invocations),
             clipper_primitives_out: median_u64(&|r| r.clipper_primitives_out),
             fragment_invocations: median_u64(&|r| r.fragment_invocations),
+            fragments_opaque: median_u64(&|r| r.fragments_opaque),
+            fragments_alpha_tested: median_u64(&|r| r.fragments_alpha_tested),
+            fragments_blended: median_u64(&|r| r.fragments_blended),
+            upload_bytes: median_u64(&|r| r.upload_bytes),
             compute_invocations: median_u64(&|r| r.compute_invocations),
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
             overdraw: median(&|r| r.overdraw),
@@ -546,9 +583,15 @@ mod tests {
             clipper_invocations: None,
             clipper_primitives_out: None,
             fragment_invocations: None,
+            fragments_opaque: None,
+            fragments_alpha_tested: None,
+            fragments_blended: None,
             compute_invocations: None,
             background_vertex_invocations: None,
+            background_primitives: None,
             background_fragment_invocations: None,
+            background_draw_calls: None,
+            upload_bytes: None,
             overdraw: None,
             grass_pixels: None,
             fragments_per_grass_pixel: None,

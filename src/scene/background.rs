@@ -3,17 +3,17 @@
 //! come from the grass alone.
 
 use super::props::{PropVertex, PropsGpu};
-use crate::shaders;
+use crate::shaders::{self, FragmentKind, RenderPipeline};
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT};
 use crate::terrain::{GroundVertex, TerrainGpu};
 
 /// Sky, ground, prop and object pipelines.
 pub struct Background {
-    sky: wgpu::RenderPipeline,
-    apron: wgpu::RenderPipeline,
-    ground: wgpu::RenderPipeline,
-    props: wgpu::RenderPipeline,
-    object: wgpu::RenderPipeline,
+    sky: RenderPipeline,
+    apron: RenderPipeline,
+    ground: RenderPipeline,
+    props: RenderPipeline,
+    object: RenderPipeline,
 }
 
 impl Background {
@@ -36,7 +36,13 @@ impl Background {
                         depth_write,
                         compare,
                         topology| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            let targets = [Some(COLOR_FORMAT.into())];
+            let multisample = wgpu::MultisampleState {
+                count: sample_count,
+                ..Default::default()
+            };
+            let kind = FragmentKind::of(&targets, &multisample, module.discards(fs));
+            let raw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&layout),
                 vertex: wgpu::VertexState {
@@ -57,19 +63,17 @@ impl Background {
                     stencil: Default::default(),
                     bias: Default::default(),
                 }),
-                multisample: wgpu::MultisampleState {
-                    count: sample_count,
-                    ..Default::default()
-                },
+                multisample,
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
                     entry_point: Some(fs),
                     compilation_options: Default::default(),
-                    targets: &[Some(COLOR_FORMAT.into())],
+                    targets: &targets,
                 }),
                 multiview_mask: None,
                 cache: None,
-            })
+            });
+            RenderPipeline::from_raw(raw, kind)
         };
         let (list, strip) = (
             wgpu::PrimitiveTopology::TriangleList,

@@ -124,10 +124,10 @@ impl SceneGpu {
     }
 
     /// Upload half: the wind texture and the frame globals.
-    pub fn upload(&self, queue: &wgpu::Queue, inputs: &FrameInputs<'_>) {
-        self.wind.upload(queue);
+    pub fn upload(&self, gpu: &GpuContext, inputs: &FrameInputs<'_>) {
+        self.wind.upload(gpu);
         let globals = inputs.globals(self.wind.max_speed());
-        queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        gpu.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
     }
 
     /// Draws the background (sky, ground, props, moving object; [`Background::draw`]) into

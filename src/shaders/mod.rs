@@ -5,11 +5,13 @@
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
 
+mod kind;
 mod layout;
 pub mod pipeline;
 
+pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
-pub use pipeline::{PipelineSpec, depth_less, depth_test, render_pipeline};
+pub use pipeline::{PipelineSpec, RenderPipeline, depth_less, depth_test, render_pipeline};
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,
 /// `terrain_covering`, `wind_at`, `shade`, `shade_leaf` (and its parts `facing_viewer`,
@@ -26,10 +28,17 @@ pub fn compose(source: &str) -> String {
     format!("{PRELUDE}\n{source}")
 }
 
-/// Creates a shader module from a technique's WGSL (composed with the prelude).
-pub fn module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(compose(source).into()),
-    })
+/// Creates a shader module from a technique's WGSL (composed with the prelude), noting which
+/// of its fragment entry points can `discard` (what makes a pipeline's fragments alpha-tested,
+/// [`FragmentKind`]).
+pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
+    let composed = compose(source);
+    let discarding = discarding_fragment_entries(&composed);
+    Module {
+        raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(composed.into()),
+        }),
+        discarding,
+    }
 }

@@ -3,6 +3,7 @@
 //! gives the common case (a triangle strip without culling, depth test `Less` with writes, the
 //! harness's colour target and sample count); techniques change the fields that differ.
 
+use super::FragmentKind;
 use crate::target;
 
 /// What differs between the technique's render pipelines.
@@ -11,8 +12,8 @@ pub struct PipelineSpec<'a> {
     pub label: &'a str,
     /// Layout (group 0 first).
     pub layout: &'a wgpu::PipelineLayout,
-    /// Shader module (composed with the prelude).
-    pub module: &'a wgpu::ShaderModule,
+    /// Shader module (composed with the prelude, by [`super::module`]).
+    pub module: &'a super::Module,
     /// Vertex entry point.
     pub vertex: &'a str,
     /// Fragment entry point.
@@ -29,9 +30,44 @@ pub struct PipelineSpec<'a> {
     pub targets: &'a [Option<wgpu::ColorTargetState>],
 }
 
-/// Creates the pipeline `spec` describes.
-pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> wgpu::RenderPipeline {
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+/// A render pipeline and the kind of its fragments: what the frame encoder's passes take, so
+/// the fragments of every draw are counted by kind ([`crate::technique::work`]).
+#[derive(Debug)]
+pub struct RenderPipeline {
+    raw: wgpu::RenderPipeline,
+    kind: FragmentKind,
+}
+
+impl RenderPipeline {
+    /// A pipeline created elsewhere, with the kind of its fragments (the core's background and
+    /// calibration pipelines, whose descriptors are not [`PipelineSpec`]s).
+    pub fn from_raw(raw: wgpu::RenderPipeline, kind: FragmentKind) -> Self {
+        Self { raw, kind }
+    }
+
+    /// How its fragments reach the target.
+    pub fn kind(&self) -> FragmentKind {
+        self.kind
+    }
+}
+
+impl std::ops::Deref for RenderPipeline {
+    type Target = wgpu::RenderPipeline;
+
+    /// The wgpu pipeline, for passes outside the frame (bakes into a technique's textures).
+    fn deref(&self) -> &wgpu::RenderPipeline {
+        &self.raw
+    }
+}
+
+/// Creates the pipeline `spec` describes, classified by the kind of its fragments.
+pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> RenderPipeline {
+    let kind = FragmentKind::of(
+        spec.targets,
+        &spec.multisample,
+        spec.module.discards(spec.fragment),
+    );
+    let raw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(spec.label),
         layout: Some(spec.layout),
         vertex: wgpu::VertexState {
@@ -51,7 +87,8 @@ pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> wgpu::
         }),
         multiview_mask: None,
         cache: None,
-    })
+    });
+    RenderPipeline { raw, kind }
 }
 
 /// A depth test with `compare` against `format`, writing depth when `write`.
@@ -88,7 +125,7 @@ impl<'a> PipelineSpec<'a> {
     pub fn new(
         label: &'a str,
         layout: &'a wgpu::PipelineLayout,
-        module: &'a wgpu::ShaderModule,
+        module: &'a super::Module,
         (vertex, fragment): (&'a str, &'a str),
         buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
         sample_count: u32,

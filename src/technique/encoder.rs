@@ -205,14 +205,17 @@ impl<'a> FrameEncoder<'a> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let counted = self
-            .work
-            .as_deref_mut()
-            .and_then(|w| w.next(full, PassKind::Render));
-        if let Some((queries, index)) = &counted {
-            pass.begin_pipeline_statistics_query(queries, *index);
-        }
-        RenderPass::new(pass, &mut self.counts, counted.is_some())
+        let work = match self.work.as_deref_mut() {
+            Some(w) => match w.next(full.clone(), PassKind::Render, None) {
+                Some((queries, index)) => {
+                    pass.begin_pipeline_statistics_query(&queries, index);
+                    Some((w, full))
+                }
+                None => None,
+            },
+            None => None,
+        };
+        RenderPass::new(pass, &mut self.counts, work)
     }
 
     /// Opens a compute pass with bind group 0 set.
@@ -238,7 +241,7 @@ impl<'a> FrameEncoder<'a> {
         let counted = self
             .work
             .as_deref_mut()
-            .and_then(|w| w.next(full, PassKind::Compute));
+            .and_then(|w| w.next(full, PassKind::Compute, None));
         if let Some((queries, index)) = &counted {
             pass.begin_pipeline_statistics_query(queries, *index);
         }

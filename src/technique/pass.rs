@@ -10,6 +10,9 @@
 
 use std::ops::Range;
 
+use super::work::WorkCounter;
+use crate::shaders::RenderPipeline;
+
 /// What the passes of one frame recorded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PassCounts {
@@ -25,6 +28,8 @@ pub struct RenderPass<'p> {
     counts: &'p mut PassCounts,
     /// A statistics query is open on the pass (ended on drop).
     counting: bool,
+    /// Where the pass's segments are counted, and the pass's label for new segments.
+    work: Option<(&'p mut WorkCounter, String)>,
 }
 
 impl Drop for RenderPass<'_> {
@@ -39,18 +44,38 @@ impl<'p> RenderPass<'p> {
     pub(super) fn new(
         pass: wgpu::RenderPass<'p>,
         counts: &'p mut PassCounts,
-        counting: bool,
+        work: Option<(&'p mut WorkCounter, String)>,
     ) -> Self {
         Self {
             pass,
             counts,
-            counting,
+            counting: work.is_some(),
+            work,
         }
     }
 
-    /// See [`wgpu::RenderPass::set_pipeline`].
-    pub fn set_pipeline(&mut self, pipeline: &wgpu::RenderPipeline) {
+    /// See [`wgpu::RenderPass::set_pipeline`]. Only pipelines made by
+    /// [`crate::shaders::render_pipeline`] (or classified with
+    /// [`RenderPipeline::from_raw`]) can be set: where their fragment kind differs from the
+    /// running segment's, the statistics query is ended and the next begun, so fragment work
+    /// is counted by kind.
+    pub fn set_pipeline(&mut self, pipeline: &RenderPipeline) {
         self.pass.set_pipeline(pipeline);
+        let kind = pipeline.kind();
+        if let Some((work, label)) = self.work.as_mut() {
+            match work.current_fragments() {
+                None => work.set_current_fragments(kind),
+                Some(current) if current == kind || !work.has_room() => {}
+                Some(_) => {
+                    if let Some((queries, index)) =
+                        work.next(label.clone(), super::PassKind::Render, Some(kind))
+                    {
+                        self.pass.end_pipeline_statistics_query();
+                        self.pass.begin_pipeline_statistics_query(&queries, index);
+                    }
+                }
+            }
+        }
     }
 
     /// See [`wgpu::RenderPass::set_bind_group`].

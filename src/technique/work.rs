@@ -4,11 +4,19 @@
 //! nor report them about itself: the pass wrappers begin the query when the pass opens and end
 //! it when the pass is dropped.
 //!
+//! Within a render pass, the counting follows the pipelines: whenever a pipeline whose fragments
+//! are of another [`FragmentKind`] (opaque, alpha-tested, blended) is set, the wrapper ends the
+//! running query and begins the next, so each query — a *segment* — holds one kind's work and
+//! fragment invocations are split by kind for the cost model. (Past [`MAX_COUNTED_PASSES`]
+//! segments in a frame, the last segment goes on counting whatever is drawn, under its own
+//! kind.)
+//!
 //! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
 //! recorded and the figures are `None`, never zeros.
 
 use super::PassKind;
 use crate::GpuContext;
+use crate::shaders::FragmentKind;
 
 /// What the statistics queries count, in the order their results are laid out (wgpu writes
 /// one u64 per set flag, lowest bit first).
@@ -20,8 +28,8 @@ const TYPES: wgpu::PipelineStatisticsTypes =
         .union(wgpu::PipelineStatisticsTypes::COMPUTE_SHADER_INVOCATIONS);
 /// Counters per query.
 const COUNTERS: u64 = 5;
-/// Most passes a frame can count.
-pub const MAX_COUNTED_PASSES: u32 = 64;
+/// Most segments (passes, split where the fragment kind changes) a frame can count.
+pub const MAX_COUNTED_PASSES: u32 = 512;
 
 /// Work counted by the GPU over one or more passes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -70,13 +78,17 @@ impl std::iter::Sum for PassWork {
     }
 }
 
-/// The work of one pass of the last frame.
+/// The work of one segment of a pass of the last frame (a whole pass, or the part of a
+/// render pass drawn with pipelines of one fragment kind).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PassWorkRecord {
     /// Pass label (prefixed, like [`super::PassTime::label`]).
     pub label: String,
     /// Render or compute.
     pub kind: PassKind,
+    /// The fragment kind of the pipelines drawn in the segment (`None` for compute passes and
+    /// for a render pass that set no pipeline).
+    pub fragments: Option<FragmentKind>,
     /// What it did.
     pub work: PassWork,
 }
@@ -86,8 +98,11 @@ pub struct WorkCounter {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
-    pub(super) passes: Vec<(String, PassKind)>,
+    pub(super) passes: Vec<Segment>,
 }
+
+/// A query of the frame: its pass label, pass kind and fragment kind.
+pub(super) type Segment = (String, PassKind, Option<FragmentKind>);
 
 impl WorkCounter {
     /// A counter, or `None` when the device has no pipeline-statistics queries.
@@ -118,14 +133,36 @@ impl WorkCounter {
         })
     }
 
-    /// The query of the next pass (`None` once [`MAX_COUNTED_PASSES`] are taken).
-    pub(super) fn next(&mut self, label: String, kind: PassKind) -> Option<(wgpu::QuerySet, u32)> {
+    /// The query of the next segment (`None` once [`MAX_COUNTED_PASSES`] are taken).
+    pub(super) fn next(
+        &mut self,
+        label: String,
+        kind: PassKind,
+        fragments: Option<FragmentKind>,
+    ) -> Option<(wgpu::QuerySet, u32)> {
         let index = self.passes.len() as u32;
         if index >= MAX_COUNTED_PASSES {
             return None;
         }
-        self.passes.push((label, kind));
+        self.passes.push((label, kind, fragments));
         Some((self.queries.clone(), index))
+    }
+
+    /// Whether another segment can be counted this frame.
+    pub(super) fn has_room(&self) -> bool {
+        (self.passes.len() as u32) < MAX_COUNTED_PASSES
+    }
+
+    /// The fragment kind of the segment being counted (`None` before its first pipeline).
+    pub(super) fn current_fragments(&self) -> Option<FragmentKind> {
+        self.passes.last().and_then(|s| s.2)
+    }
+
+    /// Gives the segment being counted its fragment kind (its first pipeline's).
+    pub(super) fn set_current_fragments(&mut self, kind: FragmentKind) {
+        if let Some(s) = self.passes.last_mut() {
+            s.2 = Some(kind);
+        }
     }
 
     /// Resolves the frame's queries into the read-back buffer (at the end of its encoding).
@@ -163,9 +200,10 @@ impl WorkCounter {
             self.passes
                 .iter()
                 .zip(counters.chunks_exact(COUNTERS as usize))
-                .map(|((label, kind), c)| PassWorkRecord {
+                .map(|((label, kind, fragments), c)| PassWorkRecord {
                     label: label.clone(),
                     kind: *kind,
+                    fragments: *fragments,
                     work: PassWork::from_counters(c),
                 })
                 .collect()

@@ -23,10 +23,15 @@ pub struct WindTexture {
 }
 
 impl WindTexture {
-    /// About one texel per metre, between 16 and 256 a side.
-    pub fn new(device: &wgpu::Device, terrain: &Terrain) -> Self {
+    /// Texels a side for `terrain`: about one per metre, between 16 and 256.
+    pub fn resolution_for(terrain: &Terrain) -> (u32, u32) {
         let side = |s: f32| (s.ceil() as u32 + 1).clamp(16, 256);
-        let (width, height) = (side(terrain.size().x), side(terrain.size().y));
+        (side(terrain.size().x), side(terrain.size().y))
+    }
+
+    /// A texture of [`Self::resolution_for`] `terrain`.
+    pub fn new(device: &wgpu::Device, terrain: &Terrain) -> Self {
+        let (width, height) = Self::resolution_for(terrain);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("wind"),
             size: wgpu::Extent3d {
@@ -71,8 +76,8 @@ impl WindTexture {
     }
 
     /// Uploads the last bake.
-    pub fn upload(&self, queue: &wgpu::Queue) {
-        queue.write_texture(
+    pub fn upload(&self, gpu: &crate::GpuContext) {
+        gpu.write_texture(
             self.texture.as_image_copy(),
             bytemuck::cast_slice(&self.texels),
             wgpu::TexelCopyBufferLayout {

@@ -14,7 +14,7 @@ use grassbench_tests::{TEST_SIZE, gpu, scene};
 /// A technique that draws with the pipeline it was given (none, or one whose shader reads a
 /// binding its layout does not have).
 struct BadDraw {
-    pipeline: Option<wgpu::RenderPipeline>,
+    pipeline: Option<grassbench::shaders::RenderPipeline>,
 }
 
 impl Technique for BadDraw {
@@ -64,7 +64,10 @@ impl Technique for BadDraw {
             cache: None,
         });
         Ok(BadDraw {
-            pipeline: Some(pipeline),
+            pipeline: Some(grassbench::shaders::RenderPipeline::from_raw(
+                pipeline,
+                grassbench::shaders::FragmentKind::Opaque,
+            )),
         })
     }
 

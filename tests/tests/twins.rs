@@ -46,7 +46,7 @@ fn scene_gpu(
         size: TEST_SIZE,
         debug_view: 0,
     };
-    scene_gpu.upload(&gpu.queue, &inputs);
+    scene_gpu.upload(gpu, &inputs);
     Ok(scene_gpu)
 }
 

@@ -64,6 +64,79 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Fragments are counted by the kind of the pipeline that drew them (issue 20 §1-§2: the cost
+/// model prices opaque, alpha-tested and blended fragments apart): the kinds add up to the
+/// total for every technique, the reference's opaque strips are all opaque, bakay's shells
+/// (which discard the texels no blade reaches) alpha-tested, and zhang's sorted billboards
+/// blended.
+#[test]
+fn fragments_are_split_by_the_kind_of_their_pipeline() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    for entry in grassbench_cli::registry::TECHNIQUES {
+        let id = entry.info.id;
+        let r = frame_of(&gpu, id, "")?;
+        let total = r.fragment_invocations.context("fragments")?;
+        let kinds = [
+            r.fragments_opaque.context("opaque")?,
+            r.fragments_alpha_tested.context("alpha-tested")?,
+            r.fragments_blended.context("blended")?,
+        ];
+        assert_eq!(kinds.iter().sum::<u64>(), total, "{id}: {kinds:?} of {total}");
+        match id {
+            "reference" => assert_eq!(kinds, [total, 0, 0], "reference"),
+            "bakay" => assert!(kinds[1] > total / 2, "bakay: {kinds:?}"),
+            "zhang" => assert!(kinds[2] > 0, "zhang: {kinds:?}"),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Uploads are counted by the harness: the reference uploads nothing per frame, so its frame
+/// uploads exactly the core's wind texture and frame globals.
+#[test]
+fn uploads_are_counted_for_every_frame() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let r = frame_of(&gpu, "reference", "")?;
+    let scene = lawn()?;
+    let (w, h) = grassbench::wind::WindTexture::resolution_for(&scene.terrain);
+    let core = u64::from(w * h * 16) + std::mem::size_of::<grassbench::frame::FrameGlobals>() as u64;
+    assert_eq!(r.upload_bytes, Some(core));
+    // zhang uploads its near blades' control points every frame.
+    let z = frame_of(&gpu, "zhang", "")?;
+    assert!(z.upload_bytes.context("upload")? > core, "{z:?}");
+    Ok(())
+}
+
+/// No technique writes to the GPU behind the harness's back: per-frame uploads go through
+/// `GpuContext::write_buffer` / `write_texture`, which count their bytes (`upload_bytes`).
+#[test]
+fn no_technique_bypasses_the_upload_count() -> anyhow::Result<()> {
+    let mut offenders = Vec::new();
+    let mut stack = vec![repo_root().join("techniques")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).with_context(|| format!("{}", dir.display()))? {
+            let path = entry?.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let text = std::fs::read_to_string(&path)?;
+                for (k, line) in text.lines().enumerate() {
+                    if line.contains("queue.write_buffer") || line.contains("queue.write_texture") {
+                        offenders.push(format!("{}:{}: {}", path.display(), k + 1, line.trim()));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        offenders.is_empty(),
+        "write through GpuContext::write_buffer / write_texture so the bytes are counted:\n{}",
+        offenders.join("\n")
+    );
+    Ok(())
+}
+
 #[test]
 fn a_backend_without_statistics_leaves_the_work_empty() -> anyhow::Result<()> {
     // wgpu's GL backend has no pipeline-statistics queries (llvmpipe through EGL here).

@@ -32,7 +32,7 @@ pub struct ParamsUniform {
 pub struct ShellGpu {
     bend: wgpu::ComputePipeline,
     bend_group: wgpu::BindGroup,
-    shells: wgpu::RenderPipeline,
+    shells: grassbench::shaders::RenderPipeline,
     shell_group: wgpu::BindGroup,
     /// Vertices of the ground mesh.
     pub vertex_count: u32,
@@ -277,7 +277,7 @@ fn upload(ctx: &InitContext<'_>, label: &str, levels: &[Level], color: bool) -> 
         } else {
             bytemuck::cast_slice(&level.blade)
         };
-        ctx.gpu.queue.write_texture(
+        ctx.gpu.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
                 mip_level: mip as u32,

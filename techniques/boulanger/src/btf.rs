@@ -71,7 +71,7 @@ pub fn texture_bytes(width: u32, height: u32, layers: u32) -> u64 {
 /// What the bake draws with.
 pub struct BakeInputs<'a> {
     /// Pipeline: `vs_bake` + `fs_bake`, three [`FORMAT`] targets, 4x MSAA, depth.
-    pub pipeline: &'a wgpu::RenderPipeline,
+    pub pipeline: &'a grassbench::shaders::RenderPipeline,
     /// Group 1 (params, blade texture, samplers).
     pub group1: &'a wgpu::BindGroup,
     /// Layout of group 2 ([`crate::cells::layout`]).
@@ -343,7 +343,7 @@ fn layer_view(t: &wgpu::Texture, layer: u32, level: u32) -> wgpu::TextureView {
 struct MipPipeline {
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
-    pipeline: wgpu::RenderPipeline,
+    pipeline: grassbench::shaders::RenderPipeline,
 }
 
 impl MipPipeline {

@@ -211,7 +211,7 @@ pub fn upload(gpu: &GpuContext, dims: Dims, payload: &[u8]) -> Result<BtfTexture
         for level in 0..dims.levels() {
             let (w, h) = dims.level_extent(level);
             let bytes = (w * 8 * h * dims.layers) as usize;
-            gpu.queue.write_texture(
+            gpu.write_texture(
                 wgpu::TexelCopyTextureInfo {
                     texture,
                     mip_level: level,

@@ -78,11 +78,11 @@ pub fn params_uniform(params: &Params, grass: &grassbench::grass::GrassConfig) -
 /// Pipelines, bind groups and the buffers and textures they hold.
 pub struct BoulangerGpu {
     /// The geometric blades.
-    blade_pipeline: wgpu::RenderPipeline,
+    blade_pipeline: grassbench::shaders::RenderPipeline,
     /// The horizontal slice quads.
-    horizontal_slice_pipeline: wgpu::RenderPipeline,
+    horizontal_slice_pipeline: grassbench::shaders::RenderPipeline,
     /// The vertical slices.
-    vertical_slice_pipeline: wgpu::RenderPipeline,
+    vertical_slice_pipeline: grassbench::shaders::RenderPipeline,
     /// Sec. 3.5's shadows on the ground, when `ground_shadows` is on.
     pub ground_shadows: Option<GroundShadows>,
     /// Group 1 of every pipeline, with the baked shadow mask.
@@ -319,7 +319,7 @@ impl BoulangerGpu {
             self.vslice_buffer = vslice_buffer(device, self.vslice_capacity);
         }
         if !plan.vslice_records.is_empty() {
-            gpu.queue.write_buffer(
+            gpu.write_buffer(
                 &self.vslice_buffer,
                 0,
                 bytemuck::cast_slice(&plan.vslice_records),
@@ -327,11 +327,10 @@ impl BoulangerGpu {
         }
         if !plan.geometry.is_empty() {
             let records: Vec<CellRecord> = plan.geometry.iter().map(|c| c.record).collect();
-            gpu.queue
-                .write_buffer(&self.cell_buffer, 0, bytemuck::cast_slice(&records));
+            gpu.write_buffer(&self.cell_buffer, 0, bytemuck::cast_slice(&records));
         }
         if !plan.slice_quads.is_empty() {
-            gpu.queue.write_buffer(
+            gpu.write_buffer(
                 &self.quad_buffer,
                 0,
                 bytemuck::cast_slice(&plan.slice_quads),

@@ -44,12 +44,12 @@ pub const MIN_SINE: f32 = 0.05;
 /// The three pipelines of the ground-shadow pass.
 pub struct GroundShadows {
     /// Projected blades into the stencil (blade layout).
-    pub blades: wgpu::RenderPipeline,
+    pub blades: grassbench::shaders::RenderPipeline,
     /// The darkening cover, where the stencil is marked (group 0 only).
-    pub cover: wgpu::RenderPipeline,
+    pub cover: grassbench::shaders::RenderPipeline,
     /// Projected horizontal slices, multiplied in where the stencil is not marked (slice
     /// layout).
-    pub slices: wgpu::RenderPipeline,
+    pub slices: grassbench::shaders::RenderPipeline,
 }
 
 /// The same stencil test on both faces (blades are two-sided).
@@ -105,7 +105,7 @@ impl GroundShadows {
     /// pipeline layouts.
     pub fn new(
         device: &wgpu::Device,
-        module: &wgpu::ShaderModule,
+        module: &grassbench::shaders::Module,
         [blade_layout, slice_layout, cover_layout]: [&wgpu::PipelineLayout; 3],
         sample_count: u32,
     ) -> Self {

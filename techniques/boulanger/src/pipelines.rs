@@ -109,15 +109,15 @@ impl Layouts {
 /// The render pipelines.
 pub struct Pipelines {
     /// The geometric blades (`vs_blade`, `fs_blade`; blade layout).
-    pub blades: wgpu::RenderPipeline,
+    pub blades: grassbench::shaders::RenderPipeline,
     /// The horizontal slice quads (`vs_slice`, `fs_slice`; slice layout).
-    pub horizontal_slices: wgpu::RenderPipeline,
+    pub horizontal_slices: grassbench::shaders::RenderPipeline,
     /// The vertical slices (`vs_vslice`, `fs_vslice`; slice layout).
-    pub vertical_slices: wgpu::RenderPipeline,
+    pub vertical_slices: grassbench::shaders::RenderPipeline,
     /// Sec. 3.5's shadows on the ground, when `ground_shadows` is on.
     pub ground_shadows: Option<GroundShadows>,
     /// The BTF bake (`vs_bake`, `fs_bake`): three [`btf::FORMAT`] targets, 4x MSAA.
-    pub bake: wgpu::RenderPipeline,
+    pub bake: grassbench::shaders::RenderPipeline,
 }
 
 impl Pipelines {

@@ -114,9 +114,9 @@ fn storage(device: &wgpu::Device, label: &str, bytes: u64) -> wgpu::Buffer {
 
 /// GPU resources of the technique.
 pub struct Gpu {
-    blade_pipeline: wgpu::RenderPipeline,
-    strip_pipeline: wgpu::RenderPipeline,
-    flat_pipeline: wgpu::RenderPipeline,
+    blade_pipeline: grassbench::shaders::RenderPipeline,
+    strip_pipeline: grassbench::shaders::RenderPipeline,
+    flat_pipeline: grassbench::shaders::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     params: wgpu::Buffer,
     blades: wgpu::Buffer,
@@ -331,15 +331,14 @@ impl Gpu {
         if grew {
             self.rebind(device);
         }
-        let queue = &gpu.queue;
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(params));
-        queue.write_buffer(&self.entries.buffer, 0, bytemuck::cast_slice(entries));
-        queue.write_buffer(
+        gpu.write_buffer(&self.params, 0, bytemuck::bytes_of(params));
+        gpu.write_buffer(&self.entries.buffer, 0, bytemuck::cast_slice(entries));
+        gpu.write_buffer(
             &self.blade_receivers.buffer,
             0,
             bytemuck::cast_slice(blade_receivers),
         );
-        queue.write_buffer(
+        gpu.write_buffer(
             &self.edge_receivers.buffer,
             0,
             bytemuck::cast_slice(edge_receivers),
@@ -539,7 +538,7 @@ fn upload_array(
                     .collect()
             };
             bytes += data.len() as u64;
-            ctx.gpu.queue.write_texture(
+            ctx.gpu.write_texture(
                 wgpu::TexelCopyTextureInfo {
                     texture: &texture,
                     mip_level: mip as u32,

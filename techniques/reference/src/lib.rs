@@ -136,7 +136,7 @@ pub struct ParamsUniform {
 /// The reference technique.
 pub struct Reference {
     params: Params,
-    pipeline: wgpu::RenderPipeline,
+    pipeline: grassbench::shaders::RenderPipeline,
     bind_group: wgpu::BindGroup,
     instances: wgpu::Buffer,
     blade_count: u32,

@@ -67,7 +67,7 @@ fn upload<T: bytemuck::Pod>(
         let r = (r.start as usize).min(data.len())..(r.end as usize).min(data.len());
         if !r.is_empty() {
             let bytes = bytemuck::cast_slice(&data[r.clone()]);
-            gpu.queue.write_buffer(buffer, r.start as u64 * each, bytes);
+            gpu.write_buffer(buffer, r.start as u64 * each, bytes);
         }
     }
 }

@@ -63,13 +63,13 @@ const BLENDED_TARGETS: &[Option<wgpu::ColorTargetState>] = &[Some(wgpu::ColorTar
 /// The technique's pipelines and group-1 resources.
 pub struct Pipelines {
     /// Blade strips.
-    pub blades: wgpu::RenderPipeline,
+    pub blades: grassbench::shaders::RenderPipeline,
     /// Petal quads.
-    pub flowers: wgpu::RenderPipeline,
+    pub flowers: grassbench::shaders::RenderPipeline,
     /// Billboard wings, lit by the ambient and the sun (per vertex).
-    pub wings: wgpu::RenderPipeline,
+    pub wings: grassbench::shaders::RenderPipeline,
     /// Billboard wings with the point light added per pixel, for frames that have one.
-    pub wings_point_lit: wgpu::RenderPipeline,
+    pub wings_point_lit: grassbench::shaders::RenderPipeline,
     /// Group 1.
     pub bind_group: wgpu::BindGroup,
     /// Bytes of textures and uniform.
@@ -232,7 +232,7 @@ impl Pipelines {
         let billboard_module = shaders::module(device, "zhang billboards", BILLBOARD_SHADER);
         let pipeline_layout = ctx.scene_gpu.pipeline_layout(device, "zhang", &[&layout]);
         let pipeline = |label,
-                        module: &wgpu::ShaderModule,
+                        module: &grassbench::shaders::Module,
                         (vs, fs),
                         blended: bool,
                         buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {

@@ -1,0 +1,181 @@
+//! What a render pipeline's fragments cost: opaque, alpha-tested or blended. The kind is read
+//! off the pipeline itself — its colour targets' blend state, alpha to coverage, and whether
+//! its fragment entry point can `discard` (found in the shader's naga IR) — so no technique
+//! declares it, and the work counters ([`crate::technique::work`]) split fragment invocations
+//! by it for the cost model.
+
+/// How a pipeline's fragments reach the target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FragmentKind {
+    /// Written as they are (depth-tested or not): no discard, no blending.
+    Opaque,
+    /// The fragment shader can discard, or alpha to coverage is on: the alpha test of cut-out
+    /// blades, leaves and slices.
+    AlphaTested,
+    /// Blended with what is under them (a blend state other than replace).
+    Blended,
+}
+
+impl FragmentKind {
+    /// Every kind, in column order.
+    pub const ALL: [FragmentKind; 3] = [Self::Opaque, Self::AlphaTested, Self::Blended];
+
+    /// `opaque`, `alpha_tested` or `blended`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Opaque => "opaque",
+            Self::AlphaTested => "alpha_tested",
+            Self::Blended => "blended",
+        }
+    }
+
+    /// The kind of a pipeline with these colour `targets`, multisample state and fragment
+    /// entry point (`discards`: whether it can discard). Blending wins over the alpha test:
+    /// a blended fragment pays for both its read-modify-write and any test before it.
+    pub fn of(
+        targets: &[Option<wgpu::ColorTargetState>],
+        multisample: &wgpu::MultisampleState,
+        discards: bool,
+    ) -> Self {
+        let blended = targets.iter().flatten().any(|t| {
+            t.blend
+                .is_some_and(|b| b != wgpu::BlendState::REPLACE && t.write_mask != wgpu::ColorWrites::empty())
+        });
+        if blended {
+            Self::Blended
+        } else if discards || multisample.alpha_to_coverage_enabled {
+            Self::AlphaTested
+        } else {
+            Self::Opaque
+        }
+    }
+}
+
+/// A shader module created by [`super::module`]: the wgpu module (what `Deref` gives) and
+/// which fragment entry points can discard.
+#[derive(Debug)]
+pub struct Module {
+    pub(super) raw: wgpu::ShaderModule,
+    pub(super) discarding: Vec<String>,
+}
+
+impl std::ops::Deref for Module {
+    type Target = wgpu::ShaderModule;
+
+    fn deref(&self) -> &wgpu::ShaderModule {
+        &self.raw
+    }
+}
+
+impl Module {
+    /// Whether fragment entry point `entry` can discard.
+    pub fn discards(&self, entry: &str) -> bool {
+        self.discarding.iter().any(|e| e == entry)
+    }
+}
+
+/// The fragment entry points of `wgsl` (a composed shader) that can reach a `discard`,
+/// directly or through the functions they call. A source naga cannot parse has none: the
+/// device reports its errors when the module is created.
+pub fn discarding_fragment_entries(wgsl: &str) -> Vec<String> {
+    let Ok(module) = naga::front::wgsl::parse_str(wgsl) else {
+        return Vec::new();
+    };
+    module
+        .entry_points
+        .iter()
+        .filter(|e| e.stage == naga::ShaderStage::Fragment)
+        .filter(|e| block_discards(&module, &e.function.body, &mut Vec::new()))
+        .map(|e| e.name.clone())
+        .collect()
+}
+
+/// Whether `block` (of `module`) can discard; `seen` guards against visiting a function twice.
+fn block_discards(
+    module: &naga::Module,
+    block: &naga::Block,
+    seen: &mut Vec<naga::Handle<naga::Function>>,
+) -> bool {
+    use naga::Statement as S;
+    block.iter().any(|statement| match statement {
+        S::Kill => true,
+        S::Block(b) => block_discards(module, b, seen),
+        S::If { accept, reject, .. } => {
+            block_discards(module, accept, seen) || block_discards(module, reject, seen)
+        }
+        S::Switch { cases, .. } => cases.iter().any(|c| block_discards(module, &c.body, seen)),
+        S::Loop {
+            body, continuing, ..
+        } => block_discards(module, body, seen) || block_discards(module, continuing, seen),
+        S::Call { function, .. } => {
+            if seen.contains(function) {
+                false
+            } else {
+                seen.push(*function);
+                block_discards(module, &module.functions[*function].body, seen)
+            }
+        }
+        _ => false,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SOURCE: &str = "
+        fn cut(a: f32) { if (a < 0.5) { discard; } }
+        @fragment fn direct(@location(0) a: f32) -> @location(0) vec4<f32> {
+            if (a < 0.1) { discard; }
+            return vec4(a);
+        }
+        @fragment fn through_a_call(@location(0) a: f32) -> @location(0) vec4<f32> {
+            loop { cut(a); break; }
+            return vec4(a);
+        }
+        @fragment fn never(@location(0) a: f32) -> @location(0) vec4<f32> {
+            return vec4(a);
+        }
+    ";
+
+    #[test]
+    fn discards_are_found_directly_and_through_calls() {
+        let mut found = discarding_fragment_entries(SOURCE);
+        found.sort();
+        assert_eq!(found, ["direct", "through_a_call"]);
+    }
+
+    #[test]
+    fn blending_wins_then_the_alpha_test() {
+        let target = |blend| {
+            [Some(wgpu::ColorTargetState {
+                format: wgpu::TextureFormat::Rgba8Unorm,
+                blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })]
+        };
+        let ms = wgpu::MultisampleState::default();
+        let a2c = wgpu::MultisampleState {
+            count: 4,
+            alpha_to_coverage_enabled: true,
+            ..Default::default()
+        };
+        let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
+        assert_eq!(FragmentKind::of(&target(None), &ms, false), FragmentKind::Opaque);
+        assert_eq!(
+            FragmentKind::of(&target(Some(wgpu::BlendState::REPLACE)), &ms, false),
+            FragmentKind::Opaque
+        );
+        assert_eq!(FragmentKind::of(&target(None), &ms, true), FragmentKind::AlphaTested);
+        assert_eq!(FragmentKind::of(&target(None), &a2c, false), FragmentKind::AlphaTested);
+        assert_eq!(FragmentKind::of(&target(blend), &ms, true), FragmentKind::Blended);
+        // Depth- or stencil-only passes (nothing written to colour) are not blended.
+        let masked = [Some(wgpu::ColorTargetState {
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            blend,
+            write_mask: wgpu::ColorWrites::empty(),
+        })];
+        assert_eq!(FragmentKind::of(&masked, &ms, false), FragmentKind::Opaque);
+    }
+}
