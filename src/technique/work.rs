@@ -118,8 +118,13 @@ impl WorkCounter {
         })
     }
 
+    /// Forgets the passes of the last frame (their queries are reused).
+    pub(crate) fn begin_frame(&mut self) {
+        self.passes.clear();
+    }
+
     /// The query of the next pass (`None` once [`MAX_COUNTED_PASSES`] are taken).
-    pub(super) fn next(&mut self, label: String, kind: PassKind) -> Option<(wgpu::QuerySet, u32)> {
+    pub(crate) fn next(&mut self, label: String, kind: PassKind) -> Option<(wgpu::QuerySet, u32)> {
         let index = self.passes.len() as u32;
         if index >= MAX_COUNTED_PASSES {
             return None;
@@ -129,7 +134,7 @@ impl WorkCounter {
     }
 
     /// Resolves the frame's queries into the read-back buffer (at the end of its encoding).
-    pub(super) fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+    pub(crate) fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         let n = self.passes.len() as u32;
         if n > 0 {
             encoder.resolve_query_set(&self.queries, 0..n, &self.resolve, 0);
