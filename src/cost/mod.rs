@@ -21,6 +21,7 @@
 pub mod fit;
 mod lstsq;
 pub mod measure;
+mod rig;
 mod term;
 mod units;
 mod work;

@@ -168,10 +168,10 @@ impl Workload {
         }
     }
 
-    /// The largest factor [`Self::scaled`] may apply: what the adapter's memory and the
-    /// encoder's time allow. Uploads do not scale (64 MB is already more than a frame
-    /// uploads); draw calls scale only 16x (each is encoded on the CPU, and 64 k draws take
-    /// about 0.1 s to encode on lavapipe's host).
+    /// The largest factor [`Self::scaled`] may apply. Uploads do not scale (64 MB is already
+    /// more than a frame uploads); draw calls only 16x, to 64 k (each is recorded on the CPU,
+    /// outside the clock but inside the calibration's time, and every run records its
+    /// submission anew).
     pub fn max_scale(&self) -> u32 {
         match self.shape {
             Shape::Empty | Shape::Upload { .. } => 1,
@@ -212,8 +212,12 @@ impl Workload {
 }
 
 /// The families of workloads at their smallest size, sized so that on lavapipe at 640x360
-/// the largest size (8x) of each takes some 20-80 ms (measured on a 2-core host: see
-/// `measure`); a faster adapter scales them up.
+/// the largest size (8x) of each takes some 30-250 ms on the shared 2-core host with another
+/// core's worth of work on it (vertices 100 ms, primitives 240, each fragment kind 200-230,
+/// draws 30, compute 40-65; uploads of 64 MB 14 ms), and all of it (five rounds, warm-up
+/// and scaling probes) 10-15 s. Halving primitives and layers saved 2 s, and the fit's
+/// residual rose (8 runs each: RMS 12-20% against 9-18%, though at a host load average of
+/// 4-5 against 3.5, so not a clean comparison). A faster adapter scales them up.
 pub fn families() -> Vec<Workload> {
     let layers = |name, term, kind| Workload {
         name,
