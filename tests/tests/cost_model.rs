@@ -3,10 +3,10 @@
 //! explain their times, and they predict a frame that mixes every kind of work, which no
 //! calibration sample did.
 //!
-//! Bounds on times come from runs on the shared 2-core lavapipe host while others built and
-//! tested on it (load average 3.4-3.8, other processes busy on 0-1.1 cores during the
+//! Bounds on times come from 24 runs on the shared 2-core lavapipe host while others built
+//! and tested on it (load average 2.1-5, other processes busy on 0-1.3 cores during the
 //! calibration): the residuals there are dominated by the host's load, not by the model. The
-//! bounds are about twice the worst of 13 such runs, and each says what was measured.
+//! bounds are about twice the worst of those runs, and each says what was measured.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -44,8 +44,7 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     }
 
     // Every cost is a number, and every term's own workload resolves a positive cost: its
-    // standard error under half its value (5 runs with RMS residuals of 8.6-10.2%: 4.7-8.6%;
-    // the errors grow with the residual, so about twice that at the 18% of other runs).
+    // standard error under half its value (11 runs: 4.7-18.3%, growing with the residual).
     for t in Term::ALL {
         let c = costs.get(t);
         eprintln!(
@@ -58,7 +57,7 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
         );
     }
 
-    // The fit explains its own samples. Over 13 runs the overall RMS residual was 8.6-17.9%
+    // The fit explains its own samples. Over 24 runs the overall RMS residual was 5.9-23%
     // and the worst workload's 33% (primitives, while the host's load moved).
     for w in &costs.fit.workloads {
         eprintln!(
@@ -86,7 +85,7 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     assert!((rms - costs.fit.relative_rms_residual).abs() < 1e-12);
 
     // A held-out frame with some of every kind of work, timed in the same rounds: predicted
-    // within 35% (13 runs: −16% to +6%).
+    // within 50% (24 runs: −16% to +25%; the mix's own median ranged 82-118 ms over 5 runs at one load).
     let m = &cal.held_out[0];
     let predicted = costs.predict(&m.sample.work);
     let error = predicted.total_ms / m.sample.measured_ms - 1.0;
@@ -97,7 +96,7 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
         predicted.total_ms,
         100.0 * error
     );
-    assert!(error.abs() < 0.35, "{error}");
+    assert!(error.abs() < 0.5, "{error}");
     Ok(())
 }
 
