@@ -238,9 +238,15 @@ impl<'g> Rig<'g> {
         })?;
         for w in mix {
             if let Shape::Upload { bytes } = w.shape {
-                let n = usize::try_from(bytes.min(UPLOAD_CAPACITY)).unwrap_or(0);
-                gpu.queue
-                    .write_buffer(&self.upload, 0, &self.upload_data[..n]);
+                // More than the buffer holds is written in buffer-sized pieces, over it again.
+                let mut left = bytes;
+                while left > 0 {
+                    let n = left.min(UPLOAD_CAPACITY);
+                    let len = usize::try_from(n).unwrap_or(self.upload_data.len());
+                    gpu.queue
+                        .write_buffer(&self.upload, 0, &self.upload_data[..len]);
+                    left -= n;
+                }
             }
         }
         let t = Instant::now();

@@ -287,4 +287,29 @@ mod tests {
             "{md}"
         );
     }
+
+    #[test]
+    fn unit_costs_round_trip_through_toml_and_older_files_read() {
+        let per_unit = [1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5].map(cost);
+        let mut costs = UnitCosts::from_ms_per_unit(
+            "640x360".into(),
+            "test".into(),
+            per_unit,
+            FitSummary::default(),
+        );
+        costs.host_other_cores = Some(0.5);
+        let text = toml::to_string_pretty(&costs).unwrap();
+        assert_eq!(toml::from_str::<UnitCosts>(&text).unwrap(), costs);
+        // Without the fields that may be absent (the host's load, `at_zero`).
+        let older: String = text
+            .lines()
+            .filter(|l| !l.starts_with("host_other_cores") && !l.starts_with("at_zero"))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let read = toml::from_str::<UnitCosts>(&older).unwrap();
+        assert_eq!(
+            (read.host_other_cores, read.vertex_ns.at_zero),
+            (None, false)
+        );
+    }
 }

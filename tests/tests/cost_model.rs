@@ -85,7 +85,8 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     assert!((rms - costs.fit.relative_rms_residual).abs() < 1e-12);
 
     // A held-out frame with some of every kind of work, timed in the same rounds: predicted
-    // within 50% (24 runs: −16% to +25%; the mix's own median ranged 82-118 ms over 5 runs at one load).
+    // within 50% (24 runs: −16% to +25%; the mix's own median ranged 82-118 ms over 5 runs
+    // at one load).
     let m = &cal.held_out[0];
     let predicted = costs.predict(&m.sample.work);
     let error = predicted.total_ms / m.sample.measured_ms - 1.0;
