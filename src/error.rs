@@ -123,6 +123,15 @@ pub enum Error {
         /// What went wrong.
         message: String,
     },
+    /// The cost model's unit costs cannot be fitted to the calibration's samples.
+    #[error("cannot fit the unit costs: {message}")]
+    CostFit {
+        /// The terms the samples cannot identify (never exercised, or not independent of
+        /// the others), by [`crate::cost::Term::name`]; empty when the problem is elsewhere.
+        unidentifiable: Vec<String>,
+        /// What is wrong and how to fix it.
+        message: String,
+    },
     /// Anything a technique reports that has no better variant.
     #[error("technique `{technique}`: {message}")]
     Technique {

@@ -18,6 +18,7 @@
 //! | [`frame`] | [`frame::FrameInputs`] (time is passed in) and the per-frame GPU globals |
 //! | [`technique`] | the [`technique::GrassTechnique`] trait, its contexts and the timed [`technique::FrameEncoder`] |
 //! | [`runner`] | one technique x one scene x N frames, timed stage by stage, written as CSV |
+//! | [`cost`] | the cost model: unit costs fitted from calibration micro-workloads, a frame's GPU time predicted from its measured work |
 //! | [`metrics`] | FLIP, SSIM, PSNR, grass coverage and difference images |
 //!
 //! Techniques live in their own crates under `techniques/`, the `grassbench` command and the
@@ -29,6 +30,7 @@ pub mod calibration;
 pub mod camera;
 pub mod color;
 pub mod compare;
+pub mod cost;
 pub mod error;
 pub mod files;
 pub mod frame;

@@ -509,3 +509,35 @@ fn list_shows_values_as_written_and_variants() {
     assert!(out.contains("variant finest"), "{out}");
     assert!(out.contains("variant no_transitions  transitions = false"), "{out}");
 }
+
+/// `calibrate -o` writes the raw limits, the unit costs with their fit, every sample with its
+/// counted work, and the provenance; the file reads back. At 64x36 the fragment workloads
+/// are too small to time and are scaled up (the path a fast GPU takes).
+#[test]
+fn calibrate_writes_unit_costs_samples_and_provenance() {
+    let dir = temp("calibrate");
+    let file = dir.join("calibration.toml");
+    let (ok, out, err) =
+        grassbench(&["calibrate", "--size", "64x36", "-o", file.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    assert!(err.contains("| fragment_blended |"), "{err}");
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert_eq!(text, out, "the file holds what was printed");
+    let read: grassbench_cli::commands::CalibrationFile = toml::from_str(&text).unwrap();
+    assert_eq!(read.unit_costs.size, "64x36");
+    assert_eq!(read.samples.len(), read.unit_costs.fit.samples);
+    assert!(read.provenance.command.starts_with("grassbench calibrate"));
+    assert!(!read.provenance.adapter.name.is_empty());
+    // The layers were scaled: 2 layers of 64x36 are some 0.5 ms on lavapipe, under the
+    // 20 ms the largest size must reach, so the smallest of them holds more than 2 layers.
+    let opaque = read
+        .samples
+        .iter()
+        .find(|s| s.sample.workload == "fragments_opaque")
+        .unwrap();
+    assert!(
+        opaque.known.fragments_opaque > 2.0 * 64.0 * 36.0,
+        "{opaque:?}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

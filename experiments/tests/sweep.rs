@@ -103,6 +103,8 @@ fn tiny_sweep_runs_and_reports() {
     assert!(
         meta.contains("[calibration]")
             && meta.contains("triangles_per_s")
+            && meta.contains("[unit_costs]")
+            && meta.contains("fragment_alpha_tested_ns")
             && meta.contains("sweep_file"),
         "{meta}"
     );
@@ -112,6 +114,7 @@ fn tiny_sweep_runs_and_reports() {
     let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
     assert!(
         report.contains("| meadow |")
+            && report.contains("Unit costs of this adapter")
             && report.contains("reference")
             && report.contains("**Which is faster.**")
             && report.contains("plots/frame_time.svg"),

@@ -137,7 +137,7 @@ impl<'a> FrameEncoder<'a> {
             t.passes.clear();
         }
         if let Some(w) = work.as_deref_mut() {
-            w.passes.clear();
+            w.begin_frame();
         }
         Self {
             gpu,

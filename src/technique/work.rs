@@ -133,8 +133,13 @@ impl WorkCounter {
         })
     }
 
+    /// Forgets the passes of the last frame (their queries are reused).
+    pub(crate) fn begin_frame(&mut self) {
+        self.passes.clear();
+    }
+
     /// The query of the next segment (`None` once [`MAX_COUNTED_PASSES`] are taken).
-    pub(super) fn next(
+    pub(crate) fn next(
         &mut self,
         label: String,
         kind: PassKind,
@@ -166,7 +171,7 @@ impl WorkCounter {
     }
 
     /// Resolves the frame's queries into the read-back buffer (at the end of its encoding).
-    pub(super) fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+    pub(crate) fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         let n = self.passes.len() as u32;
         if n > 0 {
             encoder.resolve_query_set(&self.queries, 0..n, &self.resolve, 0);

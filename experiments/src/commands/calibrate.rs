@@ -1,8 +1,12 @@
-//! `grassbench calibrate`: the adapter's raw limits.
+//! `grassbench calibrate`: the adapter's raw limits and its unit costs (issue 20 §2).
 
 use std::path::PathBuf;
 
+use anyhow::Context as _;
 use grassbench::calibration::calibrate as measure;
+use grassbench::cost::{
+    COUNTED_TERMS, MeasuredSample, UnitCalibration, UnitCosts, calibrate_units,
+};
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
 
@@ -22,20 +26,41 @@ pub struct CalibrateArgs {
     pub gpu: GpuArgs,
 }
 
-#[derive(serde::Serialize)]
-struct CalibrationFile {
-    calibration: grassbench::calibration::Calibration,
-    provenance: Provenance,
+/// What `calibrate` prints and writes: the raw limits, the unit costs with their fit, every
+/// sample they were fitted to, and the provenance.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct CalibrationFile {
+    /// The raw limits (triangles/s, fill, bandwidth).
+    pub calibration: grassbench::calibration::Calibration,
+    /// The unit costs.
+    pub unit_costs: UnitCosts,
+    /// Provenance.
+    pub provenance: Provenance,
+    /// The samples, with their runs and counted work.
+    pub samples: Vec<MeasuredSample>,
 }
 
-/// Measures and prints the adapter's limits.
+/// Measures, prints (TOML on stdout, a summary on stderr) and optionally writes.
 pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     let size = Size::parse(&args.size)?;
     let gpu = args.gpu.context()?;
     let calibration = measure(&gpu, size)?;
+    let started = std::time::Instant::now();
+    let UnitCalibration {
+        unit_costs,
+        samples,
+        ..
+    } = calibrate_units(&gpu, size).context("measuring the unit costs")?;
+    eprint!("{}", summary(&unit_costs, &samples));
+    eprintln!(
+        "Unit costs measured in {:.1} s.",
+        started.elapsed().as_secs_f64()
+    );
     let file = CalibrationFile {
         calibration,
+        unit_costs,
         provenance: Provenance::collect(&gpu.summary),
+        samples,
     };
     let text = toml::to_string_pretty(&file)?;
     std::io::Write::write_all(&mut std::io::stdout(), text.as_bytes())?;
@@ -43,4 +68,31 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
         write_atomic(path, |f| std::io::Write::write_all(f, text.as_bytes()))?;
     }
     Ok(())
+}
+
+/// The costs' table and how the GPU's counters compare with the work known in advance.
+pub(crate) fn summary(costs: &UnitCosts, samples: &[MeasuredSample]) -> String {
+    let mut text = format!("Unit costs\n\n{}", costs.to_markdown());
+    if samples.iter().all(|s| s.counted.is_none()) {
+        text.push_str(
+            "The adapter has no pipeline-statistics counters: fitted on the work as designed, unchecked.\n",
+        );
+        return text;
+    }
+    text.push_str("GPU counters over work known in advance, lowest and highest ratio:");
+    for t in COUNTED_TERMS {
+        let ratios: Vec<f64> = samples
+            .iter()
+            .filter(|s| s.known.amount(t) > 0.0 || s.counted.is_some_and(|c| c.amount(t) > 0.0))
+            .filter_map(|s| s.counter_ratio(t))
+            .collect();
+        if let (Some(lo), Some(hi)) = (
+            ratios.iter().copied().reduce(f64::min),
+            ratios.iter().copied().reduce(f64::max),
+        ) {
+            text.push_str(&format!(" {t} {lo:.3}-{hi:.3};"));
+        }
+    }
+    text.push_str(" (the fit uses the counted work).\n");
+    text
 }

@@ -11,7 +11,7 @@ mod run;
 mod sweep;
 mod validate;
 
-pub use calibrate::{CalibrateArgs, calibrate};
+pub use calibrate::{CalibrateArgs, CalibrationFile, calibrate};
 pub use compare::{CompareArgs, MOTIONS, compare};
 pub use list::list;
 pub use merge::{MergeArgs, merge};

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use grassbench::calibration::{Calibration, calibrate};
+use grassbench::cost::{UnitCosts, calibrate_units};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
 use grassbench::sweep::{
@@ -70,6 +71,9 @@ pub struct SweepMeta {
     pub provenance: Provenance,
     /// Calibration, if measured.
     pub calibration: Option<Calibration>,
+    /// The adapter's unit costs (issue 20 §2), if measured; absent from files written
+    /// before them, which read as `None`.
+    pub unit_costs: Option<UnitCosts>,
 }
 
 /// Runs the sweep.
@@ -96,8 +100,8 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let sweep_key = sweep_key(&text);
     let mut store = SweepStore::open(&out, &sweep_key, args.force)?;
     let gpu = args.gpu.context()?;
-    let calibration = if args.no_calibration {
-        None
+    let (calibration, unit_costs) = if args.no_calibration {
+        (None, None)
     } else {
         eprintln!("calibrating {} …", gpu.summary.name);
         let size = plan
@@ -115,7 +119,12 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
             c.compute_bytes_per_s / 1e9,
             c.raw_blade_cost_ns
         );
-        Some(c)
+        let units = calibrate_units(&gpu, size).context("measuring the unit costs")?;
+        eprint!(
+            "{}",
+            super::calibrate::summary(&units.unit_costs, &units.samples)
+        );
+        (Some(c), Some(units.unit_costs))
     };
     let meta = SweepMeta {
         sweep: spec.name.clone(),
@@ -128,6 +137,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         sweep_file: text.clone(),
         provenance: Provenance::collect(&gpu.summary),
         calibration: calibration.clone(),
+        unit_costs,
     };
     store.write_meta(&toml::to_string_pretty(&meta)?)?;
 

@@ -122,6 +122,13 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
                 c.raw_blade_cost_ns
             );
         }
+        if let Some(u) = &m.unit_costs {
+            let _ = writeln!(
+                md,
+                "Unit costs of this adapter, fitted jointly over the calibration's micro-workloads (a frame's GPU time ≈ Σ cost × work):\n\n{}",
+                u.to_markdown()
+            );
+        }
     }
     let _ = writeln!(
         md,

@@ -1,0 +1,36 @@
+//! The cost model (issue 20 §2-§4): a frame's GPU time explained as
+//! `Σ unit cost × measured work`, with the unit costs of an adapter fitted from timed
+//! micro-workloads whose work is known.
+//!
+//! - [`Work`]: what a frame made the GPU do (vertex invocations, primitives, fragments by
+//!   [`FragmentKind`], draws, compute invocations, bytes uploaded), from the GPU's own
+//!   counters and the harness's;
+//! - [`Term`]: the model's terms, one unit cost each, plus a fixed cost per submission;
+//! - [`UnitCosts`]: an adapter's fitted costs with their standard errors and the fit's
+//!   residuals; [`UnitCosts::predict`] gives a frame's time and where it goes
+//!   ([`Prediction`]), on the adapter the costs were measured on, or projected onto another
+//!   from the same work;
+//! - [`fit`]: the joint, weighted, non-negative least-squares fit of [`Sample`]s;
+//! - [`workloads`]: the micro-workloads and their work known in advance; [`measure`] runs and
+//!   times them on a GPU ([`calibrate_units`]) and checks their work against the counters.
+//!
+//! Costs are in the clock the samples were timed with: submit-to-`poll(wait)` wall time, the
+//! ground truth on lavapipe (see `shared/PLATFORM.md`), the same clock as the runner's
+//! `gpu_wall_ms`.
+
+pub mod fit;
+mod lstsq;
+pub mod measure;
+mod rig;
+mod term;
+mod units;
+mod work;
+pub mod workloads;
+
+pub use fit::{FitSummary, Sample, WorkloadResidual, fit};
+pub use measure::{
+    COUNTED_TERMS, MeasuredSample, Options, UnitCalibration, calibrate_units, calibrate_units_with,
+};
+pub use term::Term;
+pub use units::{Prediction, UnitCost, UnitCosts};
+pub use work::{BYTES_PER_MB, FragmentKind, Work};

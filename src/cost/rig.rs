@@ -1,0 +1,415 @@
+//! The GPU side of the calibration's micro-workloads: their pipelines and buffers, and
+//! recording, submitting and timing one submission of one or more workloads (see
+//! `measure` for what is run when, `workloads` for what each one is).
+
+use std::time::Instant;
+
+use wgpu::util::DeviceExt as _;
+
+use super::workloads::{self, Shape, Workload, dispatch_grid};
+use super::{FragmentKind, Work};
+use crate::frame::FrameGlobals;
+use crate::target::{COLOR_FORMAT, DEPTH_FORMAT, Size};
+use crate::technique::{PassKind, WorkCounter};
+use crate::{Error, GpuContext, RenderTarget, Result, shaders};
+
+/// Elements of the compute workload's buffer (16 bytes each: 16 MiB).
+const SPRING_COUNT: u64 = 1 << 20;
+/// Bytes of the upload workload's destination buffer (its largest size).
+const UPLOAD_CAPACITY: u64 = 64 << 20;
+
+/// The GPU resources of the workloads.
+pub(super) struct Rig<'g> {
+    gpu: &'g GpuContext,
+    target: RenderTarget,
+    group0: wgpu::BindGroup,
+    group1: wgpu::BindGroup,
+    offscreen: crate::shaders::RenderPipeline,
+    subpixel: crate::shaders::RenderPipeline,
+    layers: [crate::shaders::RenderPipeline; 3],
+    springs: wgpu::ComputePipeline,
+    upload: wgpu::Buffer,
+    upload_data: Vec<u8>,
+}
+
+impl<'g> Rig<'g> {
+    /// Builds the target, pipelines and buffers at `size`.
+    pub(super) fn new(gpu: &'g GpuContext, size: Size) -> Result<Self> {
+        let target = RenderTarget::new(gpu, size, false)?;
+        let device = &gpu.device;
+        gpu.scoped("building the unit-cost workloads", || {
+            let module = shaders::module(
+                device,
+                "unit costs",
+                include_str!("../shaders/unit_costs.wgsl"),
+            );
+            let uniform_entry = |binding, visibility| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            };
+            let layout0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("unit costs globals"),
+                entries: &[uniform_entry(
+                    0,
+                    wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+                )],
+            });
+            let layout1 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("unit costs"),
+                entries: &[
+                    uniform_entry(
+                        0,
+                        wgpu::ShaderStages::VERTEX
+                            | wgpu::ShaderStages::FRAGMENT
+                            | wgpu::ShaderStages::COMPUTE,
+                    ),
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 1,
+                        visibility: wgpu::ShaderStages::COMPUTE,
+                        ty: wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Storage { read_only: false },
+                            has_dynamic_offset: false,
+                            min_binding_size: None,
+                        },
+                        count: None,
+                    },
+                ],
+            });
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("unit costs"),
+                bind_group_layouts: &[Some(&layout0), Some(&layout1)],
+                immediate_size: 0,
+            });
+            let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("unit costs globals"),
+                contents: bytemuck::bytes_of(&globals(size)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("unit costs params"),
+                contents: bytemuck::cast_slice(&[
+                    size.width as f32,
+                    size.height as f32,
+                    1.0 / size.width as f32,
+                    1.0 / size.height as f32,
+                ]),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let springs_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("unit costs springs"),
+                size: SPRING_COUNT * 16,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
+            let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("unit costs globals"),
+                layout: &layout0,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: globals.as_entire_binding(),
+                }],
+            });
+            let group1 = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("unit costs"),
+                layout: &layout1,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: params.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: springs_buffer.as_entire_binding(),
+                    },
+                ],
+            });
+            let pipeline = |label, vs, fs, write: bool, blend| {
+                shaders::render_pipeline(
+                    device,
+                    &shaders::PipelineSpec {
+                        label,
+                        layout: &layout,
+                        module: &module,
+                        vertex: vs,
+                        fragment: fs,
+                        buffers: &[],
+                        primitive: wgpu::PrimitiveState {
+                            topology: wgpu::PrimitiveTopology::TriangleStrip,
+                            cull_mode: None,
+                            ..Default::default()
+                        },
+                        depth: shaders::depth_test(
+                            DEPTH_FORMAT,
+                            wgpu::CompareFunction::LessEqual,
+                            write,
+                        ),
+                        multisample: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState {
+                            format: COLOR_FORMAT,
+                            blend,
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })],
+                    },
+                )
+            };
+            Self {
+                gpu,
+                offscreen: pipeline(
+                    "unit costs: vertices",
+                    "vs_offscreen",
+                    "fs_opaque",
+                    true,
+                    None,
+                ),
+                subpixel: pipeline(
+                    "unit costs: primitives",
+                    "vs_subpixel",
+                    "fs_opaque",
+                    true,
+                    None,
+                ),
+                layers: [
+                    pipeline("unit costs: opaque", "vs_layer", "fs_opaque", true, None),
+                    pipeline(
+                        "unit costs: alpha-tested",
+                        "vs_layer",
+                        "fs_alpha_tested",
+                        true,
+                        None,
+                    ),
+                    pipeline(
+                        "unit costs: blended",
+                        "vs_layer",
+                        "fs_blended",
+                        false,
+                        Some(wgpu::BlendState::ALPHA_BLENDING),
+                    ),
+                ],
+                springs: device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("unit costs: compute"),
+                    layout: Some(&layout),
+                    module: &module,
+                    entry_point: Some("cs_springs"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                }),
+                upload: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("unit costs upload"),
+                    size: UPLOAD_CAPACITY,
+                    usage: wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                upload_data: (0..UPLOAD_CAPACITY).map(|i| (i % 251) as u8).collect(),
+                target,
+                group0,
+                group1,
+            }
+        })
+    }
+
+    /// Records, submits and times one submission doing all of `mix`; with `counter`, also
+    /// counts its work with the GPU's pipeline statistics (one query per workload, so the
+    /// fragments split by kind; draw calls and uploads as known). Returns the
+    /// submit-to-idle wall time in ms.
+    pub(super) fn run(
+        &self,
+        mix: &[Workload],
+        mut counter: Option<&mut WorkCounter>,
+    ) -> Result<(f64, Option<Work>)> {
+        let gpu = self.gpu;
+        let names: Vec<&str> = mix.iter().map(|w| w.name).collect();
+        let label = format!("unit-cost workload `{}`", names.join(" + "));
+        if let Some(c) = counter.as_deref_mut() {
+            c.begin_frame();
+        }
+        let (commands, kinds) = gpu.scoped(&label, || {
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            let kinds = self.record(&mut encoder, mix, counter.as_deref_mut());
+            if let Some(c) = counter.as_deref() {
+                c.resolve(&mut encoder);
+            }
+            (encoder.finish(), kinds)
+        })?;
+        for w in mix {
+            if let Shape::Upload { bytes } = w.shape {
+                // More than the buffer holds is written in buffer-sized pieces, over it again.
+                let mut left = bytes;
+                while left > 0 {
+                    let n = left.min(UPLOAD_CAPACITY);
+                    let len = usize::try_from(n).unwrap_or(self.upload_data.len());
+                    gpu.queue
+                        .write_buffer(&self.upload, 0, &self.upload_data[..len]);
+                    left -= n;
+                }
+            }
+        }
+        let t = Instant::now();
+        gpu.queue.submit([commands]);
+        gpu.wait_idle(&label)?;
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        let Some(counter) = counter else {
+            return Ok((ms, None));
+        };
+        let records = counter.read(gpu).ok_or_else(|| Error::DeviceLost {
+            during: label.clone(),
+            message: "reading the pipeline statistics failed".into(),
+        })?;
+        let known = mix
+            .iter()
+            .fold(Work::default(), |a, w| a + w.work(self.target.size));
+        let counted = records
+            .iter()
+            .zip(kinds)
+            .fold(Work::default(), |a, (r, kind)| {
+                a + Work::from_counters(&r.work, kind)
+            });
+        Ok((
+            ms,
+            Some(Work {
+                draw_calls: known.draw_calls,
+                upload_bytes: known.upload_bytes,
+                ..counted
+            }),
+        ))
+    }
+
+    /// One submission: a render pass clearing the target with the draws of the render
+    /// workloads, then a compute pass with the dispatches of the compute ones. Layers of
+    /// successive workloads continue each other's depth order (their instance indices run
+    /// on), so every layer passes the depth test. Returns the fragment kind of each
+    /// statistics query begun, in order.
+    fn record(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mix: &[Workload],
+        mut counter: Option<&mut WorkCounter>,
+    ) -> Vec<FragmentKind> {
+        let mut kinds = Vec::new();
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("unit costs"),
+                color_attachments: &[Some(self.target.color_attachment(Some(wgpu::Color::BLACK)))],
+                depth_stencil_attachment: Some(self.target.depth_attachment(true)),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.group0, &[]);
+            pass.set_bind_group(1, &self.group1, &[]);
+            let mut layer_base = 0u32;
+            for w in mix {
+                if matches!(
+                    w.shape,
+                    Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. }
+                ) {
+                    continue;
+                }
+                let query = counter
+                    .as_deref_mut()
+                    .and_then(|c| c.next(w.name.to_owned(), PassKind::Render, Some(w.fragment_kind())));
+                if let Some((set, index)) = &query {
+                    pass.begin_pipeline_statistics_query(set, *index);
+                    kinds.push(w.fragment_kind());
+                }
+                match w.shape {
+                    Shape::OffscreenStrips { instances } => {
+                        pass.set_pipeline(&self.offscreen);
+                        pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
+                    }
+                    Shape::SubpixelStrips { instances } => {
+                        pass.set_pipeline(&self.subpixel);
+                        pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
+                    }
+                    Shape::Layers { kind, layers } => {
+                        pass.set_pipeline(
+                            &self.layers[match kind {
+                                FragmentKind::Opaque => 0,
+                                FragmentKind::AlphaTested => 1,
+                                FragmentKind::Blended => 2,
+                            }],
+                        );
+                        let end = layer_base.saturating_add(layers);
+                        pass.draw(0..workloads::LAYER_VERTICES, layer_base..end);
+                        layer_base = end;
+                    }
+                    Shape::Draws { draws } => {
+                        pass.set_pipeline(&self.subpixel);
+                        for i in 0..draws {
+                            pass.draw(0..workloads::DRAW_VERTICES, i..i + 1);
+                        }
+                    }
+                    Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => {}
+                }
+                if query.is_some() {
+                    pass.end_pipeline_statistics_query();
+                }
+            }
+        }
+        let dispatches: Vec<(&Workload, u32)> = mix
+            .iter()
+            .filter_map(|w| match w.shape {
+                Shape::Compute { groups } => Some((w, groups)),
+                _ => None,
+            })
+            .collect();
+        if !dispatches.is_empty() {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("unit costs: compute"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.springs);
+            pass.set_bind_group(0, &self.group0, &[]);
+            pass.set_bind_group(1, &self.group1, &[]);
+            for (w, groups) in dispatches {
+                let query = counter
+                    .as_deref_mut()
+                    .and_then(|c| c.next(w.name.to_owned(), PassKind::Compute, None));
+                if let Some((set, index)) = &query {
+                    pass.begin_pipeline_statistics_query(set, *index);
+                    kinds.push(FragmentKind::Opaque);
+                }
+                let (x, y) = dispatch_grid(groups);
+                pass.dispatch_workgroups(x, y, 1);
+                if query.is_some() {
+                    pass.end_pipeline_statistics_query();
+                }
+            }
+        }
+        kinds
+    }
+}
+
+/// The frame globals the lit fragments read: a camera 1.7 m above the field looking along
+/// it, a sun 55° high, daylight ambient and a light haze, no point light (the lighting
+/// branch most scenes take).
+fn globals(size: Size) -> FrameGlobals {
+    let eye = glam::Vec3::new(25.0, 1.7, -5.0);
+    let view = glam::Mat4::look_at_rh(eye, glam::Vec3::new(25.0, 0.0, 20.0), glam::Vec3::Y);
+    let proj = glam::Mat4::perspective_rh(60f32.to_radians(), size.aspect(), 0.1, 500.0);
+    let view_proj = proj * view;
+    let sun = glam::Vec3::new(0.4, 0.82, 0.4).normalize();
+    let mut g: FrameGlobals = bytemuck::Zeroable::zeroed();
+    g.view_proj = view_proj.to_cols_array_2d();
+    g.inv_view_proj = view_proj.inverse().to_cols_array_2d();
+    g.camera_pos = [eye.x, eye.y, eye.z, 1.0];
+    g.camera_forward = [0.0, -0.07, 1.0, 1.0 / 60.0];
+    g.sun_direction = [sun.x, sun.y, sun.z, 0.0];
+    g.sun_color = [3.0, 2.9, 2.7, 0.0];
+    g.ambient = [0.30, 0.35, 0.42, 0.0];
+    g.sky_zenith = [0.25, 0.45, 0.85, 0.0];
+    g.sky_horizon = [0.70, 0.80, 0.90, 0.0];
+    g.ground_color = [0.30, 0.25, 0.15, 0.004];
+    g.viewport = [
+        size.width as f32,
+        size.height as f32,
+        1.0 / size.width as f32,
+        1.0 / size.height as f32,
+    ];
+    g
+}

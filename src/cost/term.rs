@@ -1,0 +1,110 @@
+//! The terms of the cost model: what a frame's GPU time is made of, one unit cost each.
+
+/// One term of the cost model. A frame's predicted GPU time is `Σ cost(term) × amount(term)`
+/// over [`Term::ALL`], the amounts read from a [`super::Work`] by [`super::Work::amount`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Term {
+    /// What every submission pays whatever it draws: submitting, waking the driver, clearing
+    /// and storing the target at the calibration size, waiting. One per frame.
+    Fixed,
+    /// A vertex shader invocation (with the culling test of the primitives it belongs to).
+    Vertex,
+    /// A triangle that reached rasterisation (the clipper's output): setup, binning and the
+    /// coverage test. Not among the units issue 20 lists: on a software rasteriser triangle
+    /// setup and binning are a large cost of their own, paid by a triangle that covers no
+    /// pixel as much as by one that covers a few, so neither vertices nor fragments can stand
+    /// for it (lavapipe: a sub-pixel triangle costs several vertex invocations).
+    Primitive,
+    /// A fragment shader invocation of an opaque, depth-tested pipeline (early depth test).
+    FragmentOpaque,
+    /// A fragment shader invocation of a pipeline that may discard (alpha test, or alpha to
+    /// coverage): the depth test and write wait for the shader.
+    FragmentAlphaTested,
+    /// A fragment shader invocation of an alpha-blended pipeline (reads the target back).
+    FragmentBlended,
+    /// A draw call.
+    Draw,
+    /// A compute shader invocation.
+    Compute,
+    /// A megabyte (10⁶ bytes) written to a buffer with `queue.write_buffer` before the
+    /// submission.
+    Upload,
+}
+
+impl Term {
+    /// Every term, in the order of the model's columns.
+    pub const ALL: [Self; 9] = [
+        Self::Fixed,
+        Self::Vertex,
+        Self::Primitive,
+        Self::FragmentOpaque,
+        Self::FragmentAlphaTested,
+        Self::FragmentBlended,
+        Self::Draw,
+        Self::Compute,
+        Self::Upload,
+    ];
+
+    /// Short name, as in files and messages (`fragment_opaque`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed",
+            Self::Vertex => "vertex",
+            Self::Primitive => "primitive",
+            Self::FragmentOpaque => "fragment_opaque",
+            Self::FragmentAlphaTested => "fragment_alpha_tested",
+            Self::FragmentBlended => "fragment_blended",
+            Self::Draw => "draw",
+            Self::Compute => "compute",
+            Self::Upload => "upload",
+        }
+    }
+
+    /// What one unit of the term is (the amount [`super::Work::amount`] counts).
+    pub fn unit(self) -> &'static str {
+        match self {
+            Self::Fixed => "submission",
+            Self::Vertex => "vertex invocation",
+            Self::Primitive => "primitive",
+            Self::FragmentOpaque | Self::FragmentAlphaTested | Self::FragmentBlended => {
+                "fragment invocation"
+            }
+            Self::Draw => "draw call",
+            Self::Compute => "compute invocation",
+            Self::Upload => "MB",
+        }
+    }
+
+    /// Milliseconds per unit of the figure [`super::UnitCosts`] stores for the term: 1 for
+    /// the terms stored in ms (fixed, upload), 10⁻⁶ for those stored in ns.
+    pub fn ms_per_stored_unit(self) -> f64 {
+        match self {
+            Self::Fixed | Self::Upload => 1.0,
+            _ => 1e-6,
+        }
+    }
+
+    /// Position in [`Term::ALL`].
+    pub fn index(self) -> usize {
+        self as usize
+    }
+}
+
+impl std::fmt::Display for Term {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn index_is_the_position_in_all() {
+        for (i, t) in Term::ALL.iter().enumerate() {
+            assert_eq!(t.index(), i, "{t}");
+        }
+    }
+}

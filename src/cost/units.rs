@@ -1,0 +1,315 @@
+//! [`UnitCosts`]: an adapter's cost per unit of work, as fitted by [`super::fit`], and the
+//! prediction of a frame's GPU time from its [`Work`] ([`UnitCosts::predict`]).
+
+use super::{FitSummary, Term, Work};
+
+/// One fitted unit cost.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct UnitCost {
+    /// The cost, in the unit its field in [`UnitCosts`] names.
+    pub value: f64,
+    /// Its standard error from the fit (same unit): the spread of the samples' residuals
+    /// carried through the design, as for an unconstrained least-squares fit.
+    pub standard_error: f64,
+    /// Whether the fit held the cost at zero: the unconstrained optimum was negative, so the
+    /// term costs less than the calibration can resolve against the others' noise.
+    #[serde(default)]
+    pub at_zero: bool,
+}
+
+/// An adapter's unit costs: what one unit of each kind of work adds to a frame's GPU time,
+/// fitted jointly over the calibration's micro-workloads. Written to `meta.toml` under
+/// `[unit_costs]` beside the adapter's provenance.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct UnitCosts {
+    /// Target size the workloads drew at (`640x360`): the fixed cost clears and stores a
+    /// target of this size, and fragment costs depend somewhat on tiling.
+    pub size: String,
+    /// Which clock timed the samples.
+    pub clock: String,
+    /// Cores other processes kept busy, on average, while the samples ran (0 on a quiet
+    /// host): on a software rasteriser they slow every figure and widen the residuals.
+    /// `None` where not measured (no `/proc`, or costs fitted elsewhere).
+    #[serde(default)]
+    pub host_other_cores: Option<f64>,
+    /// Per submission (frame), ms.
+    pub fixed_ms: UnitCost,
+    /// Per vertex shader invocation, ns.
+    pub vertex_ns: UnitCost,
+    /// Per primitive reaching rasterisation, ns.
+    pub primitive_ns: UnitCost,
+    /// Per opaque depth-tested fragment shader invocation, ns.
+    pub fragment_opaque_ns: UnitCost,
+    /// Per fragment shader invocation of a pipeline that may discard, ns.
+    pub fragment_alpha_tested_ns: UnitCost,
+    /// Per blended fragment shader invocation, ns.
+    pub fragment_blended_ns: UnitCost,
+    /// Per draw call, ns.
+    pub draw_ns: UnitCost,
+    /// Per compute shader invocation, ns.
+    pub compute_invocation_ns: UnitCost,
+    /// Per megabyte (10⁶ bytes) uploaded with `queue.write_buffer`, ms.
+    pub upload_ms_per_mb: UnitCost,
+    /// How well the costs explain the samples they were fitted to.
+    pub fit: FitSummary,
+}
+
+/// A frame's predicted GPU time, split by term.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Prediction {
+    /// The sum of the terms, ms.
+    pub total_ms: f64,
+    /// The fixed per-submission cost, ms.
+    pub fixed_ms: f64,
+    /// Vertex invocations, ms.
+    pub vertex_ms: f64,
+    /// Primitives, ms.
+    pub primitive_ms: f64,
+    /// Opaque fragments, ms.
+    pub fragment_opaque_ms: f64,
+    /// Alpha-tested fragments, ms.
+    pub fragment_alpha_tested_ms: f64,
+    /// Blended fragments, ms.
+    pub fragment_blended_ms: f64,
+    /// Draw calls, ms.
+    pub draw_ms: f64,
+    /// Compute invocations, ms.
+    pub compute_ms: f64,
+    /// Uploads, ms.
+    pub upload_ms: f64,
+}
+
+impl UnitCosts {
+    /// Builds the record from one cost per term in **ms per unit** ([`Term::unit`]), in the
+    /// order of [`Term::ALL`], converting each to the unit its field stores.
+    pub fn from_ms_per_unit(
+        size: String,
+        clock: String,
+        per_unit_ms: [UnitCost; 9],
+        fit: FitSummary,
+    ) -> Self {
+        let stored = |t: Term| {
+            let c = per_unit_ms[t.index()];
+            let k = t.ms_per_stored_unit();
+            UnitCost {
+                value: c.value / k,
+                standard_error: c.standard_error / k,
+                at_zero: c.at_zero,
+            }
+        };
+        Self {
+            size,
+            clock,
+            host_other_cores: None,
+            fixed_ms: stored(Term::Fixed),
+            vertex_ns: stored(Term::Vertex),
+            primitive_ns: stored(Term::Primitive),
+            fragment_opaque_ns: stored(Term::FragmentOpaque),
+            fragment_alpha_tested_ns: stored(Term::FragmentAlphaTested),
+            fragment_blended_ns: stored(Term::FragmentBlended),
+            draw_ns: stored(Term::Draw),
+            compute_invocation_ns: stored(Term::Compute),
+            upload_ms_per_mb: stored(Term::Upload),
+            fit,
+        }
+    }
+
+    /// The cost of `term` as stored (ns or ms, see the field).
+    pub fn get(&self, term: Term) -> UnitCost {
+        match term {
+            Term::Fixed => self.fixed_ms,
+            Term::Vertex => self.vertex_ns,
+            Term::Primitive => self.primitive_ns,
+            Term::FragmentOpaque => self.fragment_opaque_ns,
+            Term::FragmentAlphaTested => self.fragment_alpha_tested_ns,
+            Term::FragmentBlended => self.fragment_blended_ns,
+            Term::Draw => self.draw_ns,
+            Term::Compute => self.compute_invocation_ns,
+            Term::Upload => self.upload_ms_per_mb,
+        }
+    }
+
+    /// The cost of one unit of `term` ([`Term::unit`]) in ms.
+    pub fn ms_per_unit(&self, term: Term) -> f64 {
+        self.get(term).value * term.ms_per_stored_unit()
+    }
+
+    /// A frame's GPU time predicted from its work: `Σ cost × amount`, term by term.
+    pub fn predict(&self, work: &Work) -> Prediction {
+        let ms = |t: Term| self.ms_per_unit(t) * work.amount(t);
+        let mut p = Prediction {
+            total_ms: 0.0,
+            fixed_ms: ms(Term::Fixed),
+            vertex_ms: ms(Term::Vertex),
+            primitive_ms: ms(Term::Primitive),
+            fragment_opaque_ms: ms(Term::FragmentOpaque),
+            fragment_alpha_tested_ms: ms(Term::FragmentAlphaTested),
+            fragment_blended_ms: ms(Term::FragmentBlended),
+            draw_ms: ms(Term::Draw),
+            compute_ms: ms(Term::Compute),
+            upload_ms: ms(Term::Upload),
+        };
+        p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
+        p
+    }
+}
+
+impl UnitCosts {
+    /// A Markdown table of the costs with their standard errors, then a line with the fit's
+    /// residuals overall and per workload. Ends with a newline.
+    pub fn to_markdown(&self) -> String {
+        let mut md = String::from("| term | cost | standard error | unit |\n|---|---|---|---|\n");
+        for t in Term::ALL {
+            let c = self.get(t);
+            let unit = if t.ms_per_stored_unit() == 1.0 {
+                format!("ms per {}", t.unit())
+            } else {
+                format!("ns per {}", t.unit())
+            };
+            md.push_str(&format!(
+                "| {t} | {}{} | {} | {unit} |\n",
+                significant(c.value),
+                if c.at_zero { " (held at 0)" } else { "" },
+                significant(c.standard_error),
+            ));
+        }
+        let workloads: Vec<String> = self
+            .fit
+            .workloads
+            .iter()
+            .map(|w| format!("{} {:.1}%", w.workload, 100.0 * w.relative_rms_residual))
+            .collect();
+        let host = self.host_other_cores.map_or(String::new(), |c| {
+            format!(", other processes busy on {c:.1} cores")
+        });
+        md.push_str(&format!(
+            "\nFit over {} samples ({}, {}{host}): relative RMS residual {:.1}% (largest {:.1}%); per workload: {}.\n",
+            self.fit.samples,
+            self.size,
+            self.clock,
+            100.0 * self.fit.relative_rms_residual,
+            100.0 * self.fit.max_relative_residual,
+            workloads.join(", ")
+        ));
+        md
+    }
+}
+
+/// `x` with three significant digits (plain decimals, no exponent, for a table).
+fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.digits$}")
+}
+
+impl Prediction {
+    /// The time of `term`, ms.
+    pub fn ms(&self, term: Term) -> f64 {
+        match term {
+            Term::Fixed => self.fixed_ms,
+            Term::Vertex => self.vertex_ms,
+            Term::Primitive => self.primitive_ms,
+            Term::FragmentOpaque => self.fragment_opaque_ms,
+            Term::FragmentAlphaTested => self.fragment_alpha_tested_ms,
+            Term::FragmentBlended => self.fragment_blended_ms,
+            Term::Draw => self.draw_ms,
+            Term::Compute => self.compute_ms,
+            Term::Upload => self.upload_ms,
+        }
+    }
+
+    /// The share of `term` in the total, in [0, 1] (0 when the total is 0).
+    pub fn share(&self, term: Term) -> f64 {
+        if self.total_ms > 0.0 {
+            self.ms(term) / self.total_ms
+        } else {
+            0.0
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cost(value: f64) -> UnitCost {
+        UnitCost {
+            value,
+            standard_error: 0.0,
+            at_zero: false,
+        }
+    }
+
+    #[test]
+    fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
+        // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
+        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB.
+        let per_unit = [1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5].map(cost);
+        let costs = UnitCosts::from_ms_per_unit(
+            "640x360".into(),
+            "test".into(),
+            per_unit,
+            FitSummary::default(),
+        );
+        assert!((costs.vertex_ns.value - 10.0).abs() < 1e-9);
+        assert!((costs.draw_ns.value - 1000.0).abs() < 1e-9);
+        assert_eq!(costs.upload_ms_per_mb.value, 0.5);
+        let work = Work {
+            vertex_invocations: 1e5,
+            primitives: 1e4,
+            fragments_opaque: 1e6,
+            fragments_alpha_tested: 0.0,
+            fragments_blended: 1e5,
+            draw_calls: 10.0,
+            compute_invocations: 2e5,
+            upload_bytes: 4e6,
+        };
+        let p = costs.predict(&work);
+        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 ms.
+        let expected = [1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0];
+        for (t, e) in Term::ALL.iter().zip(expected) {
+            assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
+        }
+        assert!((p.total_ms - 8.41).abs() < 1e-9);
+        let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
+        assert!((shares - 1.0).abs() < 1e-12);
+        assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
+        let md = costs.to_markdown();
+        assert!(
+            md.contains("| vertex | 10.0 | 0 | ns per vertex invocation |"),
+            "{md}"
+        );
+        assert!(md.contains("| upload | 0.500 | 0 | ms per MB |"), "{md}");
+        assert!(
+            md.contains("| draw | 1000 | 0 | ns per draw call |"),
+            "{md}"
+        );
+    }
+
+    #[test]
+    fn unit_costs_round_trip_through_toml_and_older_files_read() {
+        let per_unit = [1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5].map(cost);
+        let mut costs = UnitCosts::from_ms_per_unit(
+            "640x360".into(),
+            "test".into(),
+            per_unit,
+            FitSummary::default(),
+        );
+        costs.host_other_cores = Some(0.5);
+        let text = toml::to_string_pretty(&costs).unwrap();
+        assert_eq!(toml::from_str::<UnitCosts>(&text).unwrap(), costs);
+        // Without the fields that may be absent (the host's load, `at_zero`).
+        let older: String = text
+            .lines()
+            .filter(|l| !l.starts_with("host_other_cores") && !l.starts_with("at_zero"))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let read = toml::from_str::<UnitCosts>(&older).unwrap();
+        assert_eq!(
+            (read.host_other_cores, read.vertex_ns.at_zero),
+            (None, false)
+        );
+    }
+}

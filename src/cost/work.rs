@@ -1,0 +1,190 @@
+//! [`Work`]: what one frame (one submission) made the GPU do, in the units of the cost model.
+
+use super::Term;
+use crate::technique::work::PassWork;
+
+/// Bytes in the megabyte the upload term counts (decimal: 10⁶).
+pub const BYTES_PER_MB: f64 = 1e6;
+
+/// The measured work of one frame: one submission's counts, as plain numbers (f64: sums and
+/// averages over frames stay exact enough and need no casts). The GPU-side counts come from
+/// the pipeline-statistics counters (`crate::technique::work`), the fragments split by the
+/// kind of pipeline that shaded them; draws and uploads from the harness.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Work {
+    /// Vertex shader invocations.
+    pub vertex_invocations: f64,
+    /// Triangles that reached rasterisation: the clipper's output (`CLIPPER_PRIMITIVES_OUT`).
+    pub primitives: f64,
+    /// Fragment shader invocations of opaque, depth-tested pipelines.
+    pub fragments_opaque: f64,
+    /// Fragment shader invocations of pipelines that may discard (alpha test, alpha to
+    /// coverage).
+    pub fragments_alpha_tested: f64,
+    /// Fragment shader invocations of alpha-blended pipelines.
+    pub fragments_blended: f64,
+    /// Draw calls (direct, indexed, indirect).
+    pub draw_calls: f64,
+    /// Compute shader invocations.
+    pub compute_invocations: f64,
+    /// Bytes written with `GpuContext::write_buffer` (or `write_texture`) before the
+    /// submission.
+    pub upload_bytes: f64,
+}
+
+pub use crate::shaders::FragmentKind;
+
+impl Work {
+    /// The work the GPU's pipeline-statistics counters measured over some passes, their
+    /// fragments all of `fragments`' kind. Draw calls and uploads are not among the counters:
+    /// they are 0 here, for the caller to set from the harness's counts.
+    pub fn from_counters(counted: &PassWork, fragments: FragmentKind) -> Self {
+        let f = counted.fragment_invocations as f64;
+        Self {
+            vertex_invocations: counted.vertex_invocations as f64,
+            primitives: counted.clipper_primitives_out as f64,
+            fragments_opaque: if fragments == FragmentKind::Opaque {
+                f
+            } else {
+                0.0
+            },
+            fragments_alpha_tested: if fragments == FragmentKind::AlphaTested {
+                f
+            } else {
+                0.0
+            },
+            fragments_blended: if fragments == FragmentKind::Blended {
+                f
+            } else {
+                0.0
+            },
+            draw_calls: 0.0,
+            compute_invocations: counted.compute_invocations as f64,
+            upload_bytes: 0.0,
+        }
+    }
+
+    /// The amount of `term` in this frame, in the term's unit ([`Term::unit`]): the fixed term
+    /// counts one submission, the upload term megabytes.
+    pub fn amount(&self, term: Term) -> f64 {
+        match term {
+            Term::Fixed => 1.0,
+            Term::Vertex => self.vertex_invocations,
+            Term::Primitive => self.primitives,
+            Term::FragmentOpaque => self.fragments_opaque,
+            Term::FragmentAlphaTested => self.fragments_alpha_tested,
+            Term::FragmentBlended => self.fragments_blended,
+            Term::Draw => self.draw_calls,
+            Term::Compute => self.compute_invocations,
+            Term::Upload => self.upload_bytes / BYTES_PER_MB,
+        }
+    }
+
+    /// Every count multiplied by `k`.
+    pub fn scaled(self, k: f64) -> Self {
+        Self {
+            vertex_invocations: self.vertex_invocations * k,
+            primitives: self.primitives * k,
+            fragments_opaque: self.fragments_opaque * k,
+            fragments_alpha_tested: self.fragments_alpha_tested * k,
+            fragments_blended: self.fragments_blended * k,
+            draw_calls: self.draw_calls * k,
+            compute_invocations: self.compute_invocations * k,
+            upload_bytes: self.upload_bytes * k,
+        }
+    }
+
+    /// Whether every count is finite and non-negative.
+    pub fn is_valid(&self) -> bool {
+        Term::ALL
+            .iter()
+            .all(|&t| self.amount(t).is_finite() && self.amount(t) >= 0.0)
+    }
+}
+
+impl std::ops::Add for Work {
+    type Output = Self;
+
+    fn add(self, o: Self) -> Self {
+        Self {
+            vertex_invocations: self.vertex_invocations + o.vertex_invocations,
+            primitives: self.primitives + o.primitives,
+            fragments_opaque: self.fragments_opaque + o.fragments_opaque,
+            fragments_alpha_tested: self.fragments_alpha_tested + o.fragments_alpha_tested,
+            fragments_blended: self.fragments_blended + o.fragments_blended,
+            draw_calls: self.draw_calls + o.draw_calls,
+            compute_invocations: self.compute_invocations + o.compute_invocations,
+            upload_bytes: self.upload_bytes + o.upload_bytes,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn amounts_are_in_the_terms_units() {
+        let w = Work {
+            vertex_invocations: 11.0,
+            primitives: 9.0,
+            fragments_opaque: 1.0,
+            fragments_alpha_tested: 2.0,
+            fragments_blended: 3.0,
+            draw_calls: 4.0,
+            compute_invocations: 5.0,
+            upload_bytes: 2.5e6,
+        };
+        let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
+        assert_eq!(amounts, [1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5]);
+        // A sum of frames counts each frame's work, not its submission (the fixed term is per
+        // frame: predict frame by frame).
+        assert_eq!((w + w).amount(Term::Vertex), 22.0);
+        assert_eq!(w.scaled(2.0), w + w);
+        assert!(w.is_valid());
+        assert!(
+            !Work {
+                primitives: f64::NAN,
+                ..w
+            }
+            .is_valid()
+        );
+        assert!(
+            !Work {
+                draw_calls: -1.0,
+                ..w
+            }
+            .is_valid()
+        );
+    }
+
+    #[test]
+    fn counters_fill_the_fragments_of_their_pipelines_kind() {
+        let counted = PassWork {
+            vertex_invocations: 11,
+            clipper_invocations: 9,
+            clipper_primitives_out: 7,
+            fragment_invocations: 100,
+            compute_invocations: 64,
+        };
+        let w = Work::from_counters(&counted, FragmentKind::AlphaTested);
+        assert_eq!(
+            w,
+            Work {
+                vertex_invocations: 11.0,
+                primitives: 7.0,
+                fragments_alpha_tested: 100.0,
+                compute_invocations: 64.0,
+                ..Work::default()
+            }
+        );
+        assert_eq!(
+            Work::from_counters(&counted, FragmentKind::Blended).fragments_blended,
+            100.0
+        );
+        assert_eq!(
+            Work::from_counters(&counted, FragmentKind::Opaque).fragments_opaque,
+            100.0
+        );
+    }
+}

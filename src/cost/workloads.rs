@@ -1,0 +1,373 @@
+//! The calibration's micro-workloads: what each draws or dispatches, and the work it does,
+//! known in advance from its shape and the target size (no GPU needed to say it; the GPU's
+//! own counters are checked against it where it has them, see `measure`).
+//!
+//! Each workload isolates one [`Term`] and runs at four sizes in ratio 1 : 2 : 4 : 8 (the
+//! fixed per-submission cost and the unit cost separate by the slope), times a scale that
+//! `measure` raises on fast adapters until the largest size takes long enough to time:
+//!
+//! | workload | draws | isolates |
+//! |---|---|---|
+//! | `empty` | nothing: the target's clear | fixed |
+//! | `vertices` | instanced 11-vertex strips (a 5-segment blade) entirely off screen: the clipper rejects every triangle | vertex |
+//! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
+//! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
+//! | `draws` | one sub-pixel triangle per draw call | draw |
+//! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
+//! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
+//!
+//! Every sample is one submission holding one render pass that clears the target, plus the
+//! workload: the fixed term is what a frame with nothing in it costs at this size.
+
+use super::{FragmentKind, Term, Work};
+use crate::target::Size;
+
+/// Vertices of a blade strip (5 segments: `2 · 5 + 1`).
+pub const STRIP_VERTICES: u32 = 11;
+/// Triangles of a blade strip (`2 · 5 − 1`).
+pub const STRIP_TRIANGLES: u32 = 9;
+/// Vertices of a full-screen layer: one triangle twice the screen's size, so no edge crosses
+/// the screen (a quad's diagonal would add helper invocations where both its triangles
+/// shade partial 2x2 quads: lavapipe counted 1.25% more fragments than pixels).
+pub const LAYER_VERTICES: u32 = 3;
+/// Triangles of a full-screen layer.
+pub const LAYER_TRIANGLES: u32 = 1;
+/// Vertices of a draw call's triangle in the `draws` workload.
+pub const DRAW_VERTICES: u32 = 3;
+/// Invocations per compute workgroup (as bakay's bend pass).
+pub const WORKGROUP_SIZE: u32 = 64;
+/// Most workgroups along one dimension of a dispatch (wgpu's default limit).
+pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
+/// Size ratios of a workload's samples.
+pub const SIZE_STEPS: [u32; 4] = [1, 2, 4, 8];
+
+/// What a workload records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// Nothing but the target's clear.
+    Empty,
+    /// `instances` off-screen blade strips in one instanced draw.
+    OffscreenStrips {
+        /// Instances.
+        instances: u32,
+    },
+    /// `instances` sub-pixel blade strips in one instanced draw.
+    SubpixelStrips {
+        /// Instances.
+        instances: u32,
+    },
+    /// `layers` full-screen triangles in one instanced draw.
+    Layers {
+        /// How they are shaded.
+        kind: FragmentKind,
+        /// Layers.
+        layers: u32,
+    },
+    /// `draws` draw calls of one sub-pixel triangle each.
+    Draws {
+        /// Draw calls.
+        draws: u32,
+    },
+    /// A dispatch of `groups` workgroups of [`WORKGROUP_SIZE`].
+    Compute {
+        /// Workgroups wanted (the dispatch may round up, see [`dispatch_grid`]).
+        groups: u32,
+    },
+    /// `bytes` written with `queue.write_buffer`.
+    Upload {
+        /// Bytes.
+        bytes: u64,
+    },
+}
+
+/// One sample's workload.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Workload {
+    /// Name of its family (`vertices`, `fragments_opaque`, ...), as in the fit's residuals.
+    pub name: &'static str,
+    /// The term it isolates.
+    pub term: Term,
+    /// What it records.
+    pub shape: Shape,
+}
+
+/// The `(x, y)` workgroup grid of a dispatch of at least `groups` workgroups: `x` at most
+/// [`MAX_GROUPS_PER_DIMENSION`]; `x · y ≥ groups` (equal when `groups` fits in one row).
+pub fn dispatch_grid(groups: u32) -> (u32, u32) {
+    let y = groups.div_ceil(MAX_GROUPS_PER_DIMENSION).max(1);
+    (groups.div_ceil(y), y)
+}
+
+impl Workload {
+    /// The work this workload does on a `size` target, known in advance.
+    pub fn work(&self, size: Size) -> Work {
+        let pixels = f64::from(size.width) * f64::from(size.height);
+        let none = Work::default();
+        match self.shape {
+            Shape::Empty => none,
+            Shape::OffscreenStrips { instances } => Work {
+                vertex_invocations: f64::from(instances) * f64::from(STRIP_VERTICES),
+                draw_calls: 1.0,
+                ..none
+            },
+            Shape::SubpixelStrips { instances } => Work {
+                vertex_invocations: f64::from(instances) * f64::from(STRIP_VERTICES),
+                primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
+                draw_calls: 1.0,
+                ..none
+            },
+            Shape::Layers { kind, layers } => {
+                let fragments = pixels * f64::from(layers);
+                Work {
+                    vertex_invocations: f64::from(layers) * f64::from(LAYER_VERTICES),
+                    primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
+                    fragments_opaque: if kind == FragmentKind::Opaque {
+                        fragments
+                    } else {
+                        0.0
+                    },
+                    fragments_alpha_tested: if kind == FragmentKind::AlphaTested {
+                        fragments
+                    } else {
+                        0.0
+                    },
+                    fragments_blended: if kind == FragmentKind::Blended {
+                        fragments
+                    } else {
+                        0.0
+                    },
+                    draw_calls: 1.0,
+                    ..none
+                }
+            }
+            Shape::Draws { draws } => Work {
+                vertex_invocations: f64::from(draws) * f64::from(DRAW_VERTICES),
+                primitives: f64::from(draws),
+                draw_calls: f64::from(draws),
+                ..none
+            },
+            Shape::Compute { groups } => {
+                let (x, y) = dispatch_grid(groups);
+                Work {
+                    compute_invocations: f64::from(x) * f64::from(y) * f64::from(WORKGROUP_SIZE),
+                    ..none
+                }
+            }
+            Shape::Upload { bytes } => Work {
+                upload_bytes: bytes as f64,
+                ..none
+            },
+        }
+    }
+
+    /// The fragment kind of its render pipeline (`Opaque` for workloads without fragments).
+    pub fn fragment_kind(&self) -> FragmentKind {
+        match self.shape {
+            Shape::Layers { kind, .. } => kind,
+            _ => FragmentKind::Opaque,
+        }
+    }
+
+    /// The largest factor [`Self::scaled`] may apply. Uploads do not scale (64 MB is already
+    /// more than a frame uploads); draw calls only 16x, to 64 k (each is recorded on the CPU,
+    /// outside the clock but inside the calibration's time, and every run records its
+    /// submission anew).
+    pub fn max_scale(&self) -> u32 {
+        match self.shape {
+            Shape::Empty | Shape::Upload { .. } => 1,
+            Shape::Draws { .. } => 16,
+            _ => 1024,
+        }
+    }
+
+    /// The same workload `k` times larger (instances, layers, draws or workgroups), `k`
+    /// clamped to `1..=max_scale()`.
+    pub fn scaled(&self, k: u32) -> Self {
+        self.times(k.clamp(1, self.max_scale()))
+    }
+
+    /// `k` times larger, unclamped (uploads and the empty workload stay as they are).
+    fn times(&self, k: u32) -> Self {
+        let shape = match self.shape {
+            Shape::OffscreenStrips { instances } => Shape::OffscreenStrips {
+                instances: instances.saturating_mul(k),
+            },
+            Shape::SubpixelStrips { instances } => Shape::SubpixelStrips {
+                instances: instances.saturating_mul(k),
+            },
+            Shape::Layers { kind, layers } => Shape::Layers {
+                kind,
+                layers: layers.saturating_mul(k),
+            },
+            Shape::Draws { draws } => Shape::Draws {
+                draws: draws.saturating_mul(k),
+            },
+            Shape::Compute { groups } => Shape::Compute {
+                groups: groups.saturating_mul(k),
+            },
+            other @ (Shape::Empty | Shape::Upload { .. }) => other,
+        };
+        Self { shape, ..*self }
+    }
+}
+
+/// The families of workloads at their smallest size, sized so that on lavapipe at 640x360
+/// the largest size (8x) of each takes some 30-250 ms on the shared 2-core host with another
+/// core's worth of work on it (vertices 100 ms, primitives 240, each fragment kind 200-230,
+/// draws 30, compute 40-65; uploads of 64 MB 14 ms), and all of it (five rounds, warm-up
+/// and scaling probes) 10-15 s. Halving primitives and layers saved 2 s, and the fit's
+/// residual rose (8 runs each: RMS 12-20% against 9-18%, though at a host load average of
+/// 4-5 against 3.5, so not a clean comparison). A faster adapter scales them up.
+pub fn families() -> Vec<Workload> {
+    let layers = |name, term, kind| Workload {
+        name,
+        term,
+        shape: Shape::Layers { kind, layers: 2 },
+    };
+    vec![
+        Workload {
+            name: "empty",
+            term: Term::Fixed,
+            shape: Shape::Empty,
+        },
+        Workload {
+            name: "vertices",
+            term: Term::Vertex,
+            shape: Shape::OffscreenStrips { instances: 20_000 },
+        },
+        Workload {
+            name: "primitives",
+            term: Term::Primitive,
+            shape: Shape::SubpixelStrips { instances: 5_000 },
+        },
+        layers(
+            "fragments_opaque",
+            Term::FragmentOpaque,
+            FragmentKind::Opaque,
+        ),
+        layers(
+            "fragments_alpha_tested",
+            Term::FragmentAlphaTested,
+            FragmentKind::AlphaTested,
+        ),
+        layers(
+            "fragments_blended",
+            Term::FragmentBlended,
+            FragmentKind::Blended,
+        ),
+        Workload {
+            name: "draws",
+            term: Term::Draw,
+            shape: Shape::Draws { draws: 500 },
+        },
+        Workload {
+            name: "compute",
+            term: Term::Compute,
+            shape: Shape::Compute { groups: 4_096 },
+        },
+        Workload {
+            name: "upload",
+            term: Term::Upload,
+            shape: Shape::Upload { bytes: 1 << 20 },
+        },
+    ]
+}
+
+/// A family's samples: its workload at [`SIZE_STEPS`] times `scale`; `empty` four times
+/// (it is the fixed cost alone, and one short sample is easily hit by a hiccup of a busy
+/// host: four spread over the round cost under 3 ms); uploads at 1, 4, 16 and 64 MiB,
+/// steps of 4, as they do not scale.
+pub fn sizes(family: &Workload, scale: u32) -> Vec<Workload> {
+    match family.shape {
+        Shape::Empty => vec![*family; SIZE_STEPS.len()],
+        Shape::Upload { bytes } => [1u64, 4, 16, 64]
+            .iter()
+            .map(|k| Workload {
+                shape: Shape::Upload { bytes: bytes * k },
+                ..*family
+            })
+            .collect(),
+        _ => SIZE_STEPS
+            .iter()
+            .map(|&k| family.scaled(scale).times(k))
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SIZE: Size = Size {
+        width: 640,
+        height: 360,
+    };
+
+    #[test]
+    fn each_family_isolates_its_term() {
+        for f in families() {
+            let w = sizes(&f, 1).last().copied().unwrap().work(SIZE);
+            if f.term == Term::Fixed {
+                assert_eq!(w, Work::default());
+                continue;
+            }
+            // Its term is exercised (whether the family tells it apart from the others is the
+            // fit's test: `fit::tests`).
+            assert!(w.amount(f.term) > 0.0, "{}", f.name);
+        }
+        // Layers: 1 triangle of 3 vertices per layer, every pixel shaded once per layer.
+        let w = Workload {
+            name: "x",
+            term: Term::FragmentBlended,
+            shape: Shape::Layers {
+                kind: FragmentKind::Blended,
+                layers: 3,
+            },
+        }
+        .work(SIZE);
+        assert_eq!(
+            w,
+            Work {
+                vertex_invocations: 9.0,
+                primitives: 3.0,
+                fragments_blended: 3.0 * 640.0 * 360.0,
+                draw_calls: 1.0,
+                ..Work::default()
+            }
+        );
+    }
+
+    #[test]
+    fn dispatches_round_up_to_whole_rows() {
+        assert_eq!(dispatch_grid(4096), (4096, 1));
+        assert_eq!(dispatch_grid(65_535), (65_535, 1));
+        assert_eq!(dispatch_grid(65_536), (32_768, 2));
+        assert_eq!(dispatch_grid(200_000), (50_000, 4));
+        assert_eq!(dispatch_grid(200_001), (50_001, 4));
+        let w = Workload {
+            name: "compute",
+            term: Term::Compute,
+            shape: Shape::Compute { groups: 200_001 },
+        };
+        assert_eq!(w.work(SIZE).compute_invocations, 50_001.0 * 4.0 * 64.0);
+    }
+
+    #[test]
+    fn sizes_double_and_scaling_is_clamped() {
+        let draws = families().into_iter().find(|f| f.name == "draws").unwrap();
+        let counts: Vec<f64> = sizes(&draws, 1)
+            .iter()
+            .map(|w| w.work(SIZE).draw_calls)
+            .collect();
+        assert_eq!(counts, [500.0, 1000.0, 2000.0, 4000.0]);
+        // Draws scale at most 16x; uploads never.
+        assert_eq!(sizes(&draws, 1000)[0].work(SIZE).draw_calls, 8000.0);
+        let upload = families().into_iter().find(|f| f.name == "upload").unwrap();
+        let mb: Vec<f64> = sizes(&upload, 64)
+            .iter()
+            .map(|w| w.work(SIZE).upload_bytes / f64::from(1u32 << 20))
+            .collect();
+        assert_eq!(mb, [1.0, 4.0, 16.0, 64.0]);
+        assert_eq!(sizes(&families()[0], 8), vec![families()[0]; 4]);
+    }
+}

@@ -1,0 +1,131 @@
+// Micro-workloads of the unit-cost calibration (see `cost/workloads.rs` and `cost/measure.rs`).
+// Bind group 0 holds only the prelude's `globals` (a fixed camera and sun): the lighting here
+// is the prelude's, as the techniques' blades use it. Group 1: the workload's parameters and
+// the compute workload's buffer.
+
+struct Params {
+    // xy: target size in pixels; zw: 1 / size
+    size: vec4<f32>,
+}
+
+@group(1) @binding(0) var<uniform> params: Params;
+@group(1) @binding(1) var<storage, read_write> springs: array<vec4<f32>>;
+
+struct VsOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) albedo: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) world: vec3<f32>,
+    @location(3) ao: f32,
+    @location(4) @interpolate(flat) layer: u32,
+}
+
+// Vertex `v` of blade strip `i`, with the work of a blade vertex: a hashed root and facing, a
+// wind-like sway bending the blade with height, its normal, albedo and ambient occlusion, and
+// the projection to clip space. Positions on screen are set by the callers (the workloads
+// decide where triangles land); the projected depth is kept, so no work is dead code.
+fn blade_vertex(v: u32, i: u32) -> VsOut {
+    let level = f32(v / 2u) / 5.0;
+    let side = f32(v & 1u) - 0.5;
+    let h = hash_f32(i);
+    let root = vec3(f32(i % 512u), 0.0, f32(i / 512u)) * 0.1;
+    let facing = h * 2.0 * PI;
+    let dir = vec3(cos(facing), 0.0, sin(facing));
+    let across = vec3(-dir.z, 0.0, dir.x);
+    let sway = 0.3 * sin(globals.camera_pos.w * 2.0 + h * 6.0);
+    let bend = sway * level * level;
+    let world = root + across * side * 0.02 * (1.0 - level) + vec3(0.0, 0.5 * level, 0.0) + dir * bend;
+    let tangent = normalize(vec3(0.0, 0.5, 0.0) + dir * (2.0 * sway * level));
+    let clip = globals.view_proj * vec4(world, 1.0);
+    var out: VsOut;
+    out.position = vec4(0.0, 0.0, clamp(abs(clip.z / clip.w), 0.0, 1.0), 1.0);
+    out.albedo = mix(vec3(0.10, 0.30, 0.05), vec3(0.40, 0.60, 0.20), level);
+    out.normal = normalize(cross(across, tangent));
+    out.world = world;
+    out.ao = mix(0.3, 1.0, level);
+    out.layer = i;
+    return out;
+}
+
+// Clip-space x, y of pixel coordinates `p` (origin top left).
+fn pixel_to_clip(p: vec2<f32>) -> vec2<f32> {
+    return vec2(p.x * params.size.z * 2.0 - 1.0, 1.0 - p.y * params.size.w * 2.0);
+}
+
+// Vertices without primitives: the blade strip far to the right of the screen, so the clipper
+// rejects all its triangles.
+@vertex
+fn vs_offscreen(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    var out = blade_vertex(v, i);
+    let corner = vec2(f32(v & 1u), f32(v / 2u));
+    out.position = vec4(vec2(3.0, 0.0) + corner * 0.01, out.position.z, 1.0);
+    return out;
+}
+
+// Primitives without fragments: the strip folded into [0.1, 0.4]^2 of pixel i (in scan
+// order), so its 9 triangles (none degenerate) cover no pixel centre (at 0.5, 0.5).
+@vertex
+fn vs_subpixel(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    var out = blade_vertex(v, i);
+    let w = u32(params.size.x);
+    let pixels = w * u32(params.size.y);
+    let k = i % pixels;
+    let corner = vec2(0.1 + 0.3 * f32(v & 1u), 0.1 + 0.06 * f32(v / 2u));
+    out.position = vec4(pixel_to_clip(vec2(f32(k % w), f32(k / w)) + corner), out.position.z, 1.0);
+    return out;
+}
+
+// Fragments: layer i is a full-screen triangle (twice the screen's size: no edge crosses the
+// screen, so no 2x2 quad is shaded twice) at depth 1 / (i + 2), nearer than every layer before
+// it, so each passes a `LessEqual` test and shades every pixel. Its varyings are those of a
+// blade (a ground-level patch 20 m across).
+@vertex
+fn vs_layer(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    let uv = vec2(f32((v << 1u) & 2u), f32(v & 2u));
+    var out: VsOut;
+    out.position = vec4(uv * 2.0 - 1.0, 1.0 / f32(i + 2u), 1.0);
+    out.albedo = mix(vec3(0.10, 0.30, 0.05), vec3(0.40, 0.60, 0.20), uv.y);
+    out.normal = normalize(vec3(uv.x - 0.5, 1.0, 0.3));
+    out.world = vec3(uv.x * 20.0, 0.3 + f32(i) * 0.01, uv.y * 20.0);
+    out.ao = mix(0.3, 1.0, uv.y);
+    out.layer = i;
+    return out;
+}
+
+// A lit blade fragment, as the reference blade's: two-sided leaf lighting and fog.
+fn lit(in: VsOut) -> vec3<f32> {
+    let c = shade_leaf(in.albedo, normalize(in.normal), in.world, in.ao, 0.3);
+    return apply_fog(c, in.world);
+}
+
+@fragment
+fn fs_opaque(in: VsOut) -> @location(0) vec4<f32> {
+    return vec4(lit(in), 1.0);
+}
+
+// Alpha-tested: half the pixels of each layer (hashed per pixel and layer) are discarded
+// before shading, as a texture's alpha would.
+@fragment
+fn fs_alpha_tested(in: VsOut) -> @location(0) vec4<f32> {
+    let p = vec2<u32>(in.position.xy);
+    if (hash_f32(p.x + p.y * 8192u + in.layer * 0x9E3779B9u) < 0.5) {
+        discard;
+    }
+    return vec4(lit(in), 1.0);
+}
+
+@fragment
+fn fs_blended(in: VsOut) -> @location(0) vec4<f32> {
+    return vec4(lit(in), 0.5);
+}
+
+// Compute: one spring step per invocation towards a hashed rest state, read-modify-write of
+// 16 bytes (as a blade's simulation step). Invocations beyond the buffer wrap around it.
+@compute @workgroup_size(64)
+fn cs_springs(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    let k = i % arrayLength(&springs);
+    let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
+    let p = springs[k];
+    springs[k] = p + (rest - p) * 0.1;
+}
