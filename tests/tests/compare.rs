@@ -111,6 +111,17 @@ fn thresholds(id: &str) -> Thresholds {
             cross_coverage: 0.07,
             ..Default::default()
         },
+        // jahrmann (GPU culling, the far level from 15 m keeping one blade in four, widened
+        // 3x, blended over 5 m): LOD FLIP 0.020 / 0.007 / 0.029 against its finest (culling
+        // and levels off); FLIP 1/16 0.044 / 0.005 / 0.012, coverage per tile 0.021 / 0.003 /
+        // 0.024 (the same blades as the reference's, drawn by another blade model; distance
+        // culling thins the prairie's far field).
+        "jahrmann" => Thresholds {
+            lod_flip: 0.036,
+            cross_flip_sixteenth: 0.055,
+            cross_coverage: 0.03,
+            ..Default::default()
+        },
         _ => Thresholds::default(),
     }
 }
