@@ -1082,7 +1082,7 @@ fn jahrmann_blades(
 fn jahrmann_simulate_is_sim_step() -> anyhow::Result<()> {
     use grassbench_jahrmann::{Params, sim};
     use proptest::prelude::*;
-    use proptest::test_runner::{Config, TestCaseError, TestRunner};
+    use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
     let gpu = gpu()?;
     let params = Params::default();
     let forces = sim::Forces {
@@ -1111,10 +1111,14 @@ fn jahrmann_simulate_is_sim_step() -> anyhow::Result<()> {
             0,
             1,
         );
-        let mut runner = TestRunner::new(Config {
-            cases: 6,
-            ..Config::default()
-        });
+        // A fixed generator: the measurements quoted below are this test's own.
+        let mut runner = TestRunner::new_with_rng(
+            Config {
+                cases: 6,
+                ..Config::default()
+            },
+            TestRng::deterministic_rng(RngAlgorithm::ChaCha),
+        );
         let result = runner.run(
             &(any::<u64>(), 0.0f32..20.0, 0.0f32..1.0, 0.001f32..0.1),
             |(seed, wind_speed, sphere_size, dt)| {
@@ -1200,16 +1204,17 @@ fn jahrmann_simulate_is_sim_step() -> anyhow::Result<()> {
         result.map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     }
     let [state, ground, length] = worst.into_inner();
-    // Relative to the largest coordinate of the root (up to 40 m here): measured 4.6e-7 on
-    // lavapipe (6 ulps of a 26 m coordinate: sqrt, division, sin and cos rounded differently
-    // from the CPU's, through the validation); limit 4x. A step that forgets the midpoint's
+    // Relative to the largest coordinate of the root (up to 40 m here): measured 5.4e-7 on
+    // lavapipe with this generator, 7.7e-7 at worst over earlier random seeds (a few ulps of
+    // the coordinate: sqrt, division, sin and cos rounded differently from the CPU's, through
+    // the validation); limit 2.6x the worst seen. A step that forgets the midpoint's
     // push is off by up to 0.3 of a blade's height (1e-3 of a 26 m coordinate and more).
     state.check("jahrmann simulate (relative to the coordinates)", 2e-6)?;
     // The tip is on or above the ground: the final check uses the same bilinear height the
     // CPU measures with (identical on both sides: `prelude_terrain_and_wind_lookups`).
     ground.check("jahrmann tip below the ground (m)", 0.0)?;
     // The paper's length estimate: `sim`'s property test measured 7.26 % at worst over
-    // 200 000 states; here measured 7.23 % over these 18 000 (the same worst case: a tip
+    // 200 000 states; here measured 7.19 % over these 18 000 (the same worst case: a tip
     // pushed down over its root).
     length.check("jahrmann curve length (relative)", 0.075)?;
     Ok(())
@@ -1225,7 +1230,7 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
     use grassbench_jahrmann::Params;
     use grassbench_jahrmann::cull::{self, CullSettings, Verdict};
     use proptest::prelude::*;
-    use proptest::test_runner::{Config, TestCaseError, TestRunner};
+    use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
     let gpu = gpu()?;
     let shader = compose(grassbench_jahrmann::SHADER);
     let body = "    let blade = u32(x.v[0].w);
@@ -1233,10 +1238,13 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
     let grass = grassbench::grass::GrassConfig::default();
     // Counted from inside the property runner's closure (a `Fn`).
     let tally = std::cell::Cell::new((0usize, 0usize, 0usize));
-    let mut runner = TestRunner::new(Config {
-        cases: 12,
-        ..Config::default()
-    });
+    let mut runner = TestRunner::new_with_rng(
+        Config {
+            cases: 12,
+            ..Config::default()
+        },
+        TestRng::deterministic_rng(RngAlgorithm::ChaCha),
+    );
     let result = runner.run(
         &(any::<u64>(), any::<[bool; 5]>()),
         |(seed, switches)| {
@@ -1250,6 +1258,7 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
                 cull_distance: rng.range(20.0, 300.0),
                 buckets: 1 + (rng.next_u64() % 12) as u32,
                 lod_distance: rng.range(0.0, 40.0),
+                tile_size: if rng.next_f32() < 0.3 { 0.0 } else { rng.range(1.0, 8.0) },
                 frustum_tolerance: rng.range(0.0, 0.5),
                 ..Params::default()
             };
@@ -1266,13 +1275,14 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
             let uniform = grassbench_jahrmann::gpu::uniform(&params, &grass, &camera, 0, 1);
             let planes = camera.frustum().planes;
             let s = CullSettings::of(&params);
-            // Blades on the ground around the eye, every kind of curve.
+            // Blades on the ground around the eye, half of them within 25 m, every kind of curve.
             let blades: Vec<(u32, Vec3, Vec3, Vec3, f32)> = (0..2000)
-                .map(|_| {
+                .map(|k| {
+                    let reach = if k % 2 == 0 { 25.0 } else { 150.0 };
                     let v0 = Vec3::new(
-                        eye.x + rng.range(-150.0, 150.0),
+                        eye.x + rng.range(-reach, reach),
                         rng.range(-2.0, 2.0),
-                        eye.z + rng.range(-150.0, 150.0),
+                        eye.z + rng.range(-reach, reach),
                     );
                     let h = rng.range(0.1, 1.0);
                     let v1 = v0 + Vec3::Y * h * rng.range(0.05, 1.1);
@@ -1325,11 +1335,11 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
     eprintln!(
         "jahrmann cull: {mismatches} of {compared} verdicts differ from the CPU's; {kept_in_view} blades in view and near"
     );
-    // Measured 0 of 24 000 on lavapipe (369 blades in view and near exercised the property):
+    // Measured 0 of 24 000 on lavapipe (1 255 blades in view and near exercised the property):
     // the tests compare distances and dot products that the random blades rarely put within
     // an ulp of a threshold; a few would be rounding, not a different test, hence 0.1 %.
     assert!(mismatches <= compared / 1000, "{mismatches} of {compared} verdicts differ");
-    assert!(kept_in_view > 100, "only {kept_in_view} blades exercised the property");
+    assert!(kept_in_view > 500, "only {kept_in_view} blades exercised the property");
     Ok(())
 }
 

@@ -10,7 +10,7 @@
 struct Params {
     // The frustum planes of this frame's camera, (n, d) with n·p + d >= 0 inside, normalised.
     planes: array<vec4<f32>, 6>,
-    // xyz: the eye (the frustum's apex); w: unused
+    // xyz: the eye (the frustum's apex); w: side of the tiles levels are chosen for (m; 0: per blade)
     eye: vec4<f32>,
     // rgb: root albedo; w: colour variation
     color_root: vec4<f32>,
@@ -95,6 +95,16 @@ fn edge_on(v0: vec3<f32>, orientation: f32) -> f32 {
         return 0.0;
     }
     return abs(dot(d / len, width_dir(orientation)));
+}
+
+// The distance that chooses a root's level: its tile's centre's (cull.rs's `level_distance`).
+fn level_distance(v0: vec3<f32>) -> f32 {
+    let tile = params.eye.w;
+    if (tile <= 0.0) {
+        return distance(v0, params.eye.xyz);
+    }
+    let centre = (floor(v0.xz / tile) + 0.5) * tile;
+    return distance(vec3(centre.x, v0.y, centre.y), params.eye.xyz);
 }
 
 // Where blades leave the near level.
@@ -258,7 +268,7 @@ fn cull(id: u32, v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, orientation: f32) 
     if (has(FLAG_DISTANCE) && ground_distance(v0) > distance_cutoff(id)) {
         return CULLED_DISTANCE;
     }
-    if (has(FLAG_LOD) && distance(v0, params.eye.xyz) >= far_start()) {
+    if (has(FLAG_LOD) && level_distance(v0) >= far_start()) {
         return select(REPRESENTED, FAR, survivor(id));
     }
     return NEAR;
@@ -299,7 +309,7 @@ fn cs_simulate(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id)
         atomicAdd(&wg_verdicts[verdict], 1u);
         if (verdict == NEAR) {
             slot = atomicAdd(&wg_near, 1u);
-            if (has(FLAG_LOD) && has(FLAG_TRANSITIONS) && distance(v0, params.eye.xyz) > params.lod.x) {
+            if (has(FLAG_LOD) && has(FLAG_TRANSITIONS) && level_distance(v0) > params.lod.x) {
                 atomicAdd(&wg_in_band, 1u);
             }
         } else if (verdict == FAR) {
@@ -403,7 +413,7 @@ fn band_weight(d: f32) -> f32 {
 fn width_scale(id: u32, v0: vec3<f32>, orientation: f32, far: bool) -> f32 {
     var scale = params.lod.z;
     if (!far) {
-        let b = band_weight(distance(v0, params.eye.xyz));
+        let b = band_weight(level_distance(v0));
         scale = select(1.0 - b, 1.0 + (params.lod.z - 1.0) * b, survivor(id));
     }
     if (has(FLAG_TRANSITIONS)) {
@@ -442,7 +452,7 @@ fn blade_vertex(id: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
     var p = strip_point(v0, v1, v2, side_axis, looks.y, looks.z, t);
     var morph = select(0.0, 1.0, far);
     if (!far) {
-        morph = band_weight(distance(v0, params.eye.xyz));
+        morph = band_weight(level_distance(v0));
         if (morph > 0.0) {
             let coarse = t * f32(FAR_SEGMENTS);
             let j = min(floor(coarse), f32(FAR_SEGMENTS - 1u));

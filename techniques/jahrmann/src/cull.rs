@@ -12,11 +12,13 @@
 //! - **distance**: blades fall into `n` buckets by a hash of their index; bucket `k` is kept
 //!   up to the ground distance `D_k = d_max·(1 − k/n)`, so the first `d_max / n` metres keep
 //!   every blade and density then falls by one bucket per `d_max / n` metres;
-//! - **level**: nearer than `lod_distance` (plus the hand-over band with transitions) a blade
-//!   is drawn at the near level; beyond, one blade in `far_keep` (by another hash) is drawn at
-//!   the far level, widened, and stands for the others, which are not drawn.
+//! - **level**: the ground is cut into square tiles of `tile_size` metres (Ghost of Tsushima
+//!   chooses levels per tile); a tile whose centre is nearer than `lod_distance` (plus the
+//!   hand-over band with transitions) draws its blades at the near level; beyond, one blade in
+//!   `far_keep` (by another hash) is drawn at the far level, widened, and stands for the
+//!   others, which are not drawn. A tile size of 0 chooses per blade, by its root.
 
-use grassbench::glam::{Vec3, Vec4};
+use grassbench::glam::{Vec2, Vec3, Vec4};
 use grassbench::rng::hash_u32;
 
 use crate::Params;
@@ -77,6 +79,8 @@ pub struct CullSettings {
     pub buckets: u32,
     /// Two levels on.
     pub lod: bool,
+    /// Side of the tiles levels are chosen for, m (0: per blade).
+    pub tile_size: f32,
     /// Where the far level begins, m.
     pub lod_distance: f32,
     /// One far blade in `far_keep` is drawn.
@@ -105,6 +109,7 @@ impl CullSettings {
             cull_distance: params.cull_distance,
             buckets: params.buckets,
             lod: params.lod,
+            tile_size: params.tile_size,
             lod_distance: params.lod_distance,
             far_keep: params.far_keep,
             transitions: params.transitions,
@@ -166,6 +171,16 @@ pub fn in_frustum(p: Vec3, planes: &[Vec4; 6], tolerance: f32) -> bool {
         .all(|pl| pl.truncate().dot(p) + pl.w >= -tolerance)
 }
 
+/// The distance from the eye that chooses a root's level: that of its tile's centre (at the
+/// root's height), or of the root itself when tiles are off.
+pub fn level_distance(v0: Vec3, eye: Vec3, tile_size: f32) -> f32 {
+    if tile_size <= 0.0 {
+        return v0.distance(eye);
+    }
+    let centre = ((Vec2::new(v0.x, v0.z) / tile_size).floor() + 0.5) * tile_size;
+    Vec3::new(centre.x, v0.y, centre.y).distance(eye)
+}
+
 /// The curve's midpoint the frustum test uses.
 pub fn midpoint(v0: Vec3, v1: Vec3, v2: Vec3) -> Vec3 {
     v0 * 0.25 + v1 * 0.5 + v2 * 0.25
@@ -195,7 +210,7 @@ pub fn verdict(
     if s.distance && ground_distance(v0, eye) > distance_cutoff(id, s) {
         return Verdict::Distance;
     }
-    if s.lod && v0.distance(eye) >= s.far_start() {
+    if s.lod && level_distance(v0, eye, s.tile_size) >= s.far_start() {
         return if survivor(id, s.far_keep) {
             Verdict::Far
         } else {
@@ -205,8 +220,9 @@ pub fn verdict(
     Verdict::Near
 }
 
-/// How far through the near-to-far band a root at `distance` from the eye is: 0 before it,
-/// 1 at its end (smoothstep); 0 everywhere without levels or transitions.
+/// How far through the near-to-far band a root whose level distance
+/// ([`level_distance`]) is `distance` is: 0 before it, 1 at its end (smoothstep); 0
+/// everywhere without levels or transitions.
 pub fn band_weight(distance: f32, s: &CullSettings) -> f32 {
     if !(s.lod && s.transitions) {
         return 0.0;
@@ -230,7 +246,7 @@ pub fn width_scale(id: u32, v0: Vec3, orientation: f32, eye: Vec3, far: bool, s:
     let mut scale = if far {
         s.far_widen
     } else {
-        let b = band_weight(v0.distance(eye), s);
+        let b = band_weight(level_distance(v0, eye, s.tile_size), s);
         if survivor(id, s.far_keep) {
             1.0 + (s.far_widen - 1.0) * b
         } else {
@@ -283,7 +299,11 @@ mod tests {
 
     #[test]
     fn the_band_hands_over_without_a_jump() {
-        let s = settings();
+        // Per blade (the tiles' hand-over is the same, a tile's blades at once).
+        let s = CullSettings {
+            tile_size: 0.0,
+            ..settings()
+        };
         let eye = Vec3::ZERO;
         let orientation = 0.0;
         // Just before the far level: near-level survivors are as wide as far-level ones, the
@@ -308,6 +328,20 @@ mod tests {
             ..s
         };
         assert_eq!(width_scale(3, v0, orientation, eye, false, &hard), 1.0);
+    }
+
+    #[test]
+    fn a_tiles_blades_change_level_together() {
+        let s = settings();
+        let eye = Vec3::new(0.3, 1.6, -0.7);
+        // Two roots in one 4 m tile, one nearer than the far start and one beyond it by their
+        // own distances, share the tile centre's distance.
+        let tile = |x: f32, z: f32| level_distance(Vec3::new(x, 0.0, z), eye, s.tile_size);
+        assert_eq!(tile(16.1, 20.2), tile(19.9, 23.9));
+        assert!(Vec3::new(16.1, 0.0, 20.2).distance(eye) < 27.0);
+        assert!(Vec3::new(19.9, 0.0, 23.9).distance(eye) > 30.0);
+        // Without tiles, each root's own distance.
+        assert_eq!(level_distance(Vec3::new(3.0, 0.0, 4.0), Vec3::ZERO, 0.0), 5.0);
     }
 
     #[test]

@@ -47,7 +47,7 @@ pub mod flags {
 pub struct ParamsUniform {
     /// Frustum planes `(n, d)`, inside where `n·p + d ≥ 0`, normalised.
     pub planes: [[f32; 4]; 6],
-    /// The eye; w unused.
+    /// The eye; w: tile size (m).
     pub eye: [f32; 4],
     /// Root albedo; w: colour variation.
     pub color_root: [f32; 4],
@@ -86,7 +86,7 @@ pub fn uniform(
     .fold(0, |acc, (_, bit)| acc | bit);
     ParamsUniform {
         planes: camera.frustum().planes.map(|p| p.to_array()),
-        eye: camera.eye.extend(0.0).to_array(),
+        eye: camera.eye.extend(params.tile_size).to_array(),
         color_root: Vec3::from(grass.color_root)
             .extend(grass.color_variation)
             .to_array(),
@@ -360,15 +360,13 @@ impl BladeGpu {
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
     }
 
-    /// Records the frame: (after a reset, the rest pose into the tips read), the compute pass
-    /// reading copy `parity`, the counts' copy into `readback`, and the draws of both levels
-    /// (the far one only with `far`).
-    pub fn encode(
+    /// Records the frame's compute work: (after a reset, the rest pose into the tips read)
+    /// the compute pass reading copy `parity`, then the counts' copy into `readback`.
+    pub fn encode_compute(
         &self,
         encoder: &mut FrameEncoder<'_>,
         parity: usize,
         reset: bool,
-        far: bool,
         readback: &wgpu::Buffer,
     ) {
         if self.blades == 0 {
@@ -401,8 +399,16 @@ impl BladeGpu {
             0,
             GpuCounts::SIZE,
         );
+    }
+
+    /// Records the draws of the curves the compute pass of copy `parity` wrote: the near
+    /// level, and the far one with `far`, both with the GPU's counts as instance counts.
+    pub fn encode_draw(&self, encoder: &mut FrameEncoder<'_>, parity: usize, far: bool) {
+        if self.blades == 0 {
+            return;
+        }
         let mut pass = encoder.render_pass("blades");
-        pass.set_bind_group(1, &self.draw_groups[p], &[]);
+        pass.set_bind_group(1, &self.draw_groups[parity & 1], &[]);
         pass.set_pipeline(&self.near);
         pass.draw_indirect(&self.counters, GpuCounts::NEAR_ARGS);
         if far {

@@ -35,18 +35,22 @@
 //! - **Levels** (Ghost of Tsushima): no tessellation stage in wgpu, so the draws pull their
 //!   vertices: each visible blade is an instance of a triangle strip whose vertex count is
 //!   its level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the
-//!   curve at each vertex. Beyond `lod_distance` (+ the band) one blade in `far_keep` = 4 is
-//!   drawn, widened by `far_widen` so the survivors cover what the others covered; the others
-//!   are not drawn and count as stood for (`blades_represented`). Ghost of Tsushima makes
-//!   these choices per tile of generated blades; here blades are the scene's fixed population
-//!   (to compare with the reference), so the choice is per blade, by a hash of its index.
-//! - **Hand-overs** (with `transitions`, the default): over the band the near level's vertices
-//!   move onto the far level's 3-segment strip (a geomorph), the blades the far level drops
-//!   narrow to nothing and the survivors widen to `far_widen`, so the switch at the band's end
-//!   changes nothing on screen. Likewise each blade narrows to nothing over the last
-//!   `distance_fade` metres before the distance test drops it, and over the last
-//!   `orientation_fade` of `|view · width|` before the orientation test does. `no_transitions`
-//!   switches at once.
+//!   curve at each vertex. Levels are chosen per square ground tile of `tile_size` = 4 m, by
+//!   the distance of the tile's centre, so a tile's blades change level together as Ghost of
+//!   Tsushima's tiles do. Far tiles (beyond `lod_distance` + the band) draw one blade in
+//!   `far_keep` = 4, widened by `far_widen` = 4 so the survivors cover what the others covered
+//!   (for blades thinner than a pixel, coverage grows with width); the others are not drawn
+//!   and count as stood for (`blades_represented`). Ghost of Tsushima generates each tile's
+//!   blades in compute every frame (far tiles twice the size); here blades are the scene's
+//!   fixed population (to compare with the reference), so tiles only group the choice of
+//!   level, and which blades survive comes from a hash of the blade's index.
+//! - **Hand-overs** (with `transitions`, the default): over the band (5 m) the near level's
+//!   vertices move onto the far level's 3-segment strip (a geomorph), the blades the far level
+//!   drops narrow to nothing and the survivors widen to `far_widen`, so the switch at the
+//!   band's end changes nothing on screen. Likewise each blade narrows to nothing over the
+//!   last `distance_fade` metres before the distance test drops it, and over the last
+//!   `orientation_fade` of `|view · width|` before the orientation test does.
+//!   `no_transitions` switches at once.
 //! - **Shading**: `reference`'s: two-sided `shade_leaf` with the prelude's lights, colour from
 //!   root to tip with the blade's variation, ambient darkened towards the root, no shadows,
 //!   the shared fog.
@@ -73,8 +77,10 @@
 //! timed by wall clock only (lavapipe's compute timestamps are wrong: `shared/PLATFORM.md`).
 //!
 //! ## Known artifacts
-//! - The far level's widened blades are coarser: at the hand-over distance a blade four
-//!   times fewer and `far_widen` times wider shows as larger patches of colour.
+//! - The far level's widened blades are coarser: beyond the hand-over, four times fewer
+//!   blades four times wider show as larger patches of colour; inside the band, tile edges
+//!   show where neighbouring tiles stand at different stages of the hand-over (everywhere
+//!   between a near and a far tile without transitions).
 //! - Distance culling thins the far field without compensation (the paper's): far grass is
 //!   sparser and more of the ground shows through than in `reference`.
 //! - The draw list's order changes from frame to frame (atomics), so blades at exactly equal
@@ -104,11 +110,15 @@
 //!   off at once in the paper); off with `transitions = false`.
 //!
 //! ## Parameters
-//! See [`Params`]. Defaults: `stiffness` 30/s (a 33 ms response at stiffness 1: a frame at
-//! 30 fps), `gravity` 0.6, `wind_response` 1.44 (= 0.048 × 30), the paper's orientation
-//! threshold 0.9, a 0.1 m frustum tolerance, `cull_distance` 240 m in 8 buckets (the first 30 m
-//! keep every blade), the far level from 15 m with a 5 m band, one blade in 4 kept and widened
-//! 3x; the measurements behind them are in `results/jahrmann/README.md`.
+//! See [`Params`]. Defaults and where they come from: `stiffness` 30/s (a 33 ms response at
+//! stiffness 1: a frame at 30 fps), `gravity` 0.6 (a 2 cm droop), `wind_response` 1.44
+//! (= 0.048 × 30: the reference's bend for small winds); the paper's orientation threshold
+//! 0.9; a 0.1 m frustum tolerance (about a blade's width); `cull_distance` 240 m in 8 buckets
+//! (the first 30 m keep every blade: at 640x360 a blade there is under a pixel wide);
+//! `lod_distance` 15 m with a 5 m band (a 0.5 m blade is about 14 px tall at 15 m, where 3
+//! segments follow its curve); `far_widen` 4 = `far_keep`: measured against the reference on
+//! the comparison suite's meadow and prairie (coverage per screen tile), widening 2x leaves
+//! 0.031 / 0.035 of the tiles' coverage off, 3x 0.021 / 0.024, 4x 0.015 / 0.017.
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
@@ -219,6 +229,18 @@ impl Technique for Jahrmann {
 }
 
 impl Jahrmann {
+    /// Records only the frame's compute pass (simulation and culling) and the counts' copy,
+    /// as [`GrassTechnique::encode`] records them before its draws: for timing the compute
+    /// pass by wall clock (`benches/compute.rs`), lavapipe's compute timestamps being wrong.
+    pub fn encode_compute(&self, encoder: &mut FrameEncoder<'_>) {
+        self.gpu.encode_compute(
+            encoder,
+            self.parity,
+            self.reset,
+            self.readback.target(),
+        );
+    }
+
     /// The GPU's counts of the newest frame delivered, and how many frames old they are.
     fn counts(&self) -> (GpuCounts, u64) {
         self.readback.latest().unwrap_or_default()
@@ -263,13 +285,9 @@ impl GrassTechnique for Jahrmann {
     }
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
-        self.gpu.encode(
-            encoder,
-            self.parity,
-            self.reset,
-            self.params.lod,
-            self.readback.target(),
-        );
+        self.encode_compute(encoder);
+        self.gpu
+            .encode_draw(encoder, self.parity, self.params.lod);
     }
 
     fn stats(&self) -> TechniqueStats {

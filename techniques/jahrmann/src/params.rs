@@ -37,7 +37,10 @@ pub struct Params {
     pub buckets: u32,
     /// Two levels of detail (Ghost of Tsushima): 15 vertices a blade near, 7 far.
     pub lod: bool,
-    /// Distance from the eye where the far level begins, m.
+    /// Side of the square ground tiles whose blades change level together, m (Ghost of
+    /// Tsushima's tiles; 0 chooses each blade's level by its own root).
+    pub tile_size: f32,
+    /// Distance from the eye to a tile's centre where the far level begins, m.
     pub lod_distance: f32,
     /// The far level keeps one blade in `far_keep`.
     pub far_keep: u32,
@@ -73,9 +76,10 @@ impl Default for Params {
             cull_distance: 240.0,
             buckets: 8,
             lod: true,
+            tile_size: 4.0,
             lod_distance: 15.0,
             far_keep: 4,
-            far_widen: 3.0,
+            far_widen: 4.0,
             transitions: true,
             band: 5.0,
             distance_fade: 4.0,
@@ -98,6 +102,7 @@ impl TechniqueParams for Params {
         check("jahrmann.frustum_tolerance", self.frustum_tolerance, 0.0..=100.0)?;
         check("jahrmann.cull_distance", self.cull_distance, 1.0..=100_000.0)?;
         check_int("jahrmann.buckets", self.buckets, 1..=64)?;
+        check("jahrmann.tile_size", self.tile_size, 0.0..=1000.0)?;
         check("jahrmann.lod_distance", self.lod_distance, 0.0..=100_000.0)?;
         check_int("jahrmann.far_keep", self.far_keep, 1..=64)?;
         check("jahrmann.far_widen", self.far_widen, 0.1..=64.0)?;
