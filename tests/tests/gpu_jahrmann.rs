@@ -52,12 +52,23 @@ fn finest_matches_the_reference_per_pixel() -> anyhow::Result<()> {
     let mut other = meadow.config.clone();
     other.seed += 1;
     let other = Scene::from_config(other, meadow.base_dir.clone())?;
-    let r = compare::render(&gpu, &meadow, reference, &toml::Table::new(), FRAME, TEST_SIZE)?;
+    let r = compare::render(
+        &gpu,
+        &meadow,
+        reference,
+        &toml::Table::new(),
+        FRAME,
+        TEST_SIZE,
+    )?;
     let j = compare::render(&gpu, &other, jahrmann, &finest, FRAME, TEST_SIZE)?;
     let flip = compare::scores(&r, &j)?.flip_mean;
-    eprintln!("measured: jahrmann finest with another seed vs reference on the meadow: FLIP {flip:.4}");
+    eprintln!(
+        "measured: jahrmann finest with another seed vs reference on the meadow: FLIP {flip:.4}"
+    );
     if flip < OTHER_BLADES_FLIP {
-        failures.push(format!("another population scores only {flip:.4} on the meadow"));
+        failures.push(format!(
+            "another population scores only {flip:.4} on the meadow"
+        ));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     Ok(())

@@ -1245,91 +1245,107 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
         },
         TestRng::deterministic_rng(RngAlgorithm::ChaCha),
     );
-    let result = runner.run(
-        &(any::<u64>(), any::<[bool; 5]>()),
-        |(seed, switches)| {
-            let mut rng = grassbench::rng::Rng::new(seed);
-            let params = Params {
-                orientation_culling: switches[0],
-                frustum_culling: switches[1],
-                distance_culling: switches[2],
-                lod: switches[3],
-                transitions: switches[4],
-                cull_distance: rng.range(20.0, 300.0),
-                buckets: 1 + (rng.next_u64() % 12) as u32,
-                lod_distance: rng.range(0.0, 40.0),
-                tile_size: if rng.next_f32() < 0.3 { 0.0 } else { rng.range(1.0, 8.0) },
-                frustum_tolerance: rng.range(0.0, 0.5),
-                ..Params::default()
-            };
-            let eye = Vec3::new(rng.range(-50.0, 50.0), rng.range(0.5, 40.0), rng.range(-50.0, 50.0));
-            let forward = Vec3::new(rng.range(-1.0, 1.0), rng.range(-0.8, 0.3), rng.range(-1.0, 1.0));
-            let camera = Camera::look_at(
-                eye,
-                eye + forward,
-                rng.range(0.5, 1.3),
-                rng.range(0.05, 0.5),
-                rng.range(60.0, 400.0),
-                rng.range(1.0, 2.2),
-            );
-            let uniform = grassbench_jahrmann::gpu::uniform(&params, &grass, &camera, 0, 1);
-            let planes = camera.frustum().planes;
-            let s = CullSettings::of(&params);
-            // Blades on the ground around the eye, half of them within 25 m, every kind of curve.
-            let blades: Vec<(u32, Vec3, Vec3, Vec3, f32)> = (0..2000)
-                .map(|k| {
-                    let reach = if k % 2 == 0 { 25.0 } else { 150.0 };
-                    let v0 = Vec3::new(
-                        eye.x + rng.range(-reach, reach),
-                        rng.range(-2.0, 2.0),
-                        eye.z + rng.range(-reach, reach),
-                    );
-                    let h = rng.range(0.1, 1.0);
-                    let v1 = v0 + Vec3::Y * h * rng.range(0.05, 1.1);
-                    let v2 = v0 + Vec3::new(rng.range(-0.8, 0.8), rng.range(0.0, 1.0), rng.range(-0.8, 0.8)) * h;
-                    let id = (rng.next_u64() % (1 << 24)) as u32;
-                    (id, v0, v1, v2, rng.range(0.0, std::f32::consts::TAU))
-                })
-                .collect();
-            let inputs: Vec<[[f32; 4]; 3]> = blades
-                .iter()
-                .map(|(id, v0, v1, v2, o)| [v4(*v0, *id as f32), v4(*v1, *o), v4(*v2, 0.0)])
-                .collect();
-            let out: Vec<[[f32; 4]; 1]> = twin::map(
-                &gpu,
-                &shader,
-                body,
-                Bindings::new().uniform(1, 0, &uniform),
-                &inputs,
-            )
-            .map_err(|e| TestCaseError::fail(format!("{e:#}")))?;
-            let (mut mismatches, mut compared, mut kept_in_view) = tally.get();
-            for ((id, v0, v1, v2, o), g) in blades.iter().zip(&out) {
-                let gpu_verdict = Verdict::from_code(g[0][0] as u32);
-                prop_assert!(gpu_verdict.is_some(), "code {}", g[0][0]);
-                let cpu_verdict = cull::verdict(*id, (*v0, *v1, *v2), *o, camera.eye, &planes, &s);
-                compared += 1;
-                mismatches += usize::from(gpu_verdict != Some(cpu_verdict));
-                let m = cull::midpoint(*v0, *v1, *v2);
-                let frustum = camera.frustum();
-                let seen = frustum.contains_point(*v0) || frustum.contains_point(m) || frustum.contains_point(*v2);
-                let near = cull::ground_distance(*v0, camera.eye) < s.first_bucket();
-                if seen && near && gpu_verdict != Some(Verdict::Orientation) {
-                    kept_in_view += 1;
-                    prop_assert!(
-                        !matches!(gpu_verdict, Some(Verdict::Frustum | Verdict::Distance)),
-                        "blade {id} at {v0} in view and {:.1} m away culled: {gpu_verdict:?}",
-                        cull::ground_distance(*v0, camera.eye)
-                    );
-                }
-                if !params.orientation_culling {
-                    prop_assert!(gpu_verdict != Some(Verdict::Orientation));
-                }
+    let result = runner.run(&(any::<u64>(), any::<[bool; 5]>()), |(seed, switches)| {
+        let mut rng = grassbench::rng::Rng::new(seed);
+        let params = Params {
+            orientation_culling: switches[0],
+            frustum_culling: switches[1],
+            distance_culling: switches[2],
+            lod: switches[3],
+            transitions: switches[4],
+            cull_distance: rng.range(20.0, 300.0),
+            buckets: 1 + (rng.next_u64() % 12) as u32,
+            lod_distance: rng.range(0.0, 40.0),
+            tile_size: if rng.next_f32() < 0.3 {
+                0.0
+            } else {
+                rng.range(1.0, 8.0)
+            },
+            frustum_tolerance: rng.range(0.0, 0.5),
+            ..Params::default()
+        };
+        let eye = Vec3::new(
+            rng.range(-50.0, 50.0),
+            rng.range(0.5, 40.0),
+            rng.range(-50.0, 50.0),
+        );
+        let forward = Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-0.8, 0.3),
+            rng.range(-1.0, 1.0),
+        );
+        let camera = Camera::look_at(
+            eye,
+            eye + forward,
+            rng.range(0.5, 1.3),
+            rng.range(0.05, 0.5),
+            rng.range(60.0, 400.0),
+            rng.range(1.0, 2.2),
+        );
+        let uniform = grassbench_jahrmann::gpu::uniform(&params, &grass, &camera, 0, 1);
+        let planes = camera.frustum().planes;
+        let s = CullSettings::of(&params);
+        // Blades on the ground around the eye, half of them within 25 m, every kind of curve.
+        let blades: Vec<(u32, Vec3, Vec3, Vec3, f32)> = (0..2000)
+            .map(|k| {
+                let reach = if k % 2 == 0 { 25.0 } else { 150.0 };
+                let v0 = Vec3::new(
+                    eye.x + rng.range(-reach, reach),
+                    rng.range(-2.0, 2.0),
+                    eye.z + rng.range(-reach, reach),
+                );
+                let h = rng.range(0.1, 1.0);
+                let v1 = v0 + Vec3::Y * h * rng.range(0.05, 1.1);
+                let v2 = v0
+                    + Vec3::new(
+                        rng.range(-0.8, 0.8),
+                        rng.range(0.0, 1.0),
+                        rng.range(-0.8, 0.8),
+                    ) * h;
+                let id = (rng.next_u64() % (1 << 24)) as u32;
+                (id, v0, v1, v2, rng.range(0.0, std::f32::consts::TAU))
+            })
+            .collect();
+        let inputs: Vec<[[f32; 4]; 3]> = blades
+            .iter()
+            .map(|(id, v0, v1, v2, o)| [v4(*v0, *id as f32), v4(*v1, *o), v4(*v2, 0.0)])
+            .collect();
+        let out: Vec<[[f32; 4]; 1]> = twin::map(
+            &gpu,
+            &shader,
+            body,
+            Bindings::new().uniform(1, 0, &uniform),
+            &inputs,
+        )
+        .map_err(|e| TestCaseError::fail(format!("{e:#}")))?;
+        let (mut mismatches, mut compared, mut kept_in_view) = tally.get();
+        for ((id, v0, v1, v2, o), g) in blades.iter().zip(&out) {
+            let gpu_verdict = Verdict::from_code(g[0][0] as u32);
+            prop_assert!(gpu_verdict.is_some(), "code {}", g[0][0]);
+            let cpu_verdict = cull::verdict(*id, (*v0, *v1, *v2), *o, camera.eye, &planes, &s);
+            compared += 1;
+            mismatches += usize::from(gpu_verdict != Some(cpu_verdict));
+            let m = cull::midpoint(*v0, *v1, *v2);
+            let frustum = camera.frustum();
+            let seen = frustum.contains_point(*v0)
+                || frustum.contains_point(m)
+                || frustum.contains_point(*v2);
+            let near = cull::ground_distance(*v0, camera.eye) < s.first_bucket();
+            if seen && near && gpu_verdict != Some(Verdict::Orientation) {
+                kept_in_view += 1;
+                prop_assert!(
+                    !matches!(gpu_verdict, Some(Verdict::Frustum | Verdict::Distance)),
+                    "blade {id} at {v0} in view and {:.1} m away culled: {gpu_verdict:?}",
+                    cull::ground_distance(*v0, camera.eye)
+                );
             }
-            tally.set((mismatches, compared, kept_in_view));
-            Ok(())
-        },
-    );
+            if !params.orientation_culling {
+                prop_assert!(gpu_verdict != Some(Verdict::Orientation));
+            }
+        }
+        tally.set((mismatches, compared, kept_in_view));
+        Ok(())
+    });
     result.map_err(|e| anyhow::anyhow!("{e}"))?;
     let (mismatches, compared, kept_in_view) = tally.get();
     eprintln!(
@@ -1338,8 +1354,14 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
     // Measured 0 of 24 000 on lavapipe (1 255 blades in view and near exercised the property):
     // the tests compare distances and dot products that the random blades rarely put within
     // an ulp of a threshold; a few would be rounding, not a different test, hence 0.1 %.
-    assert!(mismatches <= compared / 1000, "{mismatches} of {compared} verdicts differ");
-    assert!(kept_in_view > 500, "only {kept_in_view} blades exercised the property");
+    assert!(
+        mismatches <= compared / 1000,
+        "{mismatches} of {compared} verdicts differ"
+    );
+    assert!(
+        kept_in_view > 500,
+        "only {kept_in_view} blades exercised the property"
+    );
     Ok(())
 }
 
@@ -1358,7 +1380,8 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
     let mut config = base.config.clone();
     let camera0 = base.camera_at(0, TEST_SIZE);
     // The sphere sits in the grass 6 m in front of the walker.
-    let ahead = camera0.eye + Vec3::new(camera0.forward.x, 0.0, camera0.forward.z).normalize() * 6.0;
+    let ahead =
+        camera0.eye + Vec3::new(camera0.forward.x, 0.0, camera0.forward.z).normalize() * 6.0;
     config.object = Some(grassbench::object::ObjectConfig {
         radius: 1.5,
         height: 0.6,
@@ -1386,7 +1409,8 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
     let arrays = BladeArrays::new(&blades);
     let n = arrays.len();
     let (gx, gy) = grassbench_jahrmann::gpu::workgroups(n as u32, 65_535);
-    let uniform = grassbench_jahrmann::gpu::uniform(&params, &meadow.config.grass, &camera, n as u32, gx);
+    let uniform =
+        grassbench_jahrmann::gpu::uniform(&params, &meadow.config.grass, &camera, n as u32, gx);
     let bindings = Bindings::new()
         .scene(&scene_gpu)
         .uniform(1, 0, &uniform)
@@ -1412,20 +1436,36 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
     let s = CullSettings::of(&params);
     let mut state = Worst::default();
     let mut expected = [0u32; 6];
-    let (mut near, mut far) = (std::collections::BTreeSet::new(), std::collections::BTreeSet::new());
+    let (mut near, mut far) = (
+        std::collections::BTreeSet::new(),
+        std::collections::BTreeSet::new(),
+    );
     let mut pushed = 0;
     for i in 0..n {
         let b = arrays.rest_of(i).expect("in range");
-        let clamped = Vec2::new(b.v0.x, b.v0.z).clamp(terrain.min_corner(), terrain.min_corner() + terrain.size());
+        let clamped = Vec2::new(b.v0.x, b.v0.z)
+            .clamp(terrain.min_corner(), terrain.min_corner() + terrain.size());
         let wind = field.velocity(Vec3::new(clamped.x, 0.0, clamped.y), 0.0);
-        let c = sim::step(&b, b.rest_tip, wind, sphere, dt, &forces, |p| terrain.height_at(p));
-        let calm = sim::step(&b, b.rest_tip, wind, Vec4::ZERO, dt, &forces, |p| terrain.height_at(p));
+        let c = sim::step(&b, b.rest_tip, wind, sphere, dt, &forces, |p| {
+            terrain.height_at(p)
+        });
+        let calm = sim::step(&b, b.rest_tip, wind, Vec4::ZERO, dt, &forces, |p| {
+            terrain.height_at(p)
+        });
         pushed += usize::from(c.v2.distance(calm.v2) > 0.05 * b.height);
         let (g1, g2) = (Vec3::from_slice(&v1s[i]), Vec3::from_slice(&v2s[i]));
-        state.record(g1.distance(c.v1).max(g2.distance(c.v2)) / b.v0.abs().max_element().max(1.0), || {
-            format!("blade {i}: GPU {g1} {g2} CPU {} {}", c.v1, c.v2)
-        });
-        let v = cull::verdict(i as u32, (b.v0, c.v1, c.v2), b.orientation, camera.eye, &camera.frustum().planes, &s);
+        state.record(
+            g1.distance(c.v1).max(g2.distance(c.v2)) / b.v0.abs().max_element().max(1.0),
+            || format!("blade {i}: GPU {g1} {g2} CPU {} {}", c.v1, c.v2),
+        );
+        let v = cull::verdict(
+            i as u32,
+            (b.v0, c.v1, c.v2),
+            b.orientation,
+            camera.eye,
+            &camera.frustum().planes,
+            &s,
+        );
         expected[v as usize] += 1;
         match v {
             Verdict::Near => near.insert(i as u32),
@@ -1435,31 +1475,53 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
     }
     // The same measure as `jahrmann_simulate_is_sim_step`, here with the wind sampled by the
     // pass itself (an affine wind, which the texture gives back to 1e-6 m/s): measured 2.0e-7.
-    state.check("jahrmann cs_simulate state (relative to the coordinates)", 2e-6)?;
+    state.check(
+        "jahrmann cs_simulate state (relative to the coordinates)",
+        2e-6,
+    )?;
     // Measured 24 blades pushed more than 5 % of their height by the sphere.
-    assert!(pushed >= 10, "the sphere pushed only {pushed} blades: collision not exercised");
+    assert!(
+        pushed >= 10,
+        "the sphere pushed only {pushed} blades: collision not exercised"
+    );
     let near_count = counts.near[1] as usize;
     let far_count = counts.far[1] as usize;
     assert_eq!((counts.near[0], counts.far[0]), (15, 7), "vertex counts");
     assert_eq!(counts.considered(), n as u64);
     let gpu_near: std::collections::BTreeSet<u32> = visible[..near_count].iter().copied().collect();
-    let gpu_far: std::collections::BTreeSet<u32> = visible[n - far_count..].iter().copied().collect();
-    assert_eq!(gpu_near.len(), near_count, "a blade listed twice at the near level");
-    assert_eq!(gpu_far.len(), far_count, "a blade listed twice at the far level");
+    let gpu_far: std::collections::BTreeSet<u32> =
+        visible[n - far_count..].iter().copied().collect();
+    assert_eq!(
+        gpu_near.len(),
+        near_count,
+        "a blade listed twice at the near level"
+    );
+    assert_eq!(
+        gpu_far.len(),
+        far_count,
+        "a blade listed twice at the far level"
+    );
     assert_eq!(counts.of(Verdict::Near) as usize, near_count);
     assert_eq!(counts.of(Verdict::Far) as usize, far_count);
     // Verdicts on curves equal to rounding: measured identical lists and counts on lavapipe
     // (17 350 blades: 685 near, 1 249 far, 3 731 stood for, 4 802 / 6 087 / 796 culled by
     // orientation / frustum / distance); a blade whose midpoint sits within rounding of a
     // frustum plane could move between lists, so 0.1 % is allowed for rounding.
-    let differ = gpu_near.symmetric_difference(&near).count() + gpu_far.symmetric_difference(&far).count();
+    let differ =
+        gpu_near.symmetric_difference(&near).count() + gpu_far.symmetric_difference(&far).count();
     eprintln!(
         "jahrmann cs_simulate: {n} blades, near {near_count} far {far_count}, GPU verdicts {:?} CPU {expected:?}, {differ} listed differently, {pushed} pushed by the sphere",
         counts.verdicts
     );
-    assert!(differ <= n / 1000, "{differ} blades listed differently from the CPU's verdicts");
+    assert!(
+        differ <= n / 1000,
+        "{differ} blades listed differently from the CPU's verdicts"
+    );
     for (k, (&g, &c)) in counts.verdicts.iter().zip(&expected).enumerate() {
-        assert!(g.abs_diff(c) as usize <= n / 1000, "verdict {k}: GPU {g}, CPU {c}");
+        assert!(
+            g.abs_diff(c) as usize <= n / 1000,
+            "verdict {k}: GPU {g}, CPU {c}"
+        );
     }
     Ok(())
 }

@@ -76,7 +76,11 @@ pub fn rest_tip(blade: &Blade) -> Vec3 {
     let lean = blade.lean.y * Vec2::new(blade.lean.x.cos(), blade.lean.x.sin());
     let amount = lean.length();
     let bend = amount.min(REFERENCE_MAX_BEND);
-    let dir2 = if amount > 1e-5 { lean / amount } else { Vec2::X };
+    let dir2 = if amount > 1e-5 {
+        lean / amount
+    } else {
+        Vec2::X
+    };
     let dir = Vec3::new(dir2.x, 0.0, dir2.y);
     let n = REFERENCE_SEGMENTS;
     let seg = blade.height / n as f32;

@@ -178,8 +178,10 @@ mod tests {
             GpuCounts::FAR_ARGS as usize,
             std::mem::size_of::<wgpu::util::DrawIndirectArgs>()
         );
-        let mut c = GpuCounts::default();
-        c.verdicts = [5, 4, 3, 2, 1, 0];
+        let c = GpuCounts {
+            verdicts: [5, 4, 3, 2, 1, 0],
+            ..Default::default()
+        };
         assert_eq!(c.of(Verdict::Represented), 3);
         assert_eq!(c.considered(), 15);
     }

@@ -138,7 +138,7 @@ pub fn bucket(id: u32, buckets: u32) -> u32 {
 
 /// Whether blade `id` is one the far level keeps.
 pub fn survivor(id: u32, far_keep: u32) -> bool {
-    hash_u32(id ^ SURVIVOR_SALT) % far_keep.max(1) == 0
+    hash_u32(id ^ SURVIVOR_SALT).is_multiple_of(far_keep.max(1))
 }
 
 /// Ground distance up to which the distance test keeps blade `id`, m.
@@ -202,7 +202,9 @@ pub fn verdict(
     if s.frustum {
         let tol = s.frustum_tolerance;
         let m = midpoint(v0, v1, v2);
-        if !(in_frustum(v0, planes, tol) || in_frustum(m, planes, tol) || in_frustum(v2, planes, tol))
+        if !(in_frustum(v0, planes, tol)
+            || in_frustum(m, planes, tol)
+            || in_frustum(v2, planes, tol))
         {
             return Verdict::Frustum;
         }
@@ -242,7 +244,14 @@ pub fn smoothstep(low: f32, high: f32, x: f32) -> f32 {
 /// The factor on blade `id`'s width as drawn at the near level (`far = false`) or the far
 /// level: the survivors widen and the others narrow across the band, and with transitions
 /// every blade narrows to nothing before the distance or orientation test drops it.
-pub fn width_scale(id: u32, v0: Vec3, orientation: f32, eye: Vec3, far: bool, s: &CullSettings) -> f32 {
+pub fn width_scale(
+    id: u32,
+    v0: Vec3,
+    orientation: f32,
+    eye: Vec3,
+    far: bool,
+    s: &CullSettings,
+) -> f32 {
     let mut scale = if far {
         s.far_widen
     } else {
@@ -341,13 +350,23 @@ mod tests {
         assert!(Vec3::new(16.1, 0.0, 20.2).distance(eye) < 27.0);
         assert!(Vec3::new(19.9, 0.0, 23.9).distance(eye) > 30.0);
         // Without tiles, each root's own distance.
-        assert_eq!(level_distance(Vec3::new(3.0, 0.0, 4.0), Vec3::ZERO, 0.0), 5.0);
+        assert_eq!(
+            level_distance(Vec3::new(3.0, 0.0, 4.0), Vec3::ZERO, 0.0),
+            5.0
+        );
     }
 
     #[test]
     fn verdicts_follow_the_tests_in_order() {
         let s = settings();
-        let camera = Camera::look_at(Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, 0.0, 10.0), 1.0, 0.1, 500.0, 1.6);
+        let camera = Camera::look_at(
+            Vec3::new(0.0, 2.0, 0.0),
+            Vec3::new(0.0, 0.0, 10.0),
+            1.0,
+            0.1,
+            500.0,
+            1.6,
+        );
         let planes = camera.frustum().planes;
         let eye = camera.eye;
         let curve = |x: f32, z: f32| {
@@ -356,16 +375,25 @@ mod tests {
         };
         // Width across the view (orientation 0: along x), ahead, near: drawn near.
         let along_view = std::f32::consts::FRAC_PI_2;
-        assert_eq!(verdict(1, curve(0.0, 5.0), 0.0, eye, &planes, &s), Verdict::Near);
+        assert_eq!(
+            verdict(1, curve(0.0, 5.0), 0.0, eye, &planes, &s),
+            Verdict::Near
+        );
         // Edge-on (width along the view): culled by orientation first, even if behind.
         assert_eq!(
             verdict(1, curve(0.0, 5.0), along_view, eye, &planes, &s),
             Verdict::Orientation
         );
         // Behind the eye: frustum.
-        assert_eq!(verdict(1, curve(0.0, -5.0), 0.0, eye, &planes, &s), Verdict::Frustum);
+        assert_eq!(
+            verdict(1, curve(0.0, -5.0), 0.0, eye, &planes, &s),
+            Verdict::Frustum
+        );
         // Beyond d_max ahead: distance.
-        assert_eq!(verdict(1, curve(0.0, 300.0), 0.0, eye, &planes, &s), Verdict::Distance);
+        assert_eq!(
+            verdict(1, curve(0.0, 300.0), 0.0, eye, &planes, &s),
+            Verdict::Distance
+        );
         // Beyond the band: far level or represented, depending on the blade.
         let far: Vec<_> = (0..32)
             .map(|id| verdict(id, curve(0.0, 25.0), 0.0, eye, &planes, &s))
@@ -380,7 +408,10 @@ mod tests {
             ..s
         };
         for (x, z) in [(0.0, -5.0), (0.0, 300.0), (100.0, 25.0)] {
-            assert_eq!(verdict(7, curve(x, z), along_view, eye, &planes, &off), Verdict::Near);
+            assert_eq!(
+                verdict(7, curve(x, z), along_view, eye, &planes, &off),
+                Verdict::Near
+            );
         }
     }
 }

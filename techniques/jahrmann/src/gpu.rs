@@ -310,10 +310,11 @@ impl BladeGpu {
         let module = shaders::module(device, "jahrmann", SHADER);
         let simulate = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("jahrmann simulate"),
-            layout: Some(
-                &ctx.scene_gpu
-                    .pipeline_layout(device, "jahrmann simulate", &[&simulate_layout]),
-            ),
+            layout: Some(&ctx.scene_gpu.pipeline_layout(
+                device,
+                "jahrmann simulate",
+                &[&simulate_layout],
+            )),
             module: &module,
             entry_point: Some("cs_simulate"),
             compilation_options: Default::default(),

@@ -233,12 +233,8 @@ impl Jahrmann {
     /// as [`GrassTechnique::encode`] records them before its draws: for timing the compute
     /// pass by wall clock (`benches/compute.rs`), lavapipe's compute timestamps being wrong.
     pub fn encode_compute(&self, encoder: &mut FrameEncoder<'_>) {
-        self.gpu.encode_compute(
-            encoder,
-            self.parity,
-            self.reset,
-            self.readback.target(),
-        );
+        self.gpu
+            .encode_compute(encoder, self.parity, self.reset, self.readback.target());
     }
 
     /// The GPU's counts of the newest frame delivered, and how many frames old they are.
@@ -286,8 +282,7 @@ impl GrassTechnique for Jahrmann {
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         self.encode_compute(encoder);
-        self.gpu
-            .encode_draw(encoder, self.parity, self.params.lod);
+        self.gpu.encode_draw(encoder, self.parity, self.params.lod);
     }
 
     fn stats(&self) -> TechniqueStats {

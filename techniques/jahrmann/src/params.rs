@@ -99,8 +99,16 @@ impl TechniqueParams for Params {
             self.orientation_threshold,
             0.0..=1.0,
         )?;
-        check("jahrmann.frustum_tolerance", self.frustum_tolerance, 0.0..=100.0)?;
-        check("jahrmann.cull_distance", self.cull_distance, 1.0..=100_000.0)?;
+        check(
+            "jahrmann.frustum_tolerance",
+            self.frustum_tolerance,
+            0.0..=100.0,
+        )?;
+        check(
+            "jahrmann.cull_distance",
+            self.cull_distance,
+            1.0..=100_000.0,
+        )?;
         check_int("jahrmann.buckets", self.buckets, 1..=64)?;
         check("jahrmann.tile_size", self.tile_size, 0.0..=1000.0)?;
         check("jahrmann.lod_distance", self.lod_distance, 0.0..=100_000.0)?;
@@ -108,7 +116,11 @@ impl TechniqueParams for Params {
         check("jahrmann.far_widen", self.far_widen, 0.1..=64.0)?;
         check("jahrmann.band", self.band, 0.0..=10_000.0)?;
         check("jahrmann.distance_fade", self.distance_fade, 0.0..=10_000.0)?;
-        check("jahrmann.orientation_fade", self.orientation_fade, 0.0..=1.0)?;
+        check(
+            "jahrmann.orientation_fade",
+            self.orientation_fade,
+            0.0..=1.0,
+        )?;
         check("jahrmann.translucency", self.translucency, 0.0..=1.0)
     }
 }

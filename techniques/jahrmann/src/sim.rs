@@ -97,8 +97,8 @@ pub fn wind_force(blade: &BladeRest, v2: Vec3, wind: Vec3, forces: &Forces) -> V
 pub fn apply_forces(blade: &BladeRest, v2: Vec3, wind: Vec3, forces: &Forces, dt: f32) -> Vec3 {
     let s = forces.recovery * blade.stiffness;
     let g_e = Vec3::new(0.0, -forces.gravity, 0.0);
-    let g_f = front_dir(blade.orientation, blade.rest_tip - blade.v0)
-        * (FRONT_GRAVITY * forces.gravity);
+    let g_f =
+        front_dir(blade.orientation, blade.rest_tip - blade.v0) * (FRONT_GRAVITY * forces.gravity);
     let w = wind_force(blade, v2, wind, forces);
     (v2 + (blade.rest_tip * s + g_e + g_f + w) * dt) / (1.0 + s * dt)
 }
