@@ -8,7 +8,7 @@
 //! wait for the GPU comes next (the harness waits for every frame), so `stats()` after frame
 //! `f` reports frame `f − 1`'s counts, and the counts of frame `f` are never read during frame
 //! `f` (no read-back in the frame: the draws take their counts from the GPU directly). A
-//! driver that keeps frames in flight would see them later still; [`Readback::lag`] says how
+//! driver that keeps frames in flight would see them later still; [`Readback::latest`] says how
 //! many frames old the reported counts are, and `counters()` reports it beside them.
 
 use std::sync::Arc;

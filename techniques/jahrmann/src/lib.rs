@@ -3,21 +3,27 @@
 //! Jahrmann and Wimmer 2017, *Responsive Real-Time Grass Rendering for General 3D Scenes*
 //! (I3D), the modern baseline: every blade is simulated, culled and drawn on the GPU, the CPU
 //! does no per-blade work, and nothing is read back within a frame. Its level of detail
-//! follows Sucker Punch's GDC 2021 talk on Ghost of Tsushima's procedural grass. Where each
-//! step comes from: `shared/ANCHORS.md` (what is publicly known of both) and, for the paper's
-//! formulas, the CIS 565 "Vulkan Grass Rendering" course description of the paper
-//! (`CIS5650-Fall-2024/Project5-Vulkan-Grass-Rendering`, `INSTRUCTION.md`), whose section
-//! numbers (5.2 for the validation) are used below; the paper itself was not in the corpus.
+//! follows Sucker Punch's GDC 2021 talk on Ghost of Tsushima's procedural grass. The paper
+//! itself was not in the corpus; each step below names the description it follows:
+//! - (A) `shared/ANCHORS.md`, what is publicly known of the paper and the talk;
+//! - (C) the CIS 565 "Vulkan Grass Rendering" course description of the paper
+//!   (`CIS5650-Fall-2024/Project5-Vulkan-Grass-Rendering`, `INSTRUCTION.md`): the four
+//!   `vec4`s, `g_E`, `g_F = ¼·|g_E|·f`, `r = (I_v2 − v2)·s`, the translation `(r + g + w)·Δt`,
+//!   the frustum test's three points, and the section number 5.2 for the validation;
+//! - (R) a CIS 565 re-implementation's description (`rmurdock41/Project5-Vulkan-Grass-Rendering`,
+//!   `README.md`): the wind's directional alignment `1 − |ŵ·(v2 − v0)/|v2 − v0||` and height
+//!   ratio `(v2 − v0)·up / h`, and the length estimate `L = (2·L0 + L1) / 3`.
 //!
 //! ## Algorithm, step by step
-//! - **Blades** ([`blades`]): the scene's population from `grassbench::grass::BladeField`, the
-//!   module `reference` draws, in the same order, so with culling and levels off every blade
+//! - **Blades** ([`blades`]; (A), (C)): the scene's population from
+//!   `grassbench::grass::BladeField`, the module `reference` draws, in the same order, so with culling and levels off every blade
 //!   stands where the reference's stands. A blade is the paper's quadratic Bezier curve: root
 //!   `v0`, guide `v1`, tip `v2` where forces act, with orientation, height, width and
 //!   stiffness (the paper's four `vec4`s: `v0`+orientation, `v1`+height, `v2`+width,
 //!   `up`+stiffness; here stored as arrays of `vec4` — structure of arrays, so no binding
 //!   passes the adapter's storage-binding limit — with the simulated `v1`, `v2` kept twice).
-//! - **Simulation** ([`sim`], the shader's `simulate`), every frame for every blade in one
+//! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R),
+//!   validation (C) Sec. 5.2 with (R)'s length estimate), every frame for every blade in one
 //!   compute pass, `dt` from the frame inputs (the frame globals): recovery towards the rest
 //!   pose by the stiffness (Hooke), gravity (environmental plus the front gravity ¼·|g|·f),
 //!   wind sampled on the GPU from the scene's wind texture (`wind_at`: every wind model of the
@@ -26,13 +32,13 @@
 //!   scene's moving sphere (`globals.object`: tip and midpoint pushed out); then the paper's
 //!   validation (Sec. 5.2): tip above the ground, `v1` placed from the tip's projection, the
 //!   curve rescaled to keep its length. [`sim`]'s docs give every formula.
-//! - **Culling** ([`cull`], the shader's `cull`), in the same pass: orientation (seen
+//! - **Culling** ([`cull`], the shader's `cull`; (A), (C)), in the same pass: orientation (seen
 //!   edge-on, `|view · width| > 0.9`), view frustum (`v0`, the midpoint and `v2`, with a
 //!   tolerance), distance (buckets by a hash of the blade: density falls by one bucket per
 //!   `d_max / n` metres). Survivors are appended to a draw list with atomics, one global
 //!   atomic per workgroup and level; the two counts are the instance counts of the two
 //!   `draw_indirect` calls: no read-back.
-//! - **Levels** (Ghost of Tsushima): no tessellation stage in wgpu, so the draws pull their
+//! - **Levels** (Ghost of Tsushima, (A)): no tessellation stage in wgpu, so the draws pull their
 //!   vertices: each visible blade is an instance of a triangle strip whose vertex count is
 //!   its level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the
 //!   curve at each vertex. Levels are chosen per square ground tile of `tile_size` = 4 m, by
@@ -44,7 +50,8 @@
 //!   blades in compute every frame (far tiles twice the size); here blades are the scene's
 //!   fixed population (to compare with the reference), so tiles only group the choice of
 //!   level, and which blades survive comes from a hash of the blade's index.
-//! - **Hand-overs** (with `transitions`, the default): over the band (5 m) the near level's
+//! - **Hand-overs** ((A): shapes "blended across the hand-over to hide popping"; the geomorph
+//!   and the fades are this crate's; with `transitions`, the default): over the band (5 m) the near level's
 //!   vertices move onto the far level's 3-segment strip (a geomorph), the blades the far level
 //!   drops narrow to nothing and the survivors widen to `far_widen`, so the switch at the
 //!   band's end changes nothing on screen. Likewise each blade narrows to nothing over the
@@ -108,8 +115,13 @@
 //!   angles depend on stiffness as `reference`'s do; `wind_response` defaults to what gives the
 //!   reference's bend for small winds (`0.12 rad per m/s`, tip displacement `≈ 0.048·h·v /
 //!   stiffness`).
-//! - No collision force map: the paper keeps a decaying collision strength per blade; here
-//!   the sphere pushes the tip out each frame and the recovery brings it back.
+//! - Collisions have no memory: the sphere pushes the tip (and midpoint) out each frame and
+//!   the recovery brings the blade back as soon as it has passed. (A) says only that
+//!   collisions push `v2` and the midpoint out; any lasting trampling the paper adds is not
+//!   reproduced.
+//! - A tip pushed within half the blade's height of its root is moved out along the ground
+//!   first ([`sim::keep_chord`]), so the blade folds over instead of into a hairpin, whose
+//!   length the paper's estimate gets 50 % wrong.
 //! - Distance buckets and the far level's survivors come from hashes of the blade's index
 //!   (the paper uses the index modulo `n`, which stripes a field generated row by row).
 //! - Hand-over blending for the paper's distance and orientation tests (they switch blades
