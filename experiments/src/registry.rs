@@ -11,6 +11,7 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
     grassbench_boulanger::ENTRY,
     grassbench_bakay::ENTRY,
     grassbench_perbet::ENTRY,
+    grassbench_jahrmann::ENTRY,
 ];
 
 /// The entry with id `id`.

@@ -121,6 +121,17 @@ fn thresholds(id: &str) -> Thresholds {
             cross_coverage: 0.07,
             ..Default::default()
         },
+        // jahrmann (GPU culling; levels per 4 m tile, the far level from 15 m keeping one blade
+        // in four, widened 4x, blended over 5 m): LOD FLIP 0.020 / 0.008 / 0.031 against its
+        // finest (culling and levels off); FLIP 1/16 0.044 / 0.005 / 0.013, coverage per tile
+        // 0.015 / 0.002 / 0.017 (the reference's blades drawn by another blade model; distance
+        // culling thins the prairie's far field).
+        "jahrmann" => Thresholds {
+            lod_flip: 0.038,
+            cross_flip_sixteenth: 0.055,
+            cross_coverage: 0.022,
+            ..Default::default()
+        },
         _ => Thresholds::default(),
     }
 }

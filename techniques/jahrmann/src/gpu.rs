@@ -1,0 +1,473 @@
+//! What the technique keeps on the GPU: the blade arrays, two copies of the simulated curve
+//! (read one frame, written the next), the draw list, the counters that are also the two
+//! indirect draws, the uniform; the compute pipeline and the two draw pipelines; and the
+//! frame's commands.
+
+use grassbench::camera::Camera;
+use grassbench::glam::Vec3;
+use grassbench::grass::GrassConfig;
+use grassbench::wgpu::util::DeviceExt as _;
+use grassbench::{Error, FrameEncoder, InitContext, Result, bytemuck, shaders, wgpu};
+
+use crate::Params;
+use crate::blades::BladeArrays;
+use crate::counts::GpuCounts;
+use crate::sim::FRONT_GRAVITY;
+
+/// The shader (without the prelude): `cs_simulate`, `vs_near`, `vs_far`, `fs_blade`.
+pub const SHADER: &str = include_str!("../shaders/jahrmann.wgsl");
+
+/// Invocations per workgroup of `cs_simulate`.
+pub const WORKGROUP: u32 = 64;
+
+/// Bytes of one blade's entry in each per-blade array (`vec4<f32>`).
+const ENTRY: u64 = 16;
+/// Per-blade arrays of `ENTRY` bytes: v0, rest, looks, and two copies each of v1 and v2.
+const ARRAYS: u64 = 7;
+/// Bytes of one entry of the draw list.
+const VISIBLE_ENTRY: u64 = 4;
+
+/// Bit switches of `ParamsUniform::flags[0]` (the shader's `FLAG_*`).
+pub mod flags {
+    /// Orientation test.
+    pub const ORIENTATION: u32 = 1;
+    /// Frustum test.
+    pub const FRUSTUM: u32 = 2;
+    /// Distance test.
+    pub const DISTANCE: u32 = 4;
+    /// Two levels.
+    pub const LOD: u32 = 8;
+    /// Blended hand-overs.
+    pub const TRANSITIONS: u32 = 16;
+}
+
+/// Mirror of the shader's `Params` uniform.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ParamsUniform {
+    /// Frustum planes `(n, d)`, inside where `n·p + d ≥ 0`, normalised.
+    pub planes: [[f32; 4]; 6],
+    /// The eye; w: tile size (m).
+    pub eye: [f32; 4],
+    /// Root albedo; w: colour variation.
+    pub color_root: [f32; 4],
+    /// Tip albedo; w: translucency.
+    pub color_tip: [f32; 4],
+    /// Recovery, gravity, wind response, front gravity share.
+    pub forces: [f32; 4],
+    /// Orientation threshold, frustum tolerance, cull distance, distance fade.
+    pub cull: [f32; 4],
+    /// LOD distance, band, far widening, orientation fade.
+    pub lod: [f32; 4],
+    /// Switches ([`flags`]), distance buckets, far keep, unused.
+    pub flags: [u32; 4],
+    /// Blades, workgroups along x, unused, unused.
+    pub counts: [u32; 4],
+}
+
+/// The uniform for `params` on a scene with grass `grass`, seen by `camera`, over `blades`
+/// blades dispatched with `groups_x` workgroups along x.
+pub fn uniform(
+    params: &Params,
+    grass: &GrassConfig,
+    camera: &Camera,
+    blades: u32,
+    groups_x: u32,
+) -> ParamsUniform {
+    let switches = [
+        (params.orientation_culling, flags::ORIENTATION),
+        (params.frustum_culling, flags::FRUSTUM),
+        (params.distance_culling, flags::DISTANCE),
+        (params.lod, flags::LOD),
+        (params.transitions, flags::TRANSITIONS),
+    ]
+    .iter()
+    .filter(|(on, _)| *on)
+    .fold(0, |acc, (_, bit)| acc | bit);
+    ParamsUniform {
+        planes: camera.frustum().planes.map(|p| p.to_array()),
+        eye: camera.eye.extend(params.tile_size).to_array(),
+        color_root: Vec3::from(grass.color_root)
+            .extend(grass.color_variation)
+            .to_array(),
+        color_tip: Vec3::from(grass.color_tip)
+            .extend(params.translucency)
+            .to_array(),
+        forces: [
+            params.stiffness,
+            params.gravity,
+            params.wind_response,
+            FRONT_GRAVITY,
+        ],
+        cull: [
+            params.orientation_threshold,
+            params.frustum_tolerance,
+            params.cull_distance,
+            params.distance_fade,
+        ],
+        lod: [
+            params.lod_distance,
+            params.band,
+            params.far_widen,
+            params.orientation_fade,
+        ],
+        flags: [switches, params.buckets, params.far_keep, 0],
+        counts: [blades, groups_x, 0, 0],
+    }
+}
+
+/// Workgroups of `cs_simulate` for `blades` blades: `(x, y)` with `x` within the adapter's
+/// per-dimension limit.
+pub fn workgroups(blades: u32, max_per_dimension: u32) -> (u32, u32) {
+    let groups = blades.div_ceil(WORKGROUP);
+    let x = groups.clamp(1, max_per_dimension.max(1));
+    (x, groups.div_ceil(x))
+}
+
+/// GPU memory for `blades` blades, bytes: the per-blade arrays and draw list, and the
+/// per-frame blocks (uniform, counters, read-back ring).
+pub fn bytes(blades: u64) -> u64 {
+    blades.max(1) * (ENTRY * ARRAYS + VISIBLE_ENTRY)
+        + std::mem::size_of::<ParamsUniform>() as u64
+        + GpuCounts::SIZE
+        + crate::counts::Readback::bytes()
+}
+
+/// The largest single buffer for `blades` blades, bytes.
+pub fn largest_buffer(blades: u64) -> u64 {
+    blades.max(1) * ENTRY
+}
+
+/// Buffers, pipelines and bind groups.
+pub struct BladeGpu {
+    blades: u32,
+    groups: (u32, u32),
+    uniform: wgpu::Buffer,
+    rest: wgpu::Buffer,
+    v2: [wgpu::Buffer; 2],
+    counters: wgpu::Buffer,
+    simulate: wgpu::ComputePipeline,
+    near: wgpu::RenderPipeline,
+    far: wgpu::RenderPipeline,
+    /// Per parity `p`: reads tips `p`, writes curve `1 − p`.
+    simulate_groups: [wgpu::BindGroup; 2],
+    /// Per parity `p`: draws curve `1 − p`.
+    draw_groups: [wgpu::BindGroup; 2],
+}
+
+impl BladeGpu {
+    /// Uploads `arrays` and builds the pipelines.
+    pub fn new(ctx: &InitContext<'_>, arrays: &BladeArrays) -> Result<Self> {
+        let device = &ctx.gpu.device;
+        let limits = device.limits();
+        let blades = u32::try_from(arrays.len()).map_err(|_| too_many(arrays.len(), u64::MAX))?;
+        let array_bytes = u64::from(blades.max(1)) * ENTRY;
+        let binding_limit = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        if array_bytes > binding_limit {
+            return Err(too_many(arrays.len(), binding_limit / ENTRY));
+        }
+        let groups = workgroups(blades, limits.max_compute_workgroups_per_dimension);
+
+        let init = |label: &str, data: &[[f32; 4]], usage| {
+            let zero = [[0.0f32; 4]];
+            let data = if data.is_empty() { &zero[..] } else { data };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(data),
+                usage,
+            })
+        };
+        let storage = wgpu::BufferUsages::STORAGE;
+        let v0 = init("jahrmann v0", &arrays.v0, storage);
+        let rest = init(
+            "jahrmann rest",
+            &arrays.rest,
+            storage | wgpu::BufferUsages::COPY_SRC,
+        );
+        let looks = init("jahrmann looks", &arrays.looks, storage);
+        // Both copies of the tips start at rest (the paper's initial pose); the guides are
+        // written by the first step before anything draws them.
+        let tips = |k| {
+            init(
+                &format!("jahrmann v2 {k}"),
+                &arrays.rest,
+                storage | wgpu::BufferUsages::COPY_DST,
+            )
+        };
+        let v2 = [tips(0), tips(1)];
+        let empty = |label: &str, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        let v1 = [
+            empty("jahrmann v1 0", array_bytes, storage),
+            empty("jahrmann v1 1", array_bytes, storage),
+        ];
+        let visible = empty(
+            "jahrmann visible",
+            u64::from(blades.max(1)) * VISIBLE_ENTRY,
+            storage,
+        );
+        let counters = empty(
+            "jahrmann counters",
+            GpuCounts::SIZE,
+            storage
+                | wgpu::BufferUsages::INDIRECT
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+        );
+        let uniform = empty(
+            "jahrmann params",
+            std::mem::size_of::<ParamsUniform>() as u64,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
+
+        let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty,
+            count: None,
+        };
+        let buffer = |ty| wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let read = buffer(wgpu::BufferBindingType::Storage { read_only: true });
+        let write = buffer(wgpu::BufferBindingType::Storage { read_only: false });
+        let uniform_ty = buffer(wgpu::BufferBindingType::Uniform);
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let vertex = wgpu::ShaderStages::VERTEX;
+        let simulate_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("jahrmann simulate (group 1)"),
+            entries: &[
+                entry(0, compute, uniform_ty),
+                entry(1, compute, read),
+                entry(2, compute, read),
+                entry(3, compute, read),
+                entry(4, compute, read),
+                entry(5, compute, write),
+                entry(6, compute, write),
+                entry(7, compute, write),
+                entry(8, compute, write),
+            ],
+        });
+        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("jahrmann draw (group 1)"),
+            entries: &[
+                entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, uniform_ty),
+                entry(1, vertex, read),
+                entry(3, vertex, read),
+                entry(11, vertex, read),
+                entry(12, vertex, read),
+                entry(13, vertex, read),
+            ],
+        });
+        fn bind(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            }
+        }
+        let simulate_group = |p: usize| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("jahrmann simulate (group 1)"),
+                layout: &simulate_layout,
+                entries: &[
+                    bind(0, &uniform),
+                    bind(1, &v0),
+                    bind(2, &rest),
+                    bind(3, &looks),
+                    bind(4, &v2[p]),
+                    bind(5, &v1[1 - p]),
+                    bind(6, &v2[1 - p]),
+                    bind(7, &visible),
+                    bind(8, &counters),
+                ],
+            })
+        };
+        let draw_group = |p: usize| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("jahrmann draw (group 1)"),
+                layout: &draw_layout,
+                entries: &[
+                    bind(0, &uniform),
+                    bind(1, &v0),
+                    bind(3, &looks),
+                    bind(11, &v1[1 - p]),
+                    bind(12, &v2[1 - p]),
+                    bind(13, &visible),
+                ],
+            })
+        };
+
+        let module = shaders::module(device, "jahrmann", SHADER);
+        let simulate = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("jahrmann simulate"),
+            layout: Some(&ctx.scene_gpu.pipeline_layout(
+                device,
+                "jahrmann simulate",
+                &[&simulate_layout],
+            )),
+            module: &module,
+            entry_point: Some("cs_simulate"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let draw_pipeline_layout =
+            ctx.scene_gpu
+                .pipeline_layout(device, "jahrmann draw", &[&draw_layout]);
+        let pipeline = |label, vs| {
+            shaders::render_pipeline(
+                device,
+                &shaders::PipelineSpec::new(
+                    label,
+                    &draw_pipeline_layout,
+                    &module,
+                    (vs, "fs_blade"),
+                    &[],
+                    ctx.sample_count,
+                ),
+            )
+        };
+        Ok(Self {
+            blades,
+            groups,
+            near: pipeline("jahrmann near", "vs_near"),
+            far: pipeline("jahrmann far", "vs_far"),
+            simulate,
+            simulate_groups: [simulate_group(0), simulate_group(1)],
+            draw_groups: [draw_group(0), draw_group(1)],
+            uniform,
+            rest,
+            v2,
+            counters,
+        })
+    }
+
+    /// Workgroups along x and y of the compute pass.
+    pub fn groups(&self) -> (u32, u32) {
+        self.groups
+    }
+
+    /// Uploads this frame's uniform.
+    pub fn upload(&self, queue: &wgpu::Queue, uniform: &ParamsUniform) {
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
+    }
+
+    /// Records the frame's compute work: (after a reset, the rest pose into the tips read)
+    /// the compute pass reading copy `parity`, then the counts' copy into `readback`.
+    pub fn encode_compute(
+        &self,
+        encoder: &mut FrameEncoder<'_>,
+        parity: usize,
+        reset: bool,
+        readback: &wgpu::Buffer,
+    ) {
+        if self.blades == 0 {
+            return;
+        }
+        let p = parity & 1;
+        {
+            let commands = encoder.command_encoder();
+            if reset {
+                commands.copy_buffer_to_buffer(
+                    &self.rest,
+                    0,
+                    &self.v2[p],
+                    0,
+                    u64::from(self.blades) * ENTRY,
+                );
+            }
+            commands.clear_buffer(&self.counters, 0, None);
+        }
+        {
+            let mut pass = encoder.compute_pass("simulate");
+            pass.set_pipeline(&self.simulate);
+            pass.set_bind_group(1, &self.simulate_groups[p], &[]);
+            pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+        }
+        encoder.command_encoder().copy_buffer_to_buffer(
+            &self.counters,
+            0,
+            readback,
+            0,
+            GpuCounts::SIZE,
+        );
+    }
+
+    /// Records the draws of the curves the compute pass of copy `parity` wrote: the near
+    /// level, and the far one with `far`, both with the GPU's counts as instance counts.
+    pub fn encode_draw(&self, encoder: &mut FrameEncoder<'_>, parity: usize, far: bool) {
+        if self.blades == 0 {
+            return;
+        }
+        let mut pass = encoder.render_pass("blades");
+        pass.set_bind_group(1, &self.draw_groups[parity & 1], &[]);
+        pass.set_pipeline(&self.near);
+        pass.draw_indirect(&self.counters, GpuCounts::NEAR_ARGS);
+        if far {
+            pass.set_pipeline(&self.far);
+            pass.draw_indirect(&self.counters, GpuCounts::FAR_ARGS);
+        }
+    }
+}
+
+fn too_many(blades: usize, most: u64) -> Error {
+    Error::Technique {
+        technique: "jahrmann".into(),
+        message: format!(
+            "{blades} blades need per-blade arrays larger than this adapter's storage bindings allow (at most {most} blades); lower grass.density"
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_and_counters_mirror_the_shader() {
+        assert_eq!(
+            shaders::struct_size(SHADER, "Params").unwrap() as usize,
+            std::mem::size_of::<ParamsUniform>()
+        );
+        assert_eq!(
+            u64::from(shaders::struct_size(SHADER, "Counters").unwrap()),
+            GpuCounts::SIZE
+        );
+    }
+
+    #[test]
+    fn workgroups_cover_every_blade_within_the_limit() {
+        assert_eq!(workgroups(0, 65_535), (1, 0));
+        assert_eq!(workgroups(64, 65_535), (1, 1));
+        assert_eq!(workgroups(65, 65_535), (2, 1));
+        // 8 M blades: 125 000 workgroups, more than one dimension holds.
+        let (x, y) = workgroups(8_000_000, 65_535);
+        assert!(x <= 65_535 && u64::from(x) * u64::from(y) * 64 >= 8_000_000);
+    }
+
+    #[test]
+    fn switches_follow_the_parameters() {
+        let camera = Camera::look_at(Vec3::ZERO, Vec3::Z, 1.0, 0.1, 100.0, 1.0);
+        let grass = GrassConfig::default();
+        let all = uniform(&Params::default(), &grass, &camera, 10, 1);
+        assert_eq!(all.flags[0], 31);
+        let finest: Params = grassbench::params::resolve(
+            "jahrmann",
+            &crate::VARIANTS.finest.parse::<toml::Table>().unwrap(),
+        )
+        .unwrap();
+        assert_eq!(
+            uniform(&finest, &grass, &camera, 10, 1).flags[0],
+            flags::TRANSITIONS
+        );
+    }
+}

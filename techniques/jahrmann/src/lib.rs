@@ -1,0 +1,347 @@
+//! # `jahrmann`: GPU-driven Bezier blades, with Ghost of Tsushima's levels of detail
+//!
+//! Jahrmann and Wimmer 2017, *Responsive Real-Time Grass Rendering for General 3D Scenes*
+//! (I3D), the modern baseline: every blade is simulated, culled and drawn on the GPU, the CPU
+//! does no per-blade work, and nothing is read back within a frame. Its level of detail
+//! follows Sucker Punch's GDC 2021 talk on Ghost of Tsushima's procedural grass. The paper
+//! itself was not in the corpus; each step below names the description it follows:
+//! - (A) `shared/ANCHORS.md`, what is publicly known of the paper and the talk;
+//! - (C) the CIS 565 "Vulkan Grass Rendering" course description of the paper
+//!   (`CIS5650-Fall-2024/Project5-Vulkan-Grass-Rendering`, `INSTRUCTION.md`): the four
+//!   `vec4`s, `g_E`, `g_F = ¼·|g_E|·f`, `r = (I_v2 − v2)·s`, the translation `(r + g + w)·Δt`,
+//!   the frustum test's three points, and the section number 5.2 for the validation;
+//! - (R) a CIS 565 re-implementation's description (`rmurdock41/Project5-Vulkan-Grass-Rendering`,
+//!   `README.md`): the wind's directional alignment `1 − |ŵ·(v2 − v0)/|v2 − v0||` and height
+//!   ratio `(v2 − v0)·up / h`, and the length estimate `L = (2·L0 + L1) / 3`.
+//!
+//! ## Algorithm, step by step
+//! - **Blades** ([`blades`]; (A), (C)): the scene's population from
+//!   `grassbench::grass::BladeField`, the module `reference` draws, in the same order, so with culling and levels off every blade
+//!   stands where the reference's stands. A blade is the paper's quadratic Bezier curve: root
+//!   `v0`, guide `v1`, tip `v2` where forces act, with orientation, height, width and
+//!   stiffness (the paper's four `vec4`s: `v0`+orientation, `v1`+height, `v2`+width,
+//!   `up`+stiffness; here stored as arrays of `vec4` — structure of arrays, so no binding
+//!   passes the adapter's storage-binding limit — with the simulated `v1`, `v2` kept twice).
+//! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R),
+//!   validation (C) Sec. 5.2 with (R)'s length estimate), every frame for every blade in one
+//!   compute pass, `dt` from the frame inputs (the frame globals): recovery towards the rest
+//!   pose by the stiffness (Hooke), gravity (environmental plus the front gravity ¼·|g|·f),
+//!   wind sampled on the GPU from the scene's wind texture (`wind_at`: every wind model of the
+//!   shared module is baked into it each frame, so breeze, point source, fluid and Perbet's
+//!   primitives all drive these blades) times the paper's alignment term, collision with the
+//!   scene's moving sphere (`globals.object`: tip and midpoint pushed out); then the paper's
+//!   validation (Sec. 5.2): tip above the ground, `v1` placed from the tip's projection, the
+//!   curve rescaled to keep its length. [`sim`]'s docs give every formula.
+//! - **Culling** ([`cull`], the shader's `cull`; (A), (C)), in the same pass: orientation (seen
+//!   edge-on, `|view · width| > 0.9`), view frustum (`v0`, the midpoint and `v2`, with a
+//!   tolerance), distance (buckets by a hash of the blade: density falls by one bucket per
+//!   `d_max / n` metres). Survivors are appended to a draw list with atomics, one global
+//!   atomic per workgroup and level; the two counts are the instance counts of the two
+//!   `draw_indirect` calls: no read-back.
+//! - **Levels** (Ghost of Tsushima, (A)): no tessellation stage in wgpu, so the draws pull their
+//!   vertices: each visible blade is an instance of a triangle strip whose vertex count is
+//!   its level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the
+//!   curve at each vertex. Levels are chosen per square ground tile of `tile_size` = 4 m, by
+//!   the distance of the tile's centre, so a tile's blades change level together as Ghost of
+//!   Tsushima's tiles do. Far tiles (beyond `lod_distance` + the band) draw one blade in
+//!   `far_keep` = 4, widened by `far_widen` = 4 so the survivors cover what the others covered
+//!   (for blades thinner than a pixel, coverage grows with width); the others are not drawn
+//!   and count as stood for (`blades_represented`). Ghost of Tsushima generates each tile's
+//!   blades in compute every frame (far tiles twice the size); here blades are the scene's
+//!   fixed population (to compare with the reference), so tiles only group the choice of
+//!   level, and which blades survive comes from a hash of the blade's index.
+//! - **Hand-overs** ((A): shapes "blended across the hand-over to hide popping"; the geomorph
+//!   and the fades are this crate's; with `transitions`, the default): over the band (5 m) the near level's
+//!   vertices move onto the far level's 3-segment strip (a geomorph), the blades the far level
+//!   drops narrow to nothing and the survivors widen to `far_widen`, so the switch at the
+//!   band's end changes nothing on screen. Likewise each blade narrows to nothing over the
+//!   last `distance_fade` metres before the distance test drops it, and over the last
+//!   `orientation_fade` of `|view · width|` before the orientation test does.
+//!   `no_transitions` switches at once. Measured (`tests/tests/temporal.rs`, the meadow at a
+//!   quarter of its blades, 320x180): along a dolly and a pan the blended hand-overs change
+//!   the spurious change against the reference by 1-2 % (peak x1.02 without them), short of
+//!   the suite's 10 % rule: a tile switches in the 15-20 m band, a few rows of the picture,
+//!   each blade's fade happens at its own distance (switches are spread over the frames
+//!   anyway), and most of the spurious change is the Bezier blades' own parallax against the
+//!   reference's.
+//! - **Shading**: `reference`'s: two-sided `shade_leaf` with the prelude's lights, colour from
+//!   root to tip with the blade's variation, ambient darkened towards the root, no shadows,
+//!   the shared fog.
+//!
+//! ## Counts (`stats`, `levels`, `counters`)
+//! The compute pass counts its verdicts in the buffer that holds the two indirect draws, so
+//! the reported counts are the GPU's own, exact. They are copied into a small read-back ring
+//! ([`counts`]) and mapped the next frame: `stats()` after frame `f` reports frame `f − 1`'s
+//! counts (`count_lag_frames` in `counters()` says how old they are). `blades_drawn` = near +
+//! far; `blades_represented` = blades beyond the hand-over the far level does not draw;
+//! blades culled by a test are neither (the honest reading of `TechniqueStats`: culling
+//! removes blades from the picture). `levels()`: `near`, and `far` (drawn and stood for).
+//! `counters()`: `considered`, `culled_orientation`, `culled_frustum`, `culled_distance`
+//! (each blade counted by the first test that culls it), `drawn_near`, `drawn_far`,
+//! `represented_far`, `in_band`, `count_lag_frames`.
+//!
+//! ## Cost model
+//! Compute: every blade every frame, `O(B)` — 64 bytes read, 32 written, two bilinear
+//! lookups of the terrain and one of the wind per blade; one global atomic per workgroup.
+//! Geometry: `13·B_near + 5·B_far` triangles, `15·B_near + 7·B_far` vertices, each vertex
+//! evaluating the curve once (three times inside the band). Memory: `116·B` bytes (seven
+//! `vec4` arrays and a 4-byte draw list entry per blade) plus a few hundred bytes. On a
+//! software rasteriser the draw dominates wherever many blades survive; the compute pass is
+//! timed by wall clock only (lavapipe's compute timestamps are wrong: `shared/PLATFORM.md`).
+//!
+//! ## Known artifacts
+//! - The far level's widened blades are coarser: beyond the hand-over, four times fewer
+//!   blades four times wider show as larger patches of colour; inside the band, tile edges
+//!   show where neighbouring tiles stand at different stages of the hand-over (everywhere
+//!   between a near and a far tile without transitions).
+//! - Distance culling thins the far field without compensation (the paper's): far grass is
+//!   sparser and more of the ground shows through than in `reference`.
+//! - The draw list's order changes from frame to frame (atomics), so blades at exactly equal
+//!   depth may swap which one shows; images are otherwise the same run to run.
+//! - Counts are one frame late (see above).
+//!
+//! ## Departures from the sources
+//! - Up is the world's vertical for every blade, as `reference`'s blades (the paper uses the
+//!   surface normal: general 3D scenes; here a height field). The ground test checks the
+//!   height field under the tip (the prelude's `terrain_height`), before and after the length
+//!   correction, rather than the plane through `v0`.
+//! - The rest pose is the tip `reference` gives the blade's rest lean (its segment walk), not
+//!   straight up, so the two techniques stand alike in calm air.
+//! - Recovery is integrated implicitly (same rest state, stable for stiff blades); the model
+//!   is first order (no mass), so gravity is a displacement rate whose only effect is a droop
+//!   of `g / s`: the default 0.6 m/s² droops a blade of stiffness 1 by 2 cm, where 9.81 would
+//!   lay the scenes' blades flat at any recovery that keeps them responsive.
+//! - The wind force is scaled by the blade's height (`wind_response · h · w · θ`), so bend
+//!   angles depend on stiffness as `reference`'s do; `wind_response` defaults to what gives the
+//!   reference's bend for small winds (`0.12 rad per m/s`, tip displacement `≈ 0.048·h·v /
+//!   stiffness`).
+//! - Collisions have no memory: the sphere pushes the tip (and midpoint) out each frame and
+//!   the recovery brings the blade back as soon as it has passed. (A) says only that
+//!   collisions push `v2` and the midpoint out; any lasting trampling the paper adds is not
+//!   reproduced.
+//! - A tip pushed within half the blade's height of its root is moved out along the ground
+//!   first ([`sim::keep_chord`]), so the blade folds over instead of into a hairpin, whose
+//!   length the paper's estimate gets 50 % wrong.
+//! - Distance buckets and the far level's survivors come from hashes of the blade's index
+//!   (the paper uses the index modulo `n`, which stripes a field generated row by row).
+//! - Hand-over blending for the paper's distance and orientation tests (they switch blades
+//!   off at once in the paper); off with `transitions = false`.
+//!
+//! ## Parameters
+//! See [`Params`]. Defaults and where they come from: `stiffness` 30/s (a 33 ms response at
+//! stiffness 1: a frame at 30 fps), `gravity` 0.6 (a 2 cm droop), `wind_response` 1.44
+//! (= 0.048 × 30: the reference's bend for small winds); the paper's orientation threshold
+//! 0.9; a 0.1 m frustum tolerance (about a blade's width); `cull_distance` 240 m in 8 buckets
+//! (the first 30 m keep every blade: at 640x360 a blade there is under a pixel wide);
+//! `lod_distance` 15 m with a 5 m band (a 0.5 m blade is about 14 px tall at 15 m, where 3
+//! segments follow its curve); `far_widen` 4 = `far_keep`: measured against the reference on
+//! the comparison suite's meadow and prairie (coverage per screen tile), widening 2x leaves
+//! 0.031 / 0.035 of the tiles' coverage off, 3x 0.021 / 0.024, 4x 0.015 / 0.017.
+
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+
+pub mod blades;
+pub mod counts;
+pub mod cull;
+pub mod gpu;
+mod params;
+pub mod sim;
+
+pub use gpu::SHADER;
+pub use params::{Params, VARIANTS};
+
+use grassbench::gpu::GpuEstimate;
+use grassbench::technique::{LevelBlades, Technique, TechniqueEntry, Variants};
+use grassbench::{
+    FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
+    TechniqueInfo, TechniqueStats,
+};
+
+use crate::blades::BladeArrays;
+use crate::counts::{GpuCounts, Readback};
+use crate::cull::Verdict;
+use crate::gpu::{BladeGpu, ParamsUniform};
+
+/// The registry line for this technique.
+pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Jahrmann>();
+
+/// Triangles of a near-level blade (15 vertices in a strip).
+pub const NEAR_TRIANGLES: u64 = 13;
+/// Triangles of a far-level blade (7 vertices in a strip).
+pub const FAR_TRIANGLES: u64 = 5;
+
+/// How this frame's step relates to the last one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Step {
+    /// The next frame: read the copy the last step wrote.
+    Advance,
+    /// The same frame again: read what the last step read, so it writes the same.
+    Repeat,
+    /// A first frame, or time went backwards: start from the rest pose.
+    Reset,
+}
+
+/// The technique.
+pub struct Jahrmann {
+    params: Params,
+    gpu: BladeGpu,
+    readback: Readback,
+    blades: u32,
+    /// The copy of the tips this frame's step reads.
+    parity: usize,
+    /// Whether this frame starts from the rest pose.
+    reset: bool,
+    last_frame: Option<u64>,
+    uniform: ParamsUniform,
+    gpu_bytes: u64,
+}
+
+impl Technique for Jahrmann {
+    type Params = Params;
+
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "jahrmann",
+        name: "Jahrmann & Wimmer 2017 (GPU-driven Bezier blades, Ghost of Tsushima's levels)",
+        paper: "Jahrmann, Wimmer 2017, Responsive Real-Time Grass Rendering for General 3D Scenes (I3D); levels after Sucker Punch, Procedural Grass in Ghost of Tsushima (GDC 2021)",
+        gpu_state: true,
+        debug_views: &[
+            "level of detail (near blue, hand-over green, far red)",
+            "tilt of the tip from the vertical",
+        ],
+    };
+
+    const VARIANTS: Variants = VARIANTS;
+
+    /// Takes the scene's blades and uploads them; builds the pipelines.
+    fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
+        let scene = ctx.scene;
+        let blades = scene.blades.all_blades(&scene.terrain);
+        let arrays = BladeArrays::new(&blades);
+        let gpu = BladeGpu::new(ctx, &arrays)?;
+        let count = arrays.len() as u64;
+        Ok(Self {
+            params,
+            gpu,
+            readback: Readback::new(&ctx.gpu.device),
+            blades: u32::try_from(count).unwrap_or(u32::MAX),
+            parity: 0,
+            reset: true,
+            last_frame: None,
+            uniform: ParamsUniform::default(),
+            gpu_bytes: gpu::bytes(count),
+        })
+    }
+
+    fn estimate(scene: &Scene, _params: &Params) -> Result<GpuEstimate> {
+        // At most one blade per candidate (fewer where the density map thins them).
+        let candidates = scene.blades.candidate_count(&scene.terrain);
+        Ok(GpuEstimate {
+            bytes: gpu::bytes(candidates),
+            largest_buffer: gpu::largest_buffer(candidates),
+        })
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
+    }
+}
+
+impl Jahrmann {
+    /// Records only the frame's compute pass (simulation and culling) and the counts' copy,
+    /// as [`GrassTechnique::encode`] records them before its draws: for timing the compute
+    /// pass by wall clock (`benches/compute.rs`), lavapipe's compute timestamps being wrong.
+    pub fn encode_compute(&self, encoder: &mut FrameEncoder<'_>) {
+        self.gpu
+            .encode_compute(encoder, self.parity, self.reset, self.readback.target());
+    }
+
+    /// The GPU's counts of the newest frame delivered, and how many frames old they are.
+    fn counts(&self) -> (GpuCounts, u64) {
+        self.readback.latest().unwrap_or_default()
+    }
+}
+
+impl GrassTechnique for Jahrmann {
+    /// Chooses which copy of the state the step reads, and the frame's uniform: no per-blade
+    /// work.
+    fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
+        let step = match self.last_frame {
+            Some(last) if inputs.frame == last => Step::Repeat,
+            Some(last) if inputs.frame > last => Step::Advance,
+            _ => Step::Reset,
+        };
+        match step {
+            Step::Advance => {
+                self.parity ^= 1;
+                self.reset = false;
+            }
+            Step::Repeat => {}
+            Step::Reset => {
+                self.parity = 0;
+                self.reset = true;
+            }
+        }
+        self.last_frame = Some(inputs.frame);
+        self.readback.begin_frame();
+        self.uniform = gpu::uniform(
+            &self.params,
+            &inputs.scene.config.grass,
+            &inputs.camera,
+            self.blades,
+            self.gpu.groups().0,
+        );
+        Ok(())
+    }
+
+    fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
+        self.gpu.upload(&gpu.queue, &self.uniform);
+        Ok(())
+    }
+
+    fn encode(&self, encoder: &mut FrameEncoder<'_>) {
+        self.encode_compute(encoder);
+        self.gpu.encode_draw(encoder, self.parity, self.params.lod);
+    }
+
+    fn stats(&self) -> TechniqueStats {
+        let (c, _) = self.counts();
+        let near = u64::from(c.of(Verdict::Near));
+        let far = u64::from(c.of(Verdict::Far));
+        TechniqueStats {
+            blades_drawn: near + far,
+            blades_represented: u64::from(c.of(Verdict::Represented)),
+            triangles: near * NEAR_TRIANGLES + far * FAR_TRIANGLES,
+            gpu_bytes: self.gpu_bytes,
+        }
+    }
+
+    fn levels(&self) -> Vec<LevelBlades> {
+        let (c, _) = self.counts();
+        vec![
+            LevelBlades {
+                level: "near",
+                blades: u64::from(c.of(Verdict::Near)),
+            },
+            LevelBlades {
+                level: "far",
+                blades: u64::from(c.of(Verdict::Far)) + u64::from(c.of(Verdict::Represented)),
+            },
+        ]
+    }
+
+    fn counters(&self) -> Vec<(&'static str, f64)> {
+        let (c, lag) = self.counts();
+        let n = |v: Verdict| f64::from(c.of(v));
+        vec![
+            ("considered", c.considered() as f64),
+            ("culled_orientation", n(Verdict::Orientation)),
+            ("culled_frustum", n(Verdict::Frustum)),
+            ("culled_distance", n(Verdict::Distance)),
+            ("drawn_near", n(Verdict::Near)),
+            ("drawn_far", n(Verdict::Far)),
+            ("represented_far", n(Verdict::Represented)),
+            ("in_band", f64::from(c.in_band)),
+            ("count_lag_frames", lag as f64),
+        ]
+    }
+}

@@ -1,0 +1,167 @@
+//! Parameters (`[techniques.jahrmann]` in scene files, `--param` on the command line) and the
+//! variants the comparison suite asks for.
+
+use grassbench::Result;
+use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::technique::{NO_TRANSITIONS, Variant, Variants};
+use serde::{Deserialize, Serialize};
+
+/// Every parameter of the technique. The defaults and where each came from are in the crate's
+/// essay (`src/lib.rs`, "Parameters").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Params {
+    /// Recovery rate (Hooke, Sec. 5.1) of a blade of the scene's stiffness 1, per second: the
+    /// tip returns to rest with time constant `1 / (stiffness × blade stiffness)`.
+    pub stiffness: f32,
+    /// Magnitude of the environmental gravity, m/s² of tip displacement rate (Sec. 5.1; the
+    /// model is first order, so this is not the physical 9.81: see the essay).
+    pub gravity: f32,
+    /// Wind force on the tip per metre of blade height per m/s of wind, before the alignment
+    /// term (Sec. 5.1).
+    pub wind_response: f32,
+    /// Cull blades seen edge-on (the paper's orientation test).
+    pub orientation_culling: bool,
+    /// `|view direction · width direction|` above which a blade is culled (the paper's 0.9).
+    pub orientation_threshold: f32,
+    /// Cull blades whose root, midpoint and tip all lie outside the view frustum.
+    pub frustum_culling: bool,
+    /// How far outside a frustum plane a point may lie and still count as inside, m.
+    pub frustum_tolerance: f32,
+    /// Drop blades progressively with distance by bucket (the paper's distance test).
+    pub distance_culling: bool,
+    /// Ground distance from the eye beyond which no blade is kept, m (the paper's `d_max`).
+    pub cull_distance: f32,
+    /// Distance buckets (the paper's `n`): blades of the first `cull_distance / buckets`
+    /// metres are all kept, then one bucket's blades fewer per further bucket.
+    pub buckets: u32,
+    /// Two levels of detail (Ghost of Tsushima): 15 vertices a blade near, 7 far.
+    pub lod: bool,
+    /// Side of the square ground tiles whose blades change level together, m (Ghost of
+    /// Tsushima's tiles; 0 chooses each blade's level by its own root).
+    pub tile_size: f32,
+    /// Distance from the eye to a tile's centre where the far level begins, m.
+    pub lod_distance: f32,
+    /// The far level keeps one blade in `far_keep`.
+    pub far_keep: u32,
+    /// Width factor of the far level's blades, so the survivors cover what the dropped
+    /// blades covered.
+    pub far_widen: f32,
+    /// Blend the hand-overs (near to far, distance culling, orientation culling) instead of
+    /// switching.
+    pub transitions: bool,
+    /// Depth of the near-to-far hand-over band, m: over it the near level's shapes morph to
+    /// the far level's, the dropped blades narrow to nothing and the survivors widen.
+    pub band: f32,
+    /// Distance over which a blade narrows to nothing before distance culling drops it, m.
+    pub distance_fade: f32,
+    /// Range of `|view · width|` below the orientation threshold over which a blade narrows
+    /// to nothing before orientation culling drops it.
+    pub orientation_fade: f32,
+    /// Fraction of back-side sunlight passing through a blade (as `reference`).
+    pub translucency: f32,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            stiffness: 30.0,
+            gravity: 0.6,
+            wind_response: 1.44,
+            orientation_culling: true,
+            orientation_threshold: 0.9,
+            frustum_culling: true,
+            frustum_tolerance: 0.1,
+            distance_culling: true,
+            cull_distance: 240.0,
+            buckets: 8,
+            lod: true,
+            tile_size: 4.0,
+            lod_distance: 15.0,
+            far_keep: 4,
+            far_widen: 4.0,
+            transitions: true,
+            band: 5.0,
+            distance_fade: 4.0,
+            orientation_fade: 0.05,
+            translucency: 0.35,
+        }
+    }
+}
+
+impl TechniqueParams for Params {
+    fn validate(&self) -> Result<()> {
+        check("jahrmann.stiffness", self.stiffness, 0.1..=10_000.0)?;
+        check("jahrmann.gravity", self.gravity, 0.0..=100.0)?;
+        check("jahrmann.wind_response", self.wind_response, 0.0..=1000.0)?;
+        check(
+            "jahrmann.orientation_threshold",
+            self.orientation_threshold,
+            0.0..=1.0,
+        )?;
+        check(
+            "jahrmann.frustum_tolerance",
+            self.frustum_tolerance,
+            0.0..=100.0,
+        )?;
+        check(
+            "jahrmann.cull_distance",
+            self.cull_distance,
+            1.0..=100_000.0,
+        )?;
+        check_int("jahrmann.buckets", self.buckets, 1..=64)?;
+        check("jahrmann.tile_size", self.tile_size, 0.0..=1000.0)?;
+        check("jahrmann.lod_distance", self.lod_distance, 0.0..=100_000.0)?;
+        check_int("jahrmann.far_keep", self.far_keep, 1..=64)?;
+        check("jahrmann.far_widen", self.far_widen, 0.1..=64.0)?;
+        check("jahrmann.band", self.band, 0.0..=10_000.0)?;
+        check("jahrmann.distance_fade", self.distance_fade, 0.0..=10_000.0)?;
+        check(
+            "jahrmann.orientation_fade",
+            self.orientation_fade,
+            0.0..=1.0,
+        )?;
+        check("jahrmann.translucency", self.translucency, 0.0..=1.0)
+    }
+}
+
+/// `finest`: culling and levels of detail off, so every blade of the scene is drawn at the
+/// near level, where the reference draws it; `no_transitions`: every hand-over switches at
+/// once.
+pub const VARIANTS: Variants = Variants {
+    finest: "orientation_culling = false\nfrustum_culling = false\ndistance_culling = false\nlod = false",
+    others: &[Variant {
+        name: NO_TRANSITIONS,
+        params: "transitions = false",
+    }],
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_pass_and_bad_values_name_their_key() {
+        Params::default().validate().unwrap();
+        let bad = Params {
+            buckets: 0,
+            ..Default::default()
+        };
+        assert!(
+            bad.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("jahrmann.buckets")
+        );
+        let nan = Params {
+            far_widen: f32::NAN,
+            ..Default::default()
+        };
+        assert!(
+            nan.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("jahrmann.far_widen")
+        );
+    }
+}
