@@ -66,7 +66,7 @@ fn compute(c: &mut Criterion) {
                     };
                     frame += 1;
                     technique.update(&inputs).unwrap();
-                    harness.world.scene_gpu.upload(&gpu.queue, &inputs);
+                    harness.world.scene_gpu.upload(&gpu, &inputs);
                     technique.prepare(&gpu, &inputs).unwrap();
                     let mut encoder = FrameEncoder::new(
                         &gpu,

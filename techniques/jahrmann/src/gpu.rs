@@ -7,7 +7,7 @@ use grassbench::camera::Camera;
 use grassbench::glam::Vec3;
 use grassbench::grass::GrassConfig;
 use grassbench::wgpu::util::DeviceExt as _;
-use grassbench::{Error, FrameEncoder, InitContext, Result, bytemuck, shaders, wgpu};
+use grassbench::{Error, FrameEncoder, GpuContext, InitContext, Result, bytemuck, shaders, wgpu};
 
 use crate::Params;
 use crate::blades::BladeArrays;
@@ -147,8 +147,8 @@ pub struct BladeGpu {
     v2: [wgpu::Buffer; 2],
     counters: wgpu::Buffer,
     simulate: wgpu::ComputePipeline,
-    near: wgpu::RenderPipeline,
-    far: wgpu::RenderPipeline,
+    near: grassbench::shaders::RenderPipeline,
+    far: grassbench::shaders::RenderPipeline,
     /// Per parity `p`: reads tips `p`, writes curve `1 − p`.
     simulate_groups: [wgpu::BindGroup; 2],
     /// Per parity `p`: draws curve `1 − p`.
@@ -357,8 +357,8 @@ impl BladeGpu {
     }
 
     /// Uploads this frame's uniform.
-    pub fn upload(&self, queue: &wgpu::Queue, uniform: &ParamsUniform) {
-        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
+    pub fn upload(&self, gpu: &GpuContext, uniform: &ParamsUniform) {
+        gpu.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
     }
 
     /// Records the frame's compute work: (after a reset, the rest pose into the tips read)

@@ -294,7 +294,7 @@ impl GrassTechnique for Jahrmann {
     }
 
     fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
-        self.gpu.upload(&gpu.queue, &self.uniform);
+        self.gpu.upload(gpu, &self.uniform);
         Ok(())
     }
 
