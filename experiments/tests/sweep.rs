@@ -99,11 +99,24 @@ fn tiny_sweep_runs_and_reports() {
             assert!(lo <= s && s <= hi && lo > 0.0, "{technique}: {lo} {s} {hi}");
         }
     }
+    // The cost model's prediction beside every measured time where the adapter counts the
+    // work (lavapipe does; GL has no pipeline statistics, and then the model stays empty
+    // rather than predicting from no work).
     let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
+    let counted = meta.contains("pipeline_statistics = true");
+    let (model, model_ratio) = (number("model_ms"), number("model_ratio"));
+    for k in 0..techniques_col.len() {
+        if counted {
+            let (m, r) = (model[k].unwrap(), model_ratio[k].unwrap());
+            assert!(m > 0.0 && r > 0.0, "{}: model {m} ratio {r}", techniques_col[k]);
+        } else {
+            assert_eq!((model[k], model_ratio[k]), (None, None), "{}", techniques_col[k]);
+        }
+    }
     assert!(
         meta.contains("[calibration]")
             && meta.contains("triangles_per_s")
-            && meta.contains("[unit_costs]")
+            && meta.contains("[[unit_costs]]")
             && meta.contains("fragment_alpha_tested_ns")
             && meta.contains("sweep_file"),
         "{meta}"
@@ -121,6 +134,51 @@ fn tiny_sweep_runs_and_reports() {
         "{report}"
     );
     assert!(out.join("plots/frame_time.svg").exists() && out.join("plots/pareto.svg").exists());
+    assert_eq!(
+        report.contains("## Where the time goes") && out.join("plots/time_split.svg").exists(),
+        counted,
+        "{report}"
+    );
+    // Projected onto the adapter this sweep calibrated (its own meta.toml), every run's
+    // predicted time is its model_ms: the same work, the same costs (where work was counted).
+    if counted {
+        let meta_path = out.join("meta.toml");
+        let (ok, err) = grassbench(&[
+            "report",
+            out.to_str().unwrap(),
+            "--calibration",
+            meta_path.to_str().unwrap(),
+        ]);
+        assert!(ok, "{err}");
+        let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+        let section = report
+            .split("## Predicted on ")
+            .nth(1)
+            .unwrap_or_else(|| panic!("no projection in {report}"));
+        let predicted: Vec<f64> = section
+            .lines()
+            .filter(|l| l.starts_with("| meadow") || l.starts_with("| football"))
+            .map(|l| l.split('|').nth(6).unwrap().trim().parse().unwrap())
+            .collect();
+        let expected: Vec<f64> = model.iter().map(|m| m.unwrap()).collect();
+        // One row per configuration, which pools two repetitions; its work is its last
+        // repetition's, so its prediction is that run's model_ms (to the table's rounding).
+        assert_eq!(2 * predicted.len(), expected.len(), "{section}");
+        for p in &predicted {
+            assert!(
+                expected.iter().any(|e| (e - p).abs() <= 0.01 + 1e-3 * e),
+                "predicted {p} is no run's model_ms {expected:?}"
+            );
+        }
+    }
+    // A file without unit costs is refused, naming the fix.
+    let (ok, err) = grassbench(&[
+        "report",
+        out.to_str().unwrap(),
+        "--calibration",
+        out.join("runs.csv").to_str().unwrap(),
+    ]);
+    assert!(!ok && (err.contains("not TOML") || err.contains("no unit costs")), "{err}");
 
     // Running the finished sweep again does nothing and changes nothing.
     let before = std::fs::read(out.join("runs.csv")).unwrap();

@@ -22,6 +22,7 @@ pub mod fit;
 mod lstsq;
 pub mod measure;
 mod rig;
+mod run;
 mod term;
 mod units;
 mod work;
@@ -31,6 +32,7 @@ pub use fit::{FitSummary, Sample, WorkloadResidual, fit};
 pub use measure::{
     COUNTED_TERMS, MeasuredSample, Options, UnitCalibration, calibrate_units, calibrate_units_with,
 };
+pub use run::{apply_model, predict_run};
 pub use term::Term;
 pub use units::{Prediction, UnitCost, UnitCosts};
 pub use work::{BYTES_PER_MB, FragmentKind, Work};

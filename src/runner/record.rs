@@ -288,6 +288,41 @@ pub struct RunSummary {
     /// Median fragments per grass-covered pixel, over the frames where coverage was measured.
     #[serde(default)]
     pub fragments_per_grass_pixel: Option<f64>,
+    /// GPU time the cost model predicts from the run's measured work
+    /// ([`crate::cost::apply_model`]: the adapter's unit costs times the mean frame's work),
+    /// ms; empty without unit costs or counted work.
+    #[serde(default)]
+    pub model_ms: Option<f64>,
+    /// Measured median GPU wall time over `model_ms`: 1 where the model explains the time.
+    #[serde(default)]
+    pub model_ratio: Option<f64>,
+    /// The model's fixed per-frame cost, ms.
+    #[serde(default)]
+    pub model_fixed_ms: Option<f64>,
+    /// The model's time for vertex invocations, ms.
+    #[serde(default)]
+    pub model_vertex_ms: Option<f64>,
+    /// The model's time for primitives (triangle setup), ms.
+    #[serde(default)]
+    pub model_primitive_ms: Option<f64>,
+    /// The model's time for opaque fragments, ms.
+    #[serde(default)]
+    pub model_fragment_opaque_ms: Option<f64>,
+    /// The model's time for alpha-tested fragments, ms.
+    #[serde(default)]
+    pub model_fragment_alpha_tested_ms: Option<f64>,
+    /// The model's time for blended fragments, ms.
+    #[serde(default)]
+    pub model_fragment_blended_ms: Option<f64>,
+    /// The model's time for draw calls, ms.
+    #[serde(default)]
+    pub model_draw_ms: Option<f64>,
+    /// The model's time for compute invocations, ms.
+    #[serde(default)]
+    pub model_compute_ms: Option<f64>,
+    /// The model's time for uploads, ms.
+    #[serde(default)]
+    pub model_upload_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -395,6 +430,17 @@ impl RunSummary {
                 .collect::<Vec<_>>()
                 .join(";"),
             gpu_wall_ratio_to_reference: None,
+            model_ms: None,
+            model_ratio: None,
+            model_fixed_ms: None,
+            model_vertex_ms: None,
+            model_primitive_ms: None,
+            model_fragment_opaque_ms: None,
+            model_fragment_alpha_tested_ms: None,
+            model_fragment_blended_ms: None,
+            model_draw_ms: None,
+            model_compute_ms: None,
+            model_upload_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,

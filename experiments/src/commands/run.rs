@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
+use grassbench::cost::{UnitCosts, apply_model, calibrate_units};
 use grassbench::metrics::grass_coverage;
 use grassbench::runner::{
     self, FrameRecord, Harness, LevelRow, Provenance, RunOptions, RunSummary, write_atomic,
@@ -55,6 +56,9 @@ pub struct RunArgs {
     /// machine's speed drifts during the run (a shared host). Same images.
     #[arg(long)]
     pub interleave: bool,
+    /// Skip measuring the adapter's unit costs (then runs.csv has no `model_ms`).
+    #[arg(long)]
+    pub no_calibration: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -100,8 +104,39 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     prepare_out_dir(&args.out, args.force)?;
     let gpu = args.gpu.context()?;
     let provenance = Provenance::collect(&gpu.summary);
+    // The adapter's unit costs at every size rendered, so each run's time can be set against
+    // the cost model's prediction from its measured work (issue 20 §3).
+    let mut unit_costs: Vec<UnitCosts> = Vec::new();
+    if !args.no_calibration {
+        for scene in &scenes {
+            let s = size.unwrap_or(scene.resolution());
+            if unit_costs.iter().all(|c| c.size != s.to_string()) {
+                eprintln!("unit costs of {} at {s} …", gpu.summary.name);
+                let units = calibrate_units(&gpu, s)
+                    .with_context(|| format!("measuring the unit costs at {s}"))?;
+                eprint!(
+                    "{}",
+                    super::calibrate::summary(&units.unit_costs, &units.samples)
+                );
+                unit_costs.push(units.unit_costs);
+            }
+        }
+    }
     write_atomic(&args.out.join("meta.toml"), |f| {
-        std::io::Write::write_all(f, provenance.to_toml().as_bytes())
+        let mut text = provenance.to_toml();
+        #[derive(serde::Serialize)]
+        struct Units<'a> {
+            unit_costs: &'a [UnitCosts],
+        }
+        if !unit_costs.is_empty() {
+            let units = toml::to_string_pretty(&Units {
+                unit_costs: &unit_costs,
+            })
+            .map_err(std::io::Error::other)?;
+            text.push('\n');
+            text.push_str(&units);
+        }
+        std::io::Write::write_all(f, text.as_bytes())
     })?;
 
     let capture = if args.capture.is_empty() {
@@ -135,6 +170,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         let mut out = SceneOutput {
             dir: &dir,
             name: &name,
+            unit_costs: unit_costs.iter().find(|c| c.size == size.to_string()),
             backgrounds: &backgrounds,
             frames: Vec::new(),
             levels: Vec::new(),
@@ -213,6 +249,8 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
 struct SceneOutput<'a> {
     dir: &'a Path,
     name: &'a str,
+    /// The adapter's unit costs at this scene's size, for the model's prediction.
+    unit_costs: Option<&'a UnitCosts>,
     /// Background-only frames (frame index, image): the baseline of grass coverage.
     backgrounds: &'a [(u64, image::RgbaImage)],
     frames: Vec<FrameRecord>,
@@ -250,6 +288,9 @@ impl SceneOutput<'_> {
                 png,
                 coverage,
             });
+        }
+        if let Some(costs) = self.unit_costs {
+            apply_model(&mut result.summary, costs, &result.frames);
         }
         result.summary.fragments_per_grass_pixel = runner::Percentiles::of(
             result
@@ -338,18 +379,21 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
          *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
          were measured: on a software rasteriser that time is taken from the GPU. Speed-up = the reference's \
          median GPU wall time over the technique's on the same scene, with its 95 % bootstrap interval over \
-         both runs' frames: a technique is faster than another only where the intervals do not overlap.\n"
+         both runs' frames: a technique is faster than another only where the intervals do not overlap. \
+         *Model* is the GPU time the cost model predicts from the run's measured work (the adapter's unit costs, \
+         calibrated at the start, times the work; `meta.toml` holds them), and *measured / model* its ratio: \
+         near 1 where the work explains the time.\n"
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | model ms | measured / model | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
@@ -362,6 +406,8 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
                 (Some(v), Some(lo), Some(hi)) => format!("{v:.2} ({lo:.2}–{hi:.2})"),
                 (v, _, _) => fmt_opt(v, 2),
             },
+            fmt_opt(r.model_ms, 1),
+            fmt_opt(r.model_ratio, 2),
             fmt_opt(r.frame_ms_median, 1),
             count(r.blades_drawn),
             count(r.blades_represented),

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use grassbench::calibration::{Calibration, calibrate};
-use grassbench::cost::{UnitCosts, calibrate_units};
+use grassbench::cost::{UnitCosts, apply_model, calibrate_units};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
 use grassbench::sweep::{
@@ -71,9 +71,11 @@ pub struct SweepMeta {
     pub provenance: Provenance,
     /// Calibration, if measured.
     pub calibration: Option<Calibration>,
-    /// The adapter's unit costs (issue 20 §2), if measured; absent from files written
-    /// before them, which read as `None`.
-    pub unit_costs: Option<UnitCosts>,
+    /// The adapter's unit costs (issue 20 §2), one calibration per target size the sweep
+    /// renders at (the fixed cost per frame depends on it); empty when not measured and in
+    /// files written before them.
+    #[serde(default)]
+    pub unit_costs: Vec<UnitCosts>,
 }
 
 /// Runs the sweep.
@@ -101,7 +103,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let mut store = SweepStore::open(&out, &sweep_key, args.force)?;
     let gpu = args.gpu.context()?;
     let (calibration, unit_costs) = if args.no_calibration {
-        (None, None)
+        (None, Vec::new())
     } else {
         eprintln!("calibrating {} …", gpu.summary.name);
         let size = plan
@@ -119,12 +121,26 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
             c.compute_bytes_per_s / 1e9,
             c.raw_blade_cost_ns
         );
-        let units = calibrate_units(&gpu, size).context("measuring the unit costs")?;
-        eprint!(
-            "{}",
-            super::calibrate::summary(&units.unit_costs, &units.samples)
-        );
-        (Some(c), Some(units.unit_costs))
+        let mut sizes: Vec<grassbench::target::Size> = Vec::new();
+        for run in &mine {
+            let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
+            let size = run.size.unwrap_or(scene.resolution());
+            if !sizes.contains(&size) {
+                sizes.push(size);
+            }
+        }
+        let mut all = Vec::new();
+        for size in sizes {
+            eprintln!("unit costs at {size} …");
+            let units = calibrate_units(&gpu, size)
+                .with_context(|| format!("measuring the unit costs at {size}"))?;
+            eprint!(
+                "{}",
+                super::calibrate::summary(&units.unit_costs, &units.samples)
+            );
+            all.push(units.unit_costs);
+        }
+        (Some(c), all)
     };
     let meta = SweepMeta {
         sweep: spec.name.clone(),
@@ -137,7 +153,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         sweep_file: text.clone(),
         provenance: Provenance::collect(&gpu.summary),
         calibration: calibration.clone(),
-        unit_costs,
+        unit_costs: unit_costs.clone(),
     };
     store.write_meta(&toml::to_string_pretty(&meta)?)?;
 
@@ -168,7 +184,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     for run in todo {
         bar.set_message(format!("{} on {}", run.technique, run.scene));
         let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
-        match execute(&gpu, &spec, scene, run, &mut reference, store.dir()) {
+        match execute(&gpu, &spec, scene, run, &mut reference, store.dir(), &unit_costs) {
             Ok((row, frames, params)) => store.append(&row, &frames, &params)?,
             Err(e) => {
                 // A failed run is recorded as failed and the sweep goes on.
@@ -277,6 +293,7 @@ fn execute(
     run: &PlannedRun,
     reference: &mut HashMap<String, Reference>,
     dir: &std::path::Path,
+    unit_costs: &[UnitCosts],
 ) -> anyhow::Result<Executed> {
     let entry = registry::find(&run.technique)?;
     let size = run.size.unwrap_or(scene.resolution());
@@ -291,6 +308,9 @@ fn execute(
     };
     let result = runner::run(&mut harness, technique.as_mut(), &options, &mut |_, _| {})?;
     let mut row = result.summary;
+    if let Some(costs) = unit_costs.iter().find(|c| c.size == size.to_string()) {
+        apply_model(&mut row, costs, &result.frames);
+    }
     row.repetition = run.repetition;
     row.scene_variant = run.scene_variant();
     let image = result.images.into_iter().next().map(|(_, img)| img);

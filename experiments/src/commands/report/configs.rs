@@ -59,6 +59,14 @@ pub(super) struct Config {
     pub(super) triangles: Option<f64>,
     /// GPU memory held, MB (the last finished repetition's).
     pub(super) gpu_mb: Option<f64>,
+    /// The mean measured work of a frame of the last finished repetition that has it (from
+    /// frames.csv; empty without pipeline statistics).
+    pub(super) work: Option<grassbench::cost::Work>,
+    /// The cost model's prediction of the last finished repetition, ms per term in the order
+    /// of [`grassbench::cost::Term::ALL`] (empty without unit costs or counted work).
+    pub(super) model_terms: Option<[f64; 9]>,
+    /// Measured over predicted GPU time, per repetition.
+    pub(super) model_ratio: Vec<f64>,
     /// The last frame of repetition 0, relative to the results folder.
     pub(super) image: Option<String>,
     /// Repetitions that failed.
@@ -121,7 +129,11 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
             path.display()
         );
     }
-    let frames = frame_walls(dir)?;
+    let records = frame_records(dir)?;
+    let frames: HashMap<String, Vec<f64>> = records
+        .iter()
+        .map(|(id, f)| (id.clone(), f.iter().map(|r| r.gpu_wall_ms).collect()))
+        .collect();
     fill_ratios(&mut rows, &frames);
     let mut configs: BTreeMap<String, Config> = BTreeMap::new();
     for r in &rows {
@@ -151,6 +163,12 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         if let Some(walls) = frames.get(&r.run_id) {
             c.frame_walls.insert(r.repetition, walls.clone());
         }
+        if let Some(work) = records
+            .get(&r.run_id)
+            .and_then(|f| grassbench::cost::Work::mean_of(f))
+        {
+            c.work = Some(work);
+        }
         c.flip.extend(r.flip_vs_reference);
         c.flip_quarter.extend(r.flip_vs_reference_quarter);
         c.host_other_cores.extend(r.host_other_cores);
@@ -158,6 +176,21 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         c.blades_represented = r.blades_represented.map(|b| b as f64);
         c.triangles = r.triangles.map(|t| t as f64);
         c.gpu_mb = r.gpu_bytes.map(|b| b as f64 / 1e6);
+        c.model_ratio.extend(r.model_ratio);
+        c.model_terms = (|| {
+            Some([
+                r.model_fixed_ms?,
+                r.model_vertex_ms?,
+                r.model_primitive_ms?,
+                r.model_fragment_opaque_ms?,
+                r.model_fragment_alpha_tested_ms?,
+                r.model_fragment_blended_ms?,
+                r.model_draw_ms?,
+                r.model_compute_ms?,
+                r.model_upload_ms?,
+            ])
+        })()
+        .or(c.model_terms);
         let image = image_path(config_id);
         if dir.join(&image).exists() {
             c.image = Some(image);
@@ -172,15 +205,15 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
     Ok(configs)
 }
 
-/// Per-frame GPU wall times of every run in `dir/frames.csv`, by run id (empty without it).
-fn frame_walls(dir: &Path) -> anyhow::Result<HashMap<String, Vec<f64>>> {
+/// The frames of every run in `dir/frames.csv`, by run id (empty without it).
+fn frame_records(dir: &Path) -> anyhow::Result<HashMap<String, Vec<FrameRecord>>> {
     let path = dir.join("frames.csv");
-    let mut out: HashMap<String, Vec<f64>> = HashMap::new();
+    let mut out: HashMap<String, Vec<FrameRecord>> = HashMap::new();
     if path.exists() {
         let frames: Vec<FrameRecord> =
             read_rows(&path).with_context(|| format!("reading {}", path.display()))?;
         for f in frames {
-            out.entry(f.run_id).or_default().push(f.gpu_wall_ms);
+            out.entry(f.run_id.clone()).or_default().push(f);
         }
     }
     Ok(out)

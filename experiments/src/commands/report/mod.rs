@@ -2,6 +2,7 @@
 
 mod configs;
 mod plots;
+mod projection;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -14,13 +15,20 @@ use configs::{BUSY_HOST_CORES, Config, label, load, median};
 use grassbench::runner::bootstrap::Interval;
 use grassbench::sweep::REFERENCE;
 use std::collections::BTreeMap;
-use plots::{frame_time_plot, pareto_plot, scaling_plot};
+use plots::{
+    SPLIT_SEGMENTS, frame_time_plot, pareto_plot, scaling_plot, time_split, time_split_plot,
+};
 
 /// Arguments of `report`.
 #[derive(Clone, Debug, clap::Args)]
 pub struct ReportArgs {
     /// A sweep's results folder.
     pub dir: PathBuf,
+    /// Another adapter's calibration (its `meta.toml` from `run` or `sweep`, or a file from
+    /// `grassbench calibrate -o`): adds each run's GPU time *predicted* there from the work
+    /// measured here.
+    #[arg(long)]
+    pub calibration: Option<PathBuf>,
 }
 
 /// "Which is faster": per group (scene, variant, size, MSAA), its configurations by speed-up
@@ -93,9 +101,67 @@ fn faster_than(md: &mut String, configs: &BTreeMap<String, Config>) {
     }
 }
 
+/// "Where the time goes" (issue 20 §3): per configuration with a cost model, the share of each
+/// CPU stage and GPU term of the frame, the model's prediction against the measured time, and
+/// the stacked bar of `plots/time_split.svg`.
+fn where_the_time_goes(
+    md: &mut String,
+    configs: &[&Config],
+    plots: &std::path::Path,
+) -> anyhow::Result<()> {
+    let modelled: Vec<&Config> = configs
+        .iter()
+        .copied()
+        .filter(|c| c.model_terms.is_some())
+        .collect();
+    if modelled.is_empty() {
+        return Ok(());
+    }
+    let _ = writeln!(md, "\n## Where the time goes\n");
+    let _ = writeln!(
+        md,
+        "The cost model prices each run's measured work (pipeline statistics: vertices, primitives, fragments by kind; the harness's draws and uploads) with the adapter's unit costs from the calibration above. *Measured / model* is the measured median GPU wall time over the prediction: near 1 where the counted work explains the time. Shares are of the CPU stages plus the predicted GPU time. Predicted, not measured: each GPU term is unit cost × work.\n"
+    );
+    let mut header = String::from("| scene | size | technique | params | measured GPU ms | model ms | measured / model |");
+    let mut rule = String::from("|---|---|---|---|---|---|---|");
+    for name in SPLIT_SEGMENTS {
+        let _ = write!(header, " {name} |");
+        rule.push_str("---|");
+    }
+    let _ = writeln!(md, "{header}\n{rule}");
+    for c in &modelled {
+        let Some(split) = time_split(c) else { continue };
+        let total: f64 = split.iter().sum();
+        let gpu_model: f64 = split[3..].iter().sum();
+        let mut line = format!(
+            "| {} | {} | {} | {} | {} | {:.1} | {} |",
+            c.scene,
+            c.size,
+            c.technique,
+            c.label,
+            fmt(median(&c.gpu_wall), 1),
+            gpu_model,
+            fmt(median(&c.model_ratio), 2)
+        );
+        for v in split {
+            let _ = write!(line, " {:.0} % |", 100.0 * v / total.max(1e-12));
+        }
+        let _ = writeln!(md, "{line}");
+    }
+    time_split_plot(&modelled, &plots.join("time_split.svg"))?;
+    let _ = writeln!(md, "\n![Where the time goes](plots/time_split.svg)\n");
+    Ok(())
+}
+
 /// Writes REPORT.md and plots/*.svg.
 pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     let dir = &args.dir;
+    // Read (and so check) the other adapter's calibration before writing anything.
+    let other = args
+        .calibration
+        .as_deref()
+        .map(projection::Calibration::load)
+        .transpose()?;
     let configs = load(dir)?;
     let meta: Option<SweepMeta> = std::fs::read_to_string(dir.join("meta.toml"))
         .ok()
@@ -122,10 +188,11 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
                 c.raw_blade_cost_ns
             );
         }
-        if let Some(u) = &m.unit_costs {
+        for u in &m.unit_costs {
             let _ = writeln!(
                 md,
-                "Unit costs of this adapter, fitted jointly over the calibration's micro-workloads (a frame's GPU time ≈ Σ cost × work):\n\n{}",
+                "Unit costs of this adapter at {}, fitted jointly over the calibration's micro-workloads (a frame's GPU time ≈ Σ cost × work):\n\n{}",
+                u.size,
                 u.to_markdown()
             );
         }
@@ -242,6 +309,10 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         .values()
         .filter(|c| !c.gpu_wall.is_empty())
         .collect();
+    where_the_time_goes(&mut md, &ok, &plots)?;
+    if let Some(other) = &other {
+        projection::projection(&mut md, &configs, other)?;
+    }
     let _ = writeln!(md, "\n## Plots\n");
     frame_time_plot(&ok, &plots.join("frame_time.svg"))?;
     let _ = writeln!(

@@ -184,3 +184,128 @@ pub(super) fn scaling_plot(
     root.present().map_err(plot_err)?;
     Ok(())
 }
+
+/// Names of the stacked segments of [`time_split_plot`]: the CPU stages, then the cost
+/// model's terms in the order of [`grassbench::cost::Term::ALL`].
+pub(super) const SPLIT_SEGMENTS: [&str; 12] = [
+    "CPU update",
+    "CPU upload",
+    "CPU encode",
+    "GPU fixed",
+    "GPU vertices",
+    "GPU primitives",
+    "GPU fragments opaque",
+    "GPU fragments alpha-tested",
+    "GPU fragments blended",
+    "GPU draws",
+    "GPU compute",
+    "GPU uploads",
+];
+
+/// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
+/// cost model's GPU terms (`None` without a model).
+pub(super) fn time_split(c: &Config) -> Option<[f64; 12]> {
+    let terms = c.model_terms?;
+    let mut out = [0.0; 12];
+    out[0] = median(&c.update).unwrap_or(0.0);
+    out[1] = median(&c.upload).unwrap_or(0.0);
+    out[2] = median(&c.encode).unwrap_or(0.0);
+    out[3..].copy_from_slice(&terms);
+    Some(out)
+}
+
+/// "Where the time goes": per configuration with a model, one bar stacking its CPU stages and
+/// the model's predicted GPU terms (ms, log-free so the parts add up), and a black tick at its
+/// measured frame time (CPU stages + measured GPU wall time): the gap between the bar's top
+/// and the tick is what the model does not explain.
+pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Result<()> {
+    let rows: Vec<(&Config, [f64; 12])> = configs
+        .iter()
+        .filter_map(|c| Some((*c, time_split(c)?)))
+        .collect();
+    let width = (220 + 70 * rows.len() as u32).max(700);
+    let root = SVGBackend::new(path, (width, 520)).into_drawing_area();
+    root.fill(&WHITE).map_err(plot_err)?;
+    let measured = |c: &Config, split: &[f64; 12]| {
+        split[..3].iter().sum::<f64>() + median(&c.gpu_wall).unwrap_or(0.0)
+    };
+    let max = rows
+        .iter()
+        .map(|(c, s)| s.iter().sum::<f64>().max(measured(c, s)))
+        .fold(1.0, f64::max)
+        * 1.1;
+    let (plot, legend) = root.split_horizontally(width - 210);
+    let mut chart = ChartBuilder::on(&plot)
+        .caption(
+            "Where the time goes: CPU stages + the cost model's GPU terms (ms); tick = measured",
+            ("sans-serif", 15),
+        )
+        .margin(12)
+        .x_label_area_size(90)
+        .y_label_area_size(55)
+        .build_cartesian_2d(-0.5f64..(rows.len() as f64 - 0.5), 0f64..max)
+        .map_err(plot_err)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(0)
+        .y_desc("ms per frame")
+        .draw()
+        .map_err(plot_err)?;
+    let palette = |k: usize| -> RGBColor {
+        const EXTRA: [RGBColor; 4] = [
+            RGBColor(188, 189, 34),
+            RGBColor(23, 190, 207),
+            RGBColor(90, 90, 90),
+            RGBColor(200, 200, 200),
+        ];
+        if k < COLORS.len() {
+            COLORS[k]
+        } else {
+            EXTRA[(k - COLORS.len()) % EXTRA.len()]
+        }
+    };
+    for (k, (c, split)) in rows.iter().enumerate() {
+        let x = k as f64;
+        let mut base = 0.0;
+        for (s, v) in split.iter().enumerate() {
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x - 0.35, base), (x + 0.35, base + v)],
+                    palette(s).filled(),
+                )))
+                .map_err(plot_err)?;
+            base += v;
+        }
+        let m = measured(c, split);
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(x - 0.45, m), (x + 0.45, m)],
+                BLACK.stroke_width(3),
+            )))
+            .map_err(plot_err)?;
+        chart
+            .draw_series(std::iter::once(Text::new(
+                format!("{} {}", c.scene, label(c)),
+                (x - 0.3, -max * 0.02),
+                ("sans-serif", 10)
+                    .into_font()
+                    .transform(FontTransform::Rotate90),
+            )))
+            .map_err(plot_err)?;
+    }
+    for (s, name) in SPLIT_SEGMENTS.iter().enumerate() {
+        let y = 40 + 22 * s as i32;
+        legend
+            .draw(&Rectangle::new(
+                [(10, y), (24, y + 14)],
+                palette(s).filled(),
+            ))
+            .map_err(plot_err)?;
+        legend
+            .draw(&Text::new(*name, (30, y), ("sans-serif", 12)))
+            .map_err(plot_err)?;
+    }
+    root.present().map_err(plot_err)?;
+    Ok(())
+}

@@ -1,0 +1,137 @@
+//! Projection to another adapter (issue 20 §4): each run's measured work priced with the unit
+//! costs another adapter was calibrated with, so a reader can see what the same frames would
+//! cost there. Everything it prints is labelled *predicted*: nothing was run on that adapter.
+
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{Context as _, bail};
+use grassbench::cost::UnitCosts;
+use grassbench::runner::Provenance;
+use grassbench::sweep::REFERENCE;
+
+use super::configs::{Config, label, median};
+
+/// Another adapter's calibration: its unit costs (one per size it was calibrated at) and
+/// where they were measured.
+pub(super) struct Calibration {
+    /// The unit costs.
+    pub(super) costs: Vec<UnitCosts>,
+    /// The adapter's name and backend, as its file records them.
+    pub(super) adapter: String,
+    /// The file.
+    pub(super) path: String,
+}
+
+impl Calibration {
+    /// Reads `path`: a results folder's `meta.toml` (`[[unit_costs]]`, from `run` or
+    /// `sweep`) or the file `grassbench calibrate -o` writes (`[unit_costs]`).
+    pub(super) fn load(path: &Path) -> anyhow::Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read the calibration `{}`", path.display()))?;
+        let value: toml::Table = toml::from_str(&text)
+            .with_context(|| format!("`{}` is not TOML", path.display()))?;
+        let costs: Vec<UnitCosts> = match value.get("unit_costs") {
+            Some(toml::Value::Array(a)) => a
+                .iter()
+                .map(|v| v.clone().try_into())
+                .collect::<Result<_, _>>()
+                .with_context(|| format!("`{}`: [[unit_costs]]", path.display()))?,
+            Some(v @ toml::Value::Table(_)) => vec![
+                v.clone()
+                    .try_into()
+                    .with_context(|| format!("`{}`: [unit_costs]", path.display()))?,
+            ],
+            _ => bail!(
+                "`{}` holds no unit costs: pass the meta.toml of a `run` or `sweep` made with calibration, or a file from `grassbench calibrate -o FILE`",
+                path.display()
+            ),
+        };
+        if costs.is_empty() {
+            bail!("`{}` holds an empty list of unit costs", path.display());
+        }
+        let adapter = value
+            .get("provenance")
+            .or(Some(&toml::Value::Table(value.clone())))
+            .and_then(|p| p.clone().try_into::<Provenance>().ok())
+            .map_or_else(
+                || "the other adapter".to_owned(),
+                |p| format!("{} ({})", p.adapter.name, p.adapter.backend),
+            );
+        Ok(Self {
+            costs,
+            adapter,
+            path: path.display().to_string(),
+        })
+    }
+
+    /// The costs calibrated at `size`, else the first (the fixed cost per frame then belongs
+    /// to another size: flagged in the table).
+    fn for_size(&self, size: &str) -> (&UnitCosts, bool) {
+        self.costs
+            .iter()
+            .find(|c| c.size == size)
+            .map_or((&self.costs[0], false), |c| (c, true))
+    }
+}
+
+/// Writes the projection section: per configuration with measured work, its time here
+/// (measured) and on the other adapter (predicted), and the predicted speed-up over its
+/// group's reference there.
+pub(super) fn projection(
+    md: &mut String,
+    configs: &BTreeMap<String, Config>,
+    other: &Calibration,
+) -> anyhow::Result<()> {
+    let _ = writeln!(
+        md,
+        "\n## Predicted on {} (projection)\n",
+        other.adapter
+    );
+    let _ = writeln!(
+        md,
+        "Each run's measured work (per frame, from frames.csv) priced with the unit costs of `{}`: **predicted** times on that adapter, not measurements. A size marked * was priced with costs calibrated at another size (its fixed cost per frame differs).\n",
+        other.path
+    );
+    let predicted: HashMap<String, f64> = configs
+        .iter()
+        .filter_map(|(id, c)| Some((id.clone(), other.for_size(&c.size).0.predict(&c.work?).total_ms)))
+        .collect();
+    if predicted.is_empty() {
+        let _ = writeln!(
+            md,
+            "No run here has counted work (the adapter had no pipeline statistics), so nothing can be projected.\n"
+        );
+        return Ok(());
+    }
+    let group = |c: &Config| (c.scene.clone(), c.variant.clone(), c.size.clone(), c.msaa);
+    let reference: HashMap<_, f64> = configs
+        .iter()
+        .filter(|(_, c)| c.technique == REFERENCE)
+        .filter_map(|(id, c)| Some((group(c), *predicted.get(id)?)))
+        .collect();
+    let _ = writeln!(
+        md,
+        "| scene | size | technique | params | measured here, GPU ms | predicted there, GPU ms | predicted speed-up there | measured speed-up here |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    for (id, c) in configs {
+        let Some(p) = predicted.get(id) else { continue };
+        let exact = other.for_size(&c.size).1;
+        let _ = writeln!(
+            md,
+            "| {} | {}{} | {} | {} | {} | {:.2} | {} | {} |",
+            c.scene,
+            c.size,
+            if exact { "" } else { "*" },
+            c.technique,
+            label(c).trim_start_matches(&c.technique).trim(),
+            super::fmt(median(&c.gpu_wall), 1),
+            p,
+            super::fmt(reference.get(&group(c)).map(|r| r / p), 2),
+            super::fmt(median(&c.ratio).map(|r| 1.0 / r), 2),
+        );
+    }
+    Ok(())
+}
