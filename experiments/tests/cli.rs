@@ -507,7 +507,10 @@ fn list_shows_values_as_written_and_variants() {
     assert!(ok);
     assert!(out.contains("flutter = 0.15\n"), "{out}");
     assert!(out.contains("variant finest"), "{out}");
-    assert!(out.contains("variant no_transitions  transitions = false"), "{out}");
+    assert!(
+        out.contains("variant no_transitions  transitions = false"),
+        "{out}"
+    );
 }
 
 /// `calibrate -o` writes the raw limits, the unit costs with their fit, every sample with its

@@ -108,9 +108,18 @@ fn tiny_sweep_runs_and_reports() {
     for k in 0..techniques_col.len() {
         if counted {
             let (m, r) = (model[k].unwrap(), model_ratio[k].unwrap());
-            assert!(m > 0.0 && r > 0.0, "{}: model {m} ratio {r}", techniques_col[k]);
+            assert!(
+                m > 0.0 && r > 0.0,
+                "{}: model {m} ratio {r}",
+                techniques_col[k]
+            );
         } else {
-            assert_eq!((model[k], model_ratio[k]), (None, None), "{}", techniques_col[k]);
+            assert_eq!(
+                (model[k], model_ratio[k]),
+                (None, None),
+                "{}",
+                techniques_col[k]
+            );
         }
     }
     assert!(
@@ -178,7 +187,10 @@ fn tiny_sweep_runs_and_reports() {
         "--calibration",
         out.join("runs.csv").to_str().unwrap(),
     ]);
-    assert!(!ok && (err.contains("not TOML") || err.contains("no unit costs")), "{err}");
+    assert!(
+        !ok && (err.contains("not TOML") || err.contains("no unit costs")),
+        "{err}"
+    );
 
     // Running the finished sweep again does nothing and changes nothing.
     let before = std::fs::read(out.join("runs.csv")).unwrap();

@@ -451,7 +451,8 @@ mod tests {
         let r = sliding(2, false);
         let blurred = sliding(2, true);
         let maps = StepMaps::of((&blurred[0], &blurred[1]), (&r[0], &r[1])).unwrap();
-        let c = temporal_change(CameraMotion::Pan(1.0), Scale::Full, &blurred[..2], &r[..2]).unwrap();
+        let c =
+            temporal_change(CameraMotion::Pan(1.0), Scale::Full, &blurred[..2], &r[..2]).unwrap();
         let (s, m) = maps.means();
         assert!((s - c.spurious.mean).abs() < 1e-9 && (m - c.missing.mean).abs() < 1e-9);
         let picture = maps.image(4.0);
@@ -460,7 +461,9 @@ mod tests {
             .iter()
             .position(|&x| x > 0.1)
             .expect("blur misses change somewhere");
-        let p = picture.get_pixel(k as u32 % maps.width, k as u32 / maps.width).0;
+        let p = picture
+            .get_pixel(k as u32 % maps.width, k as u32 / maps.width)
+            .0;
         assert!(p[1] > 0 && p[1] == p[2], "{p:?}");
     }
 

@@ -310,9 +310,9 @@ impl<'g> Rig<'g> {
                 ) {
                     continue;
                 }
-                let query = counter
-                    .as_deref_mut()
-                    .and_then(|c| c.next(w.name.to_owned(), PassKind::Render, Some(w.fragment_kind())));
+                let query = counter.as_deref_mut().and_then(|c| {
+                    c.next(w.name.to_owned(), PassKind::Render, Some(w.fragment_kind()))
+                });
                 if let Some((set, index)) = &query {
                     pass.begin_pipeline_statistics_query(set, *index);
                     kinds.push(w.fragment_kind());

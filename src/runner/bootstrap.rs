@@ -58,11 +58,7 @@ pub fn speedup_interval(reference: &[Vec<f64>], technique: &[Vec<f64>]) -> Optio
     interval_seeded(reference, technique, 0x5eed_b007)
 }
 
-fn interval_seeded(
-    reference: &[Vec<f64>],
-    technique: &[Vec<f64>],
-    seed: u64,
-) -> Option<Interval> {
+fn interval_seeded(reference: &[Vec<f64>], technique: &[Vec<f64>], seed: u64) -> Option<Interval> {
     let pairs: Vec<(&Vec<f64>, &Vec<f64>)> = reference
         .iter()
         .zip(technique)
@@ -177,6 +173,9 @@ mod tests {
     fn nothing_to_resample_gives_none() {
         assert_eq!(speedup_interval(&[], &[]), None);
         assert_eq!(speedup_interval_of_runs(&[], &[1.0]), None);
-        assert_eq!(speedup_interval(&[vec![1.0]], &[vec![1.0], vec![2.0]]), None);
+        assert_eq!(
+            speedup_interval(&[vec![1.0]], &[vec![1.0], vec![2.0]]),
+            None
+        );
     }
 }

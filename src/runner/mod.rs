@@ -185,53 +185,57 @@ impl<'g> World<'g> {
 
         let gpu = self.gpu;
         let prefix = format!("{}.", info.id);
-        let ((update_ms, upload_ms, encode_ms), submit_at, readback, (core_draws, draw_calls), upload_bytes) =
-            gpu.scoped(&during, || -> Result<_> {
-                let inputs = self.inputs(view, frame);
-                let t = Instant::now();
-                technique.update(&inputs)?;
-                let update_ms = ms(t);
+        let (
+            (update_ms, upload_ms, encode_ms),
+            submit_at,
+            readback,
+            (core_draws, draw_calls),
+            upload_bytes,
+        ) = gpu.scoped(&during, || -> Result<_> {
+            let inputs = self.inputs(view, frame);
+            let t = Instant::now();
+            technique.update(&inputs)?;
+            let update_ms = ms(t);
 
-                let t = Instant::now();
-                gpu.take_uploaded_bytes();
-                self.scene_gpu.upload(gpu, &inputs);
-                technique.prepare(gpu, &inputs)?;
-                let upload_ms = ms(t);
-                let upload_bytes = gpu.take_uploaded_bytes();
+            let t = Instant::now();
+            gpu.take_uploaded_bytes();
+            self.scene_gpu.upload(gpu, &inputs);
+            technique.prepare(gpu, &inputs)?;
+            let upload_ms = ms(t);
+            let upload_bytes = gpu.take_uploaded_bytes();
 
-                let t = Instant::now();
-                let mut enc = FrameEncoder::new(
-                    gpu,
-                    &view.target,
-                    &self.scene_gpu,
-                    view.timer.as_mut(),
-                    view.work.as_mut(),
-                    "core.",
-                );
-                {
-                    let mut pass =
-                        enc.render_pass_with("background", Some(wgpu::Color::BLACK), true);
-                    self.scene_gpu.draw_background(&mut pass);
-                }
-                enc.set_label_prefix(&prefix);
-                let core_draws = enc.counts().draws;
-                technique.encode(&mut enc);
-                let draw_calls = enc.counts().draws - core_draws;
-                let mut encoder = enc.finish();
-                let readback = capture.then(|| view.target.encode_readback(gpu, &mut encoder));
-                let command_buffer = encoder.finish();
-                let encode_ms = ms(t);
+            let t = Instant::now();
+            let mut enc = FrameEncoder::new(
+                gpu,
+                &view.target,
+                &self.scene_gpu,
+                view.timer.as_mut(),
+                view.work.as_mut(),
+                "core.",
+            );
+            {
+                let mut pass = enc.render_pass_with("background", Some(wgpu::Color::BLACK), true);
+                self.scene_gpu.draw_background(&mut pass);
+            }
+            enc.set_label_prefix(&prefix);
+            let core_draws = enc.counts().draws;
+            technique.encode(&mut enc);
+            let draw_calls = enc.counts().draws - core_draws;
+            let mut encoder = enc.finish();
+            let readback = capture.then(|| view.target.encode_readback(gpu, &mut encoder));
+            let command_buffer = encoder.finish();
+            let encode_ms = ms(t);
 
-                let submit_at = Instant::now();
-                gpu.queue.submit([command_buffer]);
-                Ok((
-                    (update_ms, upload_ms, encode_ms),
-                    submit_at,
-                    readback,
-                    (core_draws, draw_calls),
-                    upload_bytes,
-                ))
-            })??;
+            let submit_at = Instant::now();
+            gpu.queue.submit([command_buffer]);
+            Ok((
+                (update_ms, upload_ms, encode_ms),
+                submit_at,
+                readback,
+                (core_draws, draw_calls),
+                upload_bytes,
+            ))
+        })??;
         gpu.wait_idle(&during)?;
         let gpu_wall_ms = ms(submit_at);
 

@@ -39,8 +39,9 @@ impl FragmentKind {
         discards: bool,
     ) -> Self {
         let blended = targets.iter().flatten().any(|t| {
-            t.blend
-                .is_some_and(|b| b != wgpu::BlendState::REPLACE && t.write_mask != wgpu::ColorWrites::empty())
+            t.blend.is_some_and(|b| {
+                b != wgpu::BlendState::REPLACE && t.write_mask != wgpu::ColorWrites::empty()
+            })
         });
         if blended {
             Self::Blended
@@ -162,14 +163,26 @@ mod tests {
             ..Default::default()
         };
         let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
-        assert_eq!(FragmentKind::of(&target(None), &ms, false), FragmentKind::Opaque);
+        assert_eq!(
+            FragmentKind::of(&target(None), &ms, false),
+            FragmentKind::Opaque
+        );
         assert_eq!(
             FragmentKind::of(&target(Some(wgpu::BlendState::REPLACE)), &ms, false),
             FragmentKind::Opaque
         );
-        assert_eq!(FragmentKind::of(&target(None), &ms, true), FragmentKind::AlphaTested);
-        assert_eq!(FragmentKind::of(&target(None), &a2c, false), FragmentKind::AlphaTested);
-        assert_eq!(FragmentKind::of(&target(blend), &ms, true), FragmentKind::Blended);
+        assert_eq!(
+            FragmentKind::of(&target(None), &ms, true),
+            FragmentKind::AlphaTested
+        );
+        assert_eq!(
+            FragmentKind::of(&target(None), &a2c, false),
+            FragmentKind::AlphaTested
+        );
+        assert_eq!(
+            FragmentKind::of(&target(blend), &ms, true),
+            FragmentKind::Blended
+        );
         // Depth- or stencil-only passes (nothing written to colour) are not blended.
         let masked = [Some(wgpu::ColorTargetState {
             format: wgpu::TextureFormat::Rgba8Unorm,

@@ -81,7 +81,11 @@ fn fragments_are_split_by_the_kind_of_their_pipeline() -> anyhow::Result<()> {
             r.fragments_alpha_tested.context("alpha-tested")?,
             r.fragments_blended.context("blended")?,
         ];
-        assert_eq!(kinds.iter().sum::<u64>(), total, "{id}: {kinds:?} of {total}");
+        assert_eq!(
+            kinds.iter().sum::<u64>(),
+            total,
+            "{id}: {kinds:?} of {total}"
+        );
         match id {
             "reference" => assert_eq!(kinds, [total, 0, 0], "reference"),
             "bakay" => assert!(kinds[1] > total / 2, "bakay: {kinds:?}"),
@@ -100,7 +104,8 @@ fn uploads_are_counted_for_every_frame() -> anyhow::Result<()> {
     let r = frame_of(&gpu, "reference", "")?;
     let scene = lawn()?;
     let (w, h) = grassbench::wind::WindTexture::resolution_for(&scene.terrain);
-    let core = u64::from(w * h * 16) + std::mem::size_of::<grassbench::frame::FrameGlobals>() as u64;
+    let core =
+        u64::from(w * h * 16) + std::mem::size_of::<grassbench::frame::FrameGlobals>() as u64;
     assert_eq!(r.upload_bytes, Some(core));
     // zhang uploads its near blades' control points every frame.
     let z = frame_of(&gpu, "zhang", "")?;

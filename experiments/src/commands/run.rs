@@ -388,7 +388,10 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
         s,
         "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | model ms | measured / model | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(
+        s,
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    );
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(

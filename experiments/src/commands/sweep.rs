@@ -10,8 +10,8 @@ use grassbench::cost::{UnitCosts, apply_model, calibrate_units};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
 use grassbench::sweep::{
-    ParamRow, PlannedRun, REFERENCE, SweepSpec, SweepStore, apply_overrides, image_path,
-    compare_with_reference, sweep_key,
+    ParamRow, PlannedRun, REFERENCE, SweepSpec, SweepStore, apply_overrides,
+    compare_with_reference, image_path, sweep_key,
 };
 use grassbench::target::save_png;
 use grassbench::{GpuContext, Scene};
@@ -184,7 +184,15 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     for run in todo {
         bar.set_message(format!("{} on {}", run.technique, run.scene));
         let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
-        match execute(&gpu, &spec, scene, run, &mut reference, store.dir(), &unit_costs) {
+        match execute(
+            &gpu,
+            &spec,
+            scene,
+            run,
+            &mut reference,
+            store.dir(),
+            &unit_costs,
+        ) {
             Ok((row, frames, params)) => store.append(&row, &frames, &params)?,
             Err(e) => {
                 // A failed run is recorded as failed and the sweep goes on.
@@ -316,7 +324,10 @@ fn execute(
     let image = result.images.into_iter().next().map(|(_, img)| img);
     let walls: Vec<f64> = result.frames.iter().map(|f| f.gpu_wall_ms).collect();
     if run.technique == REFERENCE {
-        reference.insert(run.group.clone(), (row.clone(), walls.clone(), image.clone()));
+        reference.insert(
+            run.group.clone(),
+            (row.clone(), walls.clone(), image.clone()),
+        );
     }
     if let Some((ref_row, ref_walls, ref_img)) = reference.get(&run.group) {
         compare_with_reference(&mut row, ref_row, &walls, ref_walls);

@@ -14,10 +14,10 @@ use super::sweep::SweepMeta;
 use configs::{BUSY_HOST_CORES, Config, label, load, median};
 use grassbench::runner::bootstrap::Interval;
 use grassbench::sweep::REFERENCE;
-use std::collections::BTreeMap;
 use plots::{
     SPLIT_SEGMENTS, frame_time_plot, pareto_plot, scaling_plot, time_split, time_split_plot,
 };
+use std::collections::BTreeMap;
 
 /// Arguments of `report`.
 #[derive(Clone, Debug, clap::Args)]
@@ -122,7 +122,9 @@ fn where_the_time_goes(
         md,
         "The cost model prices each run's measured work (pipeline statistics: vertices, primitives, fragments by kind; the harness's draws and uploads) with the adapter's unit costs from the calibration above. *Measured / model* is the measured median GPU wall time over the prediction: near 1 where the counted work explains the time. Shares are of the CPU stages plus the predicted GPU time. Predicted, not measured: each GPU term is unit cost × work.\n"
     );
-    let mut header = String::from("| scene | size | technique | params | measured GPU ms | model ms | measured / model |");
+    let mut header = String::from(
+        "| scene | size | technique | params | measured GPU ms | model ms | measured / model |",
+    );
     let mut rule = String::from("|---|---|---|---|---|---|---|");
     for name in SPLIT_SEGMENTS {
         let _ = write!(header, " {name} |");

@@ -30,8 +30,8 @@ impl Calibration {
     pub(super) fn load(path: &Path) -> anyhow::Result<Self> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("cannot read the calibration `{}`", path.display()))?;
-        let value: toml::Table = toml::from_str(&text)
-            .with_context(|| format!("`{}` is not TOML", path.display()))?;
+        let value: toml::Table =
+            toml::from_str(&text).with_context(|| format!("`{}` is not TOML", path.display()))?;
         let costs: Vec<UnitCosts> = match value.get("unit_costs") {
             Some(toml::Value::Array(a)) => a
                 .iter()
@@ -84,11 +84,7 @@ pub(super) fn projection(
     configs: &BTreeMap<String, Config>,
     other: &Calibration,
 ) -> anyhow::Result<()> {
-    let _ = writeln!(
-        md,
-        "\n## Predicted on {} (projection)\n",
-        other.adapter
-    );
+    let _ = writeln!(md, "\n## Predicted on {} (projection)\n", other.adapter);
     let _ = writeln!(
         md,
         "Each run's measured work (per frame, from frames.csv) priced with the unit costs of `{}`: **predicted** times on that adapter, not measurements. A size marked * was priced with costs calibrated at another size (its fixed cost per frame differs).\n",
@@ -96,7 +92,12 @@ pub(super) fn projection(
     );
     let predicted: HashMap<String, f64> = configs
         .iter()
-        .filter_map(|(id, c)| Some((id.clone(), other.for_size(&c.size).0.predict(&c.work?).total_ms)))
+        .filter_map(|(id, c)| {
+            Some((
+                id.clone(),
+                other.for_size(&c.size).0.predict(&c.work?).total_ms,
+            ))
+        })
         .collect();
     if predicted.is_empty() {
         let _ = writeln!(
