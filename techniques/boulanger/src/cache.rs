@@ -4,8 +4,10 @@
 //! A baked set of layers ([`crate::btf::BtfTextures`], every mip level of its three textures)
 //! is stored in one file named by a 64-bit key: an FNV-1a hash of everything the bake reads
 //! ([`bake_key`]: the format version, both shaders' source, the blade texture, the patch's
-//! blades, the bake's uniforms and the texture sizes), so any parameter or code change that
-//! alters the bake picks another file. The folder is the `btf_cache` parameter: empty (the
+//! blades, the bake's uniforms and the texture sizes) and of the adapter that renders it
+//! ([`for_adapter`]: backend, name, driver: a bake is a render, and GL's llvmpipe bakes these
+//! layers differently from Vulkan's lavapipe on the same machine), so any parameter, code or
+//! adapter change that alters the bake picks another file. The folder is the `btf_cache` parameter: empty (the
 //! default) means `$XDG_CACHE_HOME/grassbench/boulanger` (else `$HOME/.cache/...`, else the
 //! system temporary folder), `off` disables the cache; it is never inside the repository.
 //!
@@ -85,6 +87,22 @@ pub fn bake_key(kind: &str, dims: Dims, uniform: &[u8], blades: &[u8]) -> u64 {
         uniform,
         blades,
     ])
+}
+
+/// The key of a bake `key` rendered by `adapter`: a bake is a render, so a file baked by one
+/// adapter or backend is never loaded by another (a GL bake loaded by Vulkan once made the
+/// meadow's snapshot test fail with FLIP 0.05 on identical code).
+pub fn for_adapter(key: u64, adapter: &wgpu::AdapterInfo) -> u64 {
+    let who = format!(
+        "{:?}|{}|{}|{}|{}|{}",
+        adapter.backend,
+        adapter.name,
+        adapter.vendor,
+        adapter.device,
+        adapter.driver,
+        adapter.driver_info
+    );
+    fnv1a(&[&key.to_le_bytes(), who.as_bytes()])
 }
 
 /// Where cache files go for the `btf_cache` parameter (`None`: disabled).
@@ -298,6 +316,7 @@ pub fn load_or_bake(
     let Some(folder) = folder else {
         return Ok((bake()?, Outcome::Disabled));
     };
+    let key = for_adapter(key, &gpu.adapter.get_info());
     let path = file(folder, key);
     let rejected = match std::fs::read(&path) {
         Ok(bytes) => match decode(&bytes, key, dims) {
@@ -367,6 +386,28 @@ mod tests {
         assert_ne!(base, k("v", Dims { width: 32, ..DIMS }, &[1, 2], &[3]));
         assert_ne!(base, k("v", DIMS, &[1, 3], &[3]));
         assert_ne!(base, k("v", DIMS, &[1, 2], &[4]));
+    }
+
+    #[test]
+    fn another_adapter_or_backend_picks_another_file() {
+        let lavapipe = wgpu::AdapterInfo {
+            name: "llvmpipe (LLVM 15.0.6, 256 bits)".into(),
+            driver: "llvmpipe".into(),
+            driver_info: "Mesa 22.3.6 (LLVM 15.0.6)".into(),
+            ..wgpu::AdapterInfo::new(wgpu::DeviceType::Cpu, wgpu::Backend::Vulkan)
+        };
+        let gl = wgpu::AdapterInfo {
+            backend: wgpu::Backend::Gl,
+            ..lavapipe.clone()
+        };
+        let newer = wgpu::AdapterInfo {
+            driver_info: "Mesa 24.2.8".into(),
+            ..lavapipe.clone()
+        };
+        assert_eq!(for_adapter(7, &lavapipe), for_adapter(7, &lavapipe));
+        assert_ne!(for_adapter(7, &lavapipe), for_adapter(8, &lavapipe));
+        assert_ne!(for_adapter(7, &lavapipe), for_adapter(7, &gl));
+        assert_ne!(for_adapter(7, &lavapipe), for_adapter(7, &newer));
     }
 
     #[test]
