@@ -148,6 +148,12 @@ fn tiny_sweep_runs_and_reports() {
         counted,
         "{report}"
     );
+    // The reference's cost per blade against the calibration's raw rate (issue 20 §6).
+    assert!(
+        report.contains("## The reference against the raw blade rate")
+            && report.contains("share of raw rate"),
+        "{report}"
+    );
     // Projected onto the adapter this sweep calibrated (its own meta.toml), every run's
     // predicted time is its model_ms: the same work, the same costs (where work was counted).
     if counted {

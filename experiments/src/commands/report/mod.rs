@@ -3,6 +3,7 @@
 mod configs;
 mod plots;
 mod projection;
+mod raw_rate;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -312,6 +313,9 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         .filter(|c| !c.gpu_wall.is_empty())
         .collect();
     where_the_time_goes(&mut md, &ok, &plots)?;
+    if let Some(c) = meta.as_ref().and_then(|m| m.calibration.as_ref()) {
+        raw_rate::raw_rate(&mut md, &ok, c);
+    }
     if let Some(other) = &other {
         projection::projection(&mut md, &configs, other)?;
     }
