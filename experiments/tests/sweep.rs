@@ -185,6 +185,25 @@ fn tiny_sweep_runs_and_reports() {
                 "predicted {p} is no run's model_ms {expected:?}"
             );
         }
+        // Its runs.csv beside it: the projection is checked against what was measured
+        // there, here the same runs, so each row's predicted / measured there is its
+        // predicted over its measured time here.
+        assert!(
+            section.contains("**Checked against what was measured there**"),
+            "{section}"
+        );
+        for l in section
+            .lines()
+            .filter(|l| l.starts_with("| meadow") || l.starts_with("| football"))
+        {
+            let cell = |k: usize| -> f64 { l.split('|').nth(k).unwrap().trim().parse().unwrap() };
+            let (here, predicted, there, ratio) = (cell(5), cell(6), cell(7), cell(8));
+            assert_eq!(here, there, "{l}");
+            assert!(
+                (ratio - predicted / there).abs() <= 0.01 + 0.01 * ratio,
+                "{l}"
+            );
+        }
     }
     // A file without unit costs is refused, naming the fix.
     let (ok, err) = grassbench(&[

@@ -1,6 +1,8 @@
 //! Projection to another adapter (issue 20 §4): each run's measured work priced with the unit
 //! costs another adapter was calibrated with, so a reader can see what the same frames would
-//! cost there. Everything it prints is labelled *predicted*: nothing was run on that adapter.
+//! cost there. Everything it prints is labelled *predicted*. Where the calibration is the
+//! `meta.toml` of a sweep of the same configurations run on that adapter (its `runs.csv`
+//! beside it), the prediction is checked against what was measured there, run by run.
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
@@ -22,7 +24,15 @@ pub(super) struct Calibration {
     pub(super) adapter: String,
     /// The file.
     pub(super) path: String,
+    /// The configurations measured on that adapter, where the file is a sweep's `meta.toml`
+    /// with its `runs.csv` beside it (keyed like this folder's: the same sweep file gives the
+    /// same configuration ids on any adapter).
+    pub(super) measured: Option<BTreeMap<String, Config>>,
 }
+
+/// How far a projection may miss what was measured there and still count as a transfer
+/// (issue 20 §4: ±25 %).
+pub(super) const TRANSFER_TOLERANCE: f64 = 0.25;
 
 impl Calibration {
     /// Reads `path`: a results folder's `meta.toml` (`[[unit_costs]]`, from `run` or
@@ -59,10 +69,19 @@ impl Calibration {
                 || "the other adapter".to_owned(),
                 |p| format!("{} ({})", p.adapter.name, p.adapter.backend),
             );
+        let runs = path.with_file_name("runs.csv");
+        let measured = match path.parent() {
+            Some(dir) if runs.exists() => Some(
+                super::configs::load(dir)
+                    .with_context(|| format!("the runs beside `{}`", path.display()))?,
+            ),
+            _ => None,
+        };
         Ok(Self {
             costs,
             adapter,
             path: path.display().to_string(),
+            measured,
         })
     }
 
@@ -112,17 +131,44 @@ pub(super) fn projection(
         .filter(|(_, c)| c.technique == REFERENCE)
         .filter_map(|(id, c)| Some((group(c), *predicted.get(id)?)))
         .collect();
+    // Measured there, for the configurations the other folder ran.
+    let there: HashMap<&String, f64> = other
+        .measured
+        .iter()
+        .flatten()
+        .filter_map(|(id, c)| Some((id, median(&c.gpu_wall)?)))
+        .collect();
+    let checked: Vec<f64> = predicted
+        .iter()
+        .filter_map(|(id, p)| Some(p / there.get(id)?))
+        .collect();
+    if !checked.is_empty() {
+        let (low, high) = checked
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(l, h), r| (l.min(*r), h.max(*r)));
+        let within = checked
+            .iter()
+            .filter(|r| (**r - 1.0).abs() <= TRANSFER_TOLERANCE)
+            .count();
+        let _ = writeln!(
+            md,
+            "**Checked against what was measured there** (the `runs.csv` beside that file, the same configurations): predicted / measured from {low:.2} to {high:.2}; {within} of {} within ±{:.0} %.\n",
+            checked.len(),
+            TRANSFER_TOLERANCE * 100.0
+        );
+    }
     let _ = writeln!(
         md,
-        "| scene | size | technique | params | measured here, GPU ms | predicted there, GPU ms | predicted speed-up there | measured speed-up here |"
+        "| scene | size | technique | params | measured here, GPU ms | predicted there, GPU ms | measured there, GPU ms | predicted / measured there | predicted speed-up there | measured speed-up here |"
     );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|");
     for (id, c) in configs {
         let Some(p) = predicted.get(id) else { continue };
         let exact = other.for_size(&c.size).1;
+        let measured_there = there.get(id).copied();
         let _ = writeln!(
             md,
-            "| {} | {}{} | {} | {} | {} | {:.2} | {} | {} |",
+            "| {} | {}{} | {} | {} | {} | {:.2} | {} | {} | {} | {} |",
             c.scene,
             c.size,
             if exact { "" } else { "*" },
@@ -130,6 +176,8 @@ pub(super) fn projection(
             label(c).trim_start_matches(&c.technique).trim(),
             super::fmt(median(&c.gpu_wall), 1),
             p,
+            super::fmt(measured_there, 1),
+            super::fmt(measured_there.map(|m| p / m), 2),
             super::fmt(reference.get(&group(c)).map(|r| r / p), 2),
             super::fmt(median(&c.ratio).map(|r| 1.0 / r), 2),
         );
