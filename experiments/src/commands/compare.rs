@@ -105,10 +105,20 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
             compare::render_in(&mut h, &mut NoGrass, args.frame)?
         };
         save_png(&background, &dir.join("none.png"))?;
+        // Steps: each technique's frame and LOD fidelity, the matrix, and per motion the
+        // reference's frames and each technique's.
+        let motions = if args.motion_frames > 0 {
+            MOTIONS.len()
+        } else {
+            0
+        };
+        let steps = entries.len() + 1 + motions * (1 + entries.len());
+        let bar = super::progress::bar(steps as u64, "steps", &name);
         let mut images = Vec::new();
         let mut lod_rows = Vec::new();
         for entry in &entries {
             let id = entry.info.id;
+            bar.set_message(format!("{id}: frame and LOD fidelity"));
             let image = compare::render(&gpu, scene, entry, &toml::Table::new(), args.frame, size)
                 .with_context(|| format!("{id} on {name}"))?;
             save_png(&image, &dir.join(format!("{id}.png")))?;
@@ -128,7 +138,9 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                 });
             }
             images.push((id.to_owned(), image));
+            bar.inc(1);
         }
+        bar.set_message("every pair of techniques");
         let matrix = compare::cross_compare(&images, &background)?;
         for pair in &matrix {
             let (a, b) = (
@@ -150,9 +162,11 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
         }
         write_csv(&dir.join("matrix.csv"), &matrix)?;
         write_csv(&dir.join("lod.csv"), &lod_rows)?;
+        bar.inc(1);
         if args.motion_frames > 0 {
             let mut rows = Vec::new();
             for motion in MOTIONS {
+                bar.set_message(format!("{}: reference", motion.name()));
                 let base = compare::motion_frames(
                     &gpu,
                     scene,
@@ -162,7 +176,9 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                     args.motion_frames,
                     size,
                 )?;
+                bar.inc(1);
                 for entry in &entries {
+                    bar.set_message(format!("{}: {}", motion.name(), entry.info.id));
                     let mut variants = vec![("default", toml::Table::new())];
                     if let Some(v) = entry.variant(NO_TRANSITIONS) {
                         variants.push((NO_TRANSITIONS, v?));
@@ -217,10 +233,12 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                             }
                         }
                     }
+                    bar.inc(1);
                 }
             }
             write_csv(&dir.join("temporal.csv"), &rows)?;
         }
+        bar.finish_and_clear();
         eprintln!("{name}: wrote {}", dir.display());
     }
     Ok(())

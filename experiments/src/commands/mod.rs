@@ -5,6 +5,7 @@ mod compare;
 mod list;
 mod merge;
 mod out_dir;
+mod progress;
 mod render;
 mod report;
 mod run;

@@ -191,7 +191,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
                 }
             }
             let total = (options.warmup + options.frames) * created.len() as u64;
-            let bar = progress_bar(total, &format!("{name} / interleaved"));
+            let bar = super::progress::bar(total, "frames", &format!("{name} / interleaved"));
             let ids: Vec<&str> = created.iter().map(|(id, _)| *id).collect();
             let mut techniques: Vec<&mut dyn grassbench::GrassTechnique> = created
                 .iter_mut()
@@ -213,7 +213,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         } else {
             for entry in &entries {
                 let id = entry.info.id;
-                let bar = progress_bar(options.warmup + options.frames, &format!("{name} / {id}"));
+                let bar = super::progress::bar(
+                    options.warmup + options.frames,
+                    "frames",
+                    &format!("{name} / {id}"),
+                );
                 let result = harness.create(entry, &overrides).and_then(|mut t| {
                     runner::run(&mut harness, t.as_mut(), &options, &mut |done, _| {
                         bar.set_position(done)
@@ -352,17 +356,6 @@ impl SceneOutput<'_> {
         write_csv(&self.dir.join("runs.csv"), &self.runs)?;
         Ok(())
     }
-}
-
-fn progress_bar(total: u64, label: &str) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(total);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "{prefix:>28} [{bar:30}] {pos}/{len} frames, ETA {eta}",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar.set_prefix(label.to_owned());
-    bar
 }
 
 /// The results folder's README: provenance, the table, the images.

@@ -171,12 +171,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         todo.len(),
         out.display()
     );
-    let bar = indicatif::ProgressBar::new(todo.len() as u64);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "[{elapsed_precise}] [{bar:40}] {pos}/{len} runs, ETA {eta} {msg}",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
+    let bar = super::progress::bar(todo.len() as u64, "runs", &spec.name);
     // Reference run and last image per group, for ratios and FLIP.
     let mut reference: HashMap<String, Reference> = HashMap::new();
     let mut failed = 0usize;

@@ -23,105 +23,262 @@ fn plot_err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
     anyhow::anyhow!("plotting failed: {e:?}")
 }
 
-/// GPU time of every configuration, grouped by scene.
-pub(super) fn frame_time_plot(configs: &[&Config], path: &Path) -> anyhow::Result<()> {
-    let root = SVGBackend::new(path, (900, 420)).into_drawing_area();
-    root.fill(&WHITE).map_err(plot_err)?;
-    let max = configs
-        .iter()
-        .filter_map(|c| median(&c.gpu_wall))
-        .fold(1.0, f64::max)
-        * 1.15;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("GPU time per frame (median, ms)", ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(30)
-        .y_label_area_size(50)
-        .build_cartesian_2d(-0.5f64..(configs.len() as f64 - 0.5), 0f64..max)
-        .map_err(plot_err)?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(238, 238, 238))
-        .bold_line_style(RGBColor(210, 210, 210))
-        .disable_x_mesh()
-        .x_labels(0)
-        .y_desc("ms")
-        .draw()
-        .map_err(plot_err)?;
-    let scenes: Vec<String> = configs
-        .iter()
-        .map(|c| c.scene.clone())
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .collect();
-    for (k, c) in configs.iter().enumerate() {
-        let color = COLORS[scenes.iter().position(|s| *s == c.scene).unwrap_or(0) % COLORS.len()];
-        let v = median(&c.gpu_wall).unwrap_or(0.0);
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(k as f64 - 0.35, 0.0), (k as f64 + 0.35, v)],
-                color.filled(),
-            )))
-            .map_err(plot_err)?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                format!("{} {}", c.scene, label(c)),
-                (k as f64 - 0.3, v + max * 0.02),
-                ("sans-serif", 11),
-            )))
-            .map_err(plot_err)?;
+/// One colour per technique, the same in every panel and plot of a report (techniques in
+/// name order, the reference first).
+pub(super) fn technique_colors(configs: &[&Config]) -> BTreeMap<String, RGBColor> {
+    let mut ids: Vec<&str> = configs.iter().map(|c| c.technique.as_str()).collect();
+    ids.sort_by_key(|id| (*id != grassbench::sweep::REFERENCE, *id));
+    ids.dedup();
+    ids.into_iter()
+        .enumerate()
+        .map(|(k, id)| (id.to_owned(), COLORS[k % COLORS.len()]))
+        .collect()
+}
+
+/// One panel per scene (its variant and, where the report holds several, its size), each
+/// with its configurations, the techniques in the legend's order.
+fn by_scene<'a>(configs: &[&'a Config]) -> BTreeMap<String, Vec<&'a Config>> {
+    let sizes: std::collections::BTreeSet<&str> = configs.iter().map(|c| c.size.as_str()).collect();
+    let mut scenes: BTreeMap<String, Vec<&Config>> = BTreeMap::new();
+    for c in configs {
+        let mut scene = c.scene.clone();
+        if !c.variant.is_empty() {
+            scene = format!("{scene} {}", c.variant.replace(';', " "));
+        }
+        if sizes.len() > 1 {
+            scene = format!("{scene} {}", c.size);
+        }
+        scenes.entry(scene).or_default().push(c);
     }
+    for members in scenes.values_mut() {
+        members.sort_by_key(|c| {
+            (
+                c.technique != grassbench::sweep::REFERENCE,
+                c.technique.clone(),
+                c.label.clone(),
+            )
+        });
+    }
+    scenes
+}
+
+/// Tick labels of a log-scale time axis: whole milliseconds, or one decimal below 10.
+fn ms_label(v: &f64) -> String {
+    if *v >= 10.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
+    }
+}
+
+/// p5, median and p95 of a configuration's per-frame GPU wall times, all repetitions pooled
+/// (the median of the repetitions' medians where no frames were read).
+pub(super) fn gpu_spread(c: &Config) -> Option<(f64, f64, f64)> {
+    let median_of_runs = median(&c.gpu_wall)?;
+    let p = grassbench::runner::Percentiles::of(c.frame_walls.values().flatten().copied());
+    Some(
+        p.map_or((median_of_runs, median_of_runs, median_of_runs), |p| {
+            (p.p5, median_of_runs, p.p95)
+        }),
+    )
+}
+
+/// Indices of the points on the quality-against-cost frontier (cost, error; both lower is
+/// better): sorted by cost, each point whose error is below every cheaper point's.
+pub(super) fn pareto_frontier(points: &[(f64, f64)]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_by(|&a, &b| {
+        points[a]
+            .0
+            .total_cmp(&points[b].0)
+            .then(points[a].1.total_cmp(&points[b].1))
+    });
+    let mut best = f64::INFINITY;
+    let mut frontier = Vec::new();
+    for k in order {
+        if points[k].1 < best {
+            best = points[k].1;
+            frontier.push(k);
+        }
+    }
+    frontier
+}
+
+/// A log-scale range covering `values` with some room (at least a decade's tenth).
+fn log_range(values: impl IntoIterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| *v > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+    if !lo.is_finite() {
+        return 0.1..10.0;
+    }
+    (lo / 1.5)..(hi * 1.5).max(lo * 2.0)
+}
+
+/// Rows and columns of panels for `n` scenes.
+fn grid(n: usize) -> (usize, usize) {
+    let cols = n.clamp(1, 3);
+    (n.div_ceil(cols).max(1), cols)
+}
+
+/// GPU time per configuration, one panel per scene: a bar at the median, a whisker from p5 to
+/// p95 of its frames, log-scale time, one colour per technique with a legend.
+pub(super) fn frame_time_plot(configs: &[&Config], path: &Path) -> anyhow::Result<()> {
+    let scenes = by_scene(configs);
+    let colors = technique_colors(configs);
+    let (rows, cols) = grid(scenes.len());
+    let root =
+        SVGBackend::new(path, (380 * cols as u32, 330 * rows as u32 + 40)).into_drawing_area();
+    root.fill(&WHITE).map_err(plot_err)?;
+    let (title, body) = root.split_vertically(40);
+    title
+        .titled(
+            "GPU time per frame: median, whisker p5-p95 of the frames (ms, log scale)",
+            ("sans-serif", 16),
+        )
+        .map_err(plot_err)?;
+    let range = log_range(
+        configs
+            .iter()
+            .filter_map(|c| gpu_spread(c))
+            .flat_map(|(lo, _, hi)| [lo, hi]),
+    );
+    for ((scene, members), area) in scenes.iter().zip(body.split_evenly((rows, cols))) {
+        let mut chart = ChartBuilder::on(&area)
+            .caption(scene, ("sans-serif", 14))
+            .margin(8)
+            .x_label_area_size(10)
+            .y_label_area_size(50)
+            .build_cartesian_2d(
+                -0.5f64..(members.len() as f64 - 0.5),
+                range.clone().log_scale(),
+            )
+            .map_err(plot_err)?;
+        chart
+            .configure_mesh()
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(210, 210, 210))
+            .disable_x_mesh()
+            .x_labels(0)
+            .y_labels(6)
+            .y_label_formatter(&ms_label)
+            .y_desc("ms")
+            .draw()
+            .map_err(plot_err)?;
+        for (k, c) in members.iter().enumerate() {
+            let Some((lo, mid, hi)) = gpu_spread(c) else {
+                continue;
+            };
+            let color = colors.get(&c.technique).copied().unwrap_or(BLACK);
+            let x = k as f64;
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x - 0.35, range.start), (x + 0.35, mid)],
+                    color.filled(),
+                )))
+                .map_err(plot_err)?;
+            chart
+                .draw_series([
+                    PathElement::new(vec![(x, lo), (x, hi)], BLACK.stroke_width(1)),
+                    PathElement::new(vec![(x - 0.12, lo), (x + 0.12, lo)], BLACK.stroke_width(1)),
+                    PathElement::new(vec![(x - 0.12, hi), (x + 0.12, hi)], BLACK.stroke_width(1)),
+                ])
+                .map_err(plot_err)?;
+        }
+    }
+    legend(&root, &colors, cols)?;
     root.present().map_err(plot_err)?;
     Ok(())
 }
 
-/// FLIP (1/4 scale) against GPU time, one point per configuration: lower-left is better.
+/// The techniques' colours, drawn once in the top right corner of `root`.
+fn legend(
+    root: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    colors: &BTreeMap<String, RGBColor>,
+    cols: usize,
+) -> anyhow::Result<()> {
+    let mut ordered: Vec<(&String, &RGBColor)> = colors.iter().collect();
+    ordered.sort_by_key(|(id, _)| (id.as_str() != grassbench::sweep::REFERENCE, id.as_str()));
+    let x0 = 380 * cols as i32 - 100 * ordered.len().min(6) as i32 - 10;
+    for (k, (id, color)) in ordered.iter().enumerate() {
+        let x = x0 + 100 * (k % 6) as i32;
+        let y = 28 + 14 * (k / 6) as i32;
+        root.draw(&Rectangle::new(
+            [(x, y - 8), (x + 10, y + 2)],
+            color.filled(),
+        ))
+        .map_err(plot_err)?;
+        root.draw(&Text::new(
+            id.to_string(),
+            (x + 14, y - 8),
+            ("sans-serif", 12),
+        ))
+        .map_err(plot_err)?;
+    }
+    Ok(())
+}
+
+/// Quality against cost, one panel per scene: mean FLIP against the reference (1/4 scale)
+/// over GPU time (log scale), one colour per technique with a legend, the frontier of the
+/// configurations no other beats on both drawn as a line; lower-left is better.
 pub(super) fn pareto_plot(configs: &[&Config], path: &Path) -> anyhow::Result<()> {
-    let root = SVGBackend::new(path, (800, 480)).into_drawing_area();
+    let scenes = by_scene(configs);
+    let colors = technique_colors(configs);
+    let (rows, cols) = grid(scenes.len());
+    let root =
+        SVGBackend::new(path, (380 * cols as u32, 330 * rows as u32 + 40)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
-    let points: Vec<(f64, f64, String)> = configs
-        .iter()
-        .filter_map(|c| {
-            Some((
-                median(&c.gpu_wall)?,
-                median(&c.flip_quarter)?,
-                format!("{} · {}", c.scene, label(c)),
-            ))
-        })
-        .collect();
-    let xmax = points.iter().map(|p| p.0).fold(1.0, f64::max) * 1.2;
-    let ymax = points.iter().map(|p| p.1).fold(0.05, f64::max) * 1.2;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Quality vs cost: mean FLIP against reference (1/4 scale) vs GPU ms",
-            ("sans-serif", 16),
+    let (title, body) = root.split_vertically(40);
+    title
+        .titled(
+            "Quality vs cost: mean FLIP against the reference (1/4 scale) vs GPU ms (log); line: frontier",
+            ("sans-serif", 15),
         )
-        .margin(12)
-        .x_label_area_size(35)
-        .y_label_area_size(50)
-        .build_cartesian_2d(0f64..xmax, 0f64..ymax)
         .map_err(plot_err)?;
-    chart
-        .configure_mesh()
-        .light_line_style(RGBColor(238, 238, 238))
-        .bold_line_style(RGBColor(210, 210, 210))
-        .x_desc("GPU ms per frame")
-        .y_desc("mean FLIP (lower is better)")
-        .draw()
-        .map_err(plot_err)?;
-    for (k, (x, y, name)) in points.iter().enumerate() {
-        let color = COLORS[k % COLORS.len()];
-        chart
-            .draw_series(std::iter::once(Circle::new((*x, *y), 5, color.filled())))
+    for ((scene, members), area) in scenes.iter().zip(body.split_evenly((rows, cols))) {
+        let points: Vec<(f64, f64, &Config)> = members
+            .iter()
+            .filter_map(|c| Some((median(&c.gpu_wall)?, median(&c.flip_quarter)?, *c)))
+            .collect();
+        let xs = log_range(points.iter().map(|p| p.0));
+        let ymax = points.iter().map(|p| p.1).fold(0.02, f64::max) * 1.2;
+        let mut chart = ChartBuilder::on(&area)
+            .caption(scene, ("sans-serif", 14))
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(45)
+            .build_cartesian_2d(xs.log_scale(), 0f64..ymax)
             .map_err(plot_err)?;
         chart
-            .draw_series(std::iter::once(Text::new(
-                name.clone(),
-                (*x + xmax * 0.01, *y),
-                ("sans-serif", 11),
+            .configure_mesh()
+            .light_line_style(WHITE)
+            .bold_line_style(RGBColor(220, 220, 220))
+            .x_labels(5)
+            .x_label_formatter(&ms_label)
+            .y_labels(6)
+            .x_desc("GPU ms")
+            .y_desc("FLIP 1/4")
+            .draw()
+            .map_err(plot_err)?;
+        let frontier = pareto_frontier(&points.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>());
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                frontier
+                    .iter()
+                    .map(|&k| (points[k].0, points[k].1))
+                    .collect::<Vec<_>>(),
+                BLACK.mix(0.5).stroke_width(1),
             )))
             .map_err(plot_err)?;
+        for (x, y, c) in &points {
+            let color = colors.get(&c.technique).copied().unwrap_or(BLACK);
+            chart
+                .draw_series(std::iter::once(Circle::new((*x, *y), 5, color.filled())))
+                .map_err(plot_err)?;
+        }
     }
+    legend(&root, &colors, cols)?;
     root.present().map_err(plot_err)?;
     Ok(())
 }
@@ -308,4 +465,67 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
     }
     root.present().map_err(plot_err)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_frontier_keeps_what_nothing_cheaper_beats() {
+        // (ms, FLIP): 10 ms at 0.2; 20 ms at 0.1 beats it on quality; 30 ms at 0.15 is beaten
+        // by the 20 ms point on both; 40 ms at 0.05 is the best picture.
+        let points = [(30.0, 0.15), (10.0, 0.2), (40.0, 0.05), (20.0, 0.1)];
+        assert_eq!(pareto_frontier(&points), vec![1, 3, 2]);
+        assert_eq!(pareto_frontier(&[]), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn colours_follow_the_technique_not_the_point() {
+        let c = |t: &str, s: &str| Config {
+            technique: t.into(),
+            scene: s.into(),
+            ..Config::default()
+        };
+        let (a, b, r, a2) = (
+            c("zhang", "m"),
+            c("bakay", "m"),
+            c("reference", "m"),
+            c("zhang", "f"),
+        );
+        let colors = technique_colors(&[&a, &b, &r, &a2]);
+        assert_eq!(colors.len(), 3);
+        assert_eq!(colors["reference"], COLORS[0]);
+        assert_ne!(colors["zhang"], colors["bakay"]);
+        assert_eq!(by_scene(&[&a, &b, &a2]).len(), 2);
+    }
+
+    #[test]
+    fn whiskers_span_the_frames() {
+        let mut c = Config {
+            gpu_wall: vec![10.0],
+            ..Config::default()
+        };
+        c.frame_walls.insert(0, (1..=21).map(f64::from).collect());
+        let (lo, mid, hi) = gpu_spread(&c).unwrap();
+        assert_eq!(mid, 10.0);
+        assert!(
+            (lo - 2.0).abs() < 1e-9 && (hi - 20.0).abs() < 1e-9,
+            "{lo} {hi}"
+        );
+        assert_eq!(
+            gpu_spread(&Config {
+                gpu_wall: vec![5.0],
+                ..Config::default()
+            }),
+            Some((5.0, 5.0, 5.0))
+        );
+    }
+
+    #[test]
+    fn log_ranges_cover_their_values() {
+        let r = log_range([3.0, 300.0, 0.0]);
+        assert!(r.start < 3.0 && r.end > 300.0);
+        assert_eq!(log_range([]), 0.1..10.0);
+    }
 }
