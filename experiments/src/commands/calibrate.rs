@@ -70,6 +70,28 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The adapter's unit costs at each distinct size of `sizes` (in their first order), each
+/// fit's summary printed as it is measured: what `run` and `sweep` calibrate before measuring.
+pub(crate) fn unit_costs_at(
+    gpu: &grassbench::GpuContext,
+    sizes: impl IntoIterator<Item = Size>,
+) -> anyhow::Result<Vec<UnitCosts>> {
+    let mut done: Vec<Size> = Vec::new();
+    let mut all = Vec::new();
+    for size in sizes {
+        if done.contains(&size) {
+            continue;
+        }
+        done.push(size);
+        eprintln!("unit costs of {} at {size} …", gpu.summary.name);
+        let units = calibrate_units(gpu, size)
+            .with_context(|| format!("measuring the unit costs at {size}"))?;
+        eprint!("{}", summary(&units.unit_costs, &units.samples));
+        all.push(units.unit_costs);
+    }
+    Ok(all)
+}
+
 /// The costs' table and how the GPU's counters compare with the work known in advance.
 pub(crate) fn summary(costs: &UnitCosts, samples: &[MeasuredSample]) -> String {
     let mut text = format!("Unit costs\n\n{}", costs.to_markdown());

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use grassbench::cost::{UnitCosts, apply_model, calibrate_units};
+use grassbench::cost::{UnitCosts, apply_model};
 use grassbench::metrics::grass_coverage;
 use grassbench::runner::{
     self, FrameRecord, Harness, LevelRow, Provenance, RunOptions, RunSummary, write_atomic,
@@ -106,22 +106,16 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     let provenance = Provenance::collect(&gpu.summary);
     // The adapter's unit costs at every size rendered, so each run's time can be set against
     // the cost model's prediction from its measured work (issue 20 §3).
-    let mut unit_costs: Vec<UnitCosts> = Vec::new();
-    if !args.no_calibration {
-        for scene in &scenes {
-            let s = size.unwrap_or(scene.resolution());
-            if unit_costs.iter().all(|c| c.size != s.to_string()) {
-                eprintln!("unit costs of {} at {s} …", gpu.summary.name);
-                let units = calibrate_units(&gpu, s)
-                    .with_context(|| format!("measuring the unit costs at {s}"))?;
-                eprint!(
-                    "{}",
-                    super::calibrate::summary(&units.unit_costs, &units.samples)
-                );
-                unit_costs.push(units.unit_costs);
-            }
-        }
-    }
+    let unit_costs: Vec<UnitCosts> = if args.no_calibration {
+        Vec::new()
+    } else {
+        super::calibrate::unit_costs_at(
+            &gpu,
+            scenes
+                .iter()
+                .map(|scene| size.unwrap_or(scene.resolution())),
+        )?
+    };
     write_atomic(&args.out.join("meta.toml"), |f| {
         let mut text = provenance.to_toml();
         #[derive(serde::Serialize)]

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use grassbench::calibration::{Calibration, calibrate};
-use grassbench::cost::{UnitCosts, apply_model, calibrate_units};
+use grassbench::cost::{UnitCosts, apply_model};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
 use grassbench::sweep::{
@@ -121,25 +121,12 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
             c.compute_bytes_per_s / 1e9,
             c.raw_blade_cost_ns
         );
-        let mut sizes: Vec<grassbench::target::Size> = Vec::new();
+        let mut sizes = Vec::new();
         for run in &mine {
             let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
-            let size = run.size.unwrap_or(scene.resolution());
-            if !sizes.contains(&size) {
-                sizes.push(size);
-            }
+            sizes.push(run.size.unwrap_or(scene.resolution()));
         }
-        let mut all = Vec::new();
-        for size in sizes {
-            eprintln!("unit costs at {size} …");
-            let units = calibrate_units(&gpu, size)
-                .with_context(|| format!("measuring the unit costs at {size}"))?;
-            eprint!(
-                "{}",
-                super::calibrate::summary(&units.unit_costs, &units.samples)
-            );
-            all.push(units.unit_costs);
-        }
+        let all = super::calibrate::unit_costs_at(&gpu, sizes)?;
         (Some(c), all)
     };
     let meta = SweepMeta {
