@@ -56,6 +56,15 @@ impl GpuContext {
     /// Adapters are ranked discrete > integrated > virtual > software; with
     /// [`BackendChoice::Auto`] Vulkan, Metal and DX12 come before GL at equal rank.
     pub fn new(choice: BackendChoice) -> Result<Self> {
+        Self::with_limits(choice, None)
+    }
+
+    /// As [`Self::new`], with the device's limits: `None` requests everything the adapter
+    /// offers; `Some(limits)` requests exactly `limits` (the tests create every technique under
+    /// [`wgpu::Limits::default`], the limits WebGPU guarantees on any GPU, so nothing depends
+    /// silently on a software rasteriser's generous ones). An adapter offering less than
+    /// `limits` is refused with the limit it lacks.
+    pub fn with_limits(choice: BackendChoice, limits: Option<wgpu::Limits>) -> Result<Self> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = choice.backends();
         let instance = wgpu::Instance::new(desc);
@@ -79,17 +88,29 @@ impl GpuContext {
                 backend: choice.to_string(),
                 seen,
             })?;
-        Self::from_adapter(instance, adapter)
+        let limits = limits.unwrap_or_else(|| adapter.limits());
+        Self::from_adapter_with_limits(instance, adapter, limits)
     }
 
-    /// Creates the device on a given adapter (used by the UI, which chooses its own adapter).
+    /// Creates the device on a given adapter (used by the UI, which chooses its own adapter),
+    /// with every limit the adapter offers.
     pub fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Self> {
+        let limits = adapter.limits();
+        Self::from_adapter_with_limits(instance, adapter, limits)
+    }
+
+    /// Creates the device on a given adapter with `limits`.
+    fn from_adapter_with_limits(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        limits: wgpu::Limits,
+    ) -> Result<Self> {
         let info = adapter.get_info();
         let features = adapter.features() & OPTIONAL_FEATURES;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("grassbench"),
             required_features: features,
-            required_limits: adapter.limits(),
+            required_limits: limits,
             ..Default::default()
         }))
         .map_err(|e| Error::RequestDevice {
