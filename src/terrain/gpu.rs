@@ -55,6 +55,24 @@ impl TerrainGpu {
         (side(terrain.size().x), side(terrain.size().y))
     }
 
+    /// Where vertex `(i, j)` of a ground mesh of `side` vertices stands on `terrain` (x, z):
+    /// the mesh spans the terrain evenly, row `j` after row `j − 1`.
+    pub fn ground_xz(terrain: &Terrain, side: (u32, u32), i: u32, j: u32) -> Vec2 {
+        let uv = Vec2::new(
+            i as f32 / (side.0 - 1) as f32,
+            j as f32 / (side.1 - 1) as f32,
+        );
+        terrain.min_corner() + uv * terrain.size()
+    }
+
+    /// The two triangles of cell `(i, j)` of a ground mesh `nx` vertices wide, counter-clockwise
+    /// seen from above (+y).
+    pub fn cell_indices(nx: u32, i: u32, j: u32) -> [u32; 6] {
+        let a = j * nx + i;
+        let (b, c, d) = (a + 1, a + nx, a + nx + 1);
+        [a, c, b, b, c, d]
+    }
+
     /// Uploads `terrain`. The ground mesh has about one vertex per metre (at most
     /// `MAX_GROUND_SIDE` a side) so per-vertex effects (Bakay's wind vectors) have detail
     /// even on a flat terrain whose heightmap has 2x2 samples.
@@ -87,8 +105,7 @@ impl TerrainGpu {
         let vertices: Vec<GroundVertex> = (0..nz)
             .flat_map(|j| (0..nx).map(move |i| (i, j)))
             .map(|(i, j)| {
-                let uv = Vec2::new(i as f32 / (nx - 1) as f32, j as f32 / (nz - 1) as f32);
-                let xz = terrain.min_corner() + uv * terrain.size();
+                let xz = Self::ground_xz(terrain, (nx, nz), i, j);
                 GroundVertex {
                     position: terrain.point_at(xz).to_array(),
                     normal: terrain.normal_at(xz).to_array(),
@@ -98,10 +115,7 @@ impl TerrainGpu {
         let mut indices = Vec::with_capacity(((nx - 1) * (nz - 1) * 6) as usize);
         for j in 0..nz - 1 {
             for i in 0..nx - 1 {
-                let a = j * nx + i;
-                let (b, c, d) = (a + 1, a + nx, a + nx + 1);
-                // Counter-clockwise seen from above (+y).
-                indices.extend_from_slice(&[a, c, b, b, c, d]);
+                indices.extend_from_slice(&Self::cell_indices(nx, i, j));
             }
         }
         let ground_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

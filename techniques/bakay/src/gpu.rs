@@ -34,6 +34,8 @@ pub struct ShellGpu {
     bend_group: wgpu::BindGroup,
     shells: grassbench::shaders::RenderPipeline,
     shell_group: wgpu::BindGroup,
+    /// The ground mesh's triangles chunk by chunk ([`crate::chunks`]).
+    indices: wgpu::Buffer,
     /// Vertices of the ground mesh.
     pub vertex_count: u32,
     /// GPU memory held, bytes.
@@ -47,6 +49,7 @@ impl ShellGpu {
     /// Uploads the texture, allocates the per-vertex buffers and builds both pipelines.
     pub fn new(
         ctx: &InitContext<'_>,
+        chunk_indices: &[u32],
         uniform: &ParamsUniform,
         texture: &GrassTexture,
         mipmaps: Mipmaps,
@@ -212,40 +215,53 @@ impl ShellGpu {
                 )
             },
         );
+        let indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("bakay chunked ground indices"),
+            contents: bytemuck::cast_slice(chunk_indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
         Ok(Self {
             bend,
             bend_group,
             shells: shells_pipeline,
             shell_group,
+            indices,
             vertex_count,
-            bytes: texture.bytes()
+            bytes: std::mem::size_of_val(chunk_indices) as u64
+                + texture.bytes()
                 + wind_bytes
                 + offset_bytes
                 + std::mem::size_of::<ParamsUniform>() as u64,
         })
     }
 
-    /// Records the bend pass (per-vertex wind, running sums) and the shells, bottom to top.
-    pub fn encode(&self, encoder: &mut grassbench::FrameEncoder<'_>, shells: u32) {
+    /// Records the bend pass (per-vertex wind, running sums) and the shells over the chunks in
+    /// `visible` (index ranges), each chunk's shells bottom to top.
+    pub fn encode(
+        &self,
+        encoder: &mut grassbench::FrameEncoder<'_>,
+        shells: u32,
+        visible: &[std::ops::Range<u32>],
+    ) {
         {
             let mut pass = encoder.compute_pass("bend");
             pass.set_pipeline(&self.bend);
             pass.set_bind_group(1, &self.bend_group, &[]);
             pass.dispatch_workgroups(self.vertex_count.div_ceil(WORKGROUP), 1, 1);
         }
-        let terrain = &encoder.scene.terrain;
-        let (vertices, indices, count) = (
-            terrain.ground_vertices.slice(..),
-            terrain.ground_indices.slice(..),
-            terrain.ground_index_count,
-        );
+        if visible.is_empty() {
+            return;
+        }
+        let vertices = encoder.scene.terrain.ground_vertices.slice(..);
         let mut pass = encoder.render_pass("shells");
         pass.set_pipeline(&self.shells);
         pass.set_bind_group(1, &self.shell_group, &[]);
         pass.set_vertex_buffer(0, vertices);
-        pass.set_index_buffer(indices, wgpu::IndexFormat::Uint32);
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         // Instance k is shell k: instances are drawn in order, so shells go bottom to top.
-        pass.draw_indexed(0..count, 0, 0..shells);
+        for range in visible {
+            pass.draw_indexed(range.clone(), 0, 0..shells);
+        }
     }
 }
 

@@ -73,8 +73,10 @@
 //!   the scene's colours, ambient darkened towards the root, the shared fog: as `reference`.
 //!
 //! ## Cost model
-//! Geometry: `N` x the ground mesh (meadow: 12 800 triangles a shell), vertex work `O(V·N)`
-//! in the bend pass and the shells. Fill: every shell covers the terrain's screen area, so
+//! Geometry: `N` x the ground mesh in view (meadow: 12 800 triangles a shell for the whole
+//! mesh; the shells are drawn only over the 16 x 16-cell chunks whose box meets the view
+//! frustum, [`chunks`]), vertex work `O(V·N)` in the bend pass (every vertex) and the shells
+//! (the chunks in view). Fill: every shell covers the terrain's screen area, so
 //! fragment work is `N x covered pixels` (two texture samples each), whatever the number of
 //! blades: the method is fill-rate bound (Sec. 4), and blade density is free. GPU memory: the
 //! texture (`6 bytes · size² · 4/3` with mips: 2 MiB at 512²) plus `16·V + 8·V·N` bytes of
@@ -125,6 +127,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
 pub mod bend;
+pub mod chunks;
 mod gpu;
 pub mod params;
 pub mod texture;
@@ -149,7 +152,10 @@ pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Bakay>();
 pub struct Bakay {
     params: Params,
     gpu: gpu::ShellGpu,
-    triangles_per_shell: u64,
+    /// The ground mesh in chunks with their bounds.
+    chunks: chunks::Chunks,
+    /// This frame's visible chunks (index ranges), from `update`.
+    visible: Vec<std::ops::Range<u32>>,
     /// Blades the tiled texture puts on grass-covered terrain under the density map.
     blades: u64,
     /// Blades in one tile of the texture.
@@ -180,21 +186,38 @@ impl Technique for Bakay {
         let scene = ctx.scene;
         let texture = texture::GrassTexture::new(&texture_spec(&params, scene), params.mipmaps);
         let uniform = uniform(&params, scene, ctx.scene_gpu.terrain.ground_side);
-        let gpu = gpu::ShellGpu::new(ctx, &uniform, &texture, params.mipmaps, params.anisotropy)?;
+        // A shell moves at most the tallest blade's height along the normal and the wind.
+        let chunks = chunks::Chunks::new(
+            &scene.terrain,
+            ctx.scene_gpu.terrain.ground_side,
+            scene.config.grass.height[1],
+        );
+        let gpu = gpu::ShellGpu::new(
+            ctx,
+            &chunks.indices,
+            &uniform,
+            &texture,
+            params.mipmaps,
+            params.anisotropy,
+        )?;
         Ok(Self {
             blades: count_blades(&texture, params.tile_size, &scene.terrain),
             texture_blades: texture.blades.len(),
-            triangles_per_shell: u64::from(ctx.scene_gpu.terrain.ground_index_count / 3),
+            visible: Vec::with_capacity(chunks.len()),
+            chunks,
             params,
             gpu,
         })
     }
 
     fn estimate(scene: &grassbench::Scene, params: &Params) -> Result<GpuEstimate> {
-        // The ground mesh's vertices, each with a wind vector and one offset per shell.
+        // The ground mesh's vertices, each with a wind vector and one offset per shell, and
+        // its triangles re-indexed in chunks.
         let (nx, nz) = grassbench::terrain::TerrainGpu::ground_side_for(&scene.terrain);
         let vertices = u64::from(nx) * u64::from(nz);
+        let cells = u64::from(nx.saturating_sub(1)) * u64::from(nz.saturating_sub(1));
         Ok(GpuEstimate::buffer(vertices * 16)
+            .plus(GpuEstimate::buffer(cells * 6 * 4))
             .plus(GpuEstimate::buffer(
                 vertices.saturating_mul(u64::from(params.shells) * 8),
             ))
@@ -297,9 +320,10 @@ fn count_blades(texture: &texture::GrassTexture, tile: f32, terrain: &Terrain) -
 }
 
 impl GrassTechnique for Bakay {
-    fn update(&mut self, _inputs: &FrameInputs<'_>) -> Result<()> {
-        // Nothing on the CPU: wind vectors, intensities and offsets are computed on the GPU
+    fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
+        // The chunks in view; wind vectors, intensities and offsets are computed on the GPU
         // from the time in the frame globals.
+        self.visible = self.chunks.visible(&inputs.camera.frustum());
         Ok(())
     }
 
@@ -310,7 +334,7 @@ impl GrassTechnique for Bakay {
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         // A texture without blades (`grass.density = 0`) would only discard: no shells.
         if self.drawn() {
-            self.gpu.encode(encoder, self.params.shells);
+            self.gpu.encode(encoder, self.params.shells, &self.visible);
         }
     }
 
@@ -320,7 +344,12 @@ impl GrassTechnique for Bakay {
             // Every blade is in the shells' texture, none is geometry.
             blades_drawn: 0,
             blades_represented: self.blades,
-            triangles: self.triangles_per_shell * u64::from(shells),
+            triangles: self
+                .visible
+                .iter()
+                .map(|r| u64::from(r.end - r.start) / 3)
+                .sum::<u64>()
+                * u64::from(shells),
             gpu_bytes: self.gpu.bytes,
         }
     }

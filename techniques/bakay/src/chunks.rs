@@ -1,0 +1,210 @@
+//! The ground mesh in square chunks, so the shells are drawn only where the camera can see
+//! them (issue 20 §7: drawn over the whole terrain, bakay's geometry grew with its area, 0.2 M
+//! triangles at 80 m a side to 2.1 M at 400 m with a view already full).
+//!
+//! The paper draws the shells over one patch of ground; the harness's terrains are larger than
+//! any view. The core's ground mesh (about one vertex a metre) is re-indexed chunk by chunk
+//! (`CHUNK` x `CHUNK` cells, each chunk's triangles contiguous, in the core's order within
+//! it), each chunk with a box around its vertices grown by the tallest blade in every
+//! direction (a shell moves at most one blade height along the normal and the wind: the bend
+//! keeps every segment's length, [`crate::bend`]), and every frame the chunks whose box meets
+//! the view frustum are drawn, neighbours merged into one draw. A chunk outside the frustum
+//! puts no fragment on screen, so the picture is the one the whole mesh gives (tested: the
+//! snapshots did not move).
+
+use std::ops::Range;
+
+use grassbench::camera::{Aabb, Frustum};
+use grassbench::glam::Vec3;
+use grassbench::terrain::{Terrain, TerrainGpu};
+
+/// Cells a side of a chunk.
+pub const CHUNK: u32 = 16;
+
+/// The ground mesh's triangles chunk by chunk, with each chunk's bounds.
+pub struct Chunks {
+    /// Indices into the core's ground vertices, chunk after chunk.
+    pub indices: Vec<u32>,
+    /// Each chunk's index range in [`Self::indices`].
+    ranges: Vec<Range<u32>>,
+    /// Each chunk's box, grown by the reach of its shells.
+    bounds: Vec<Aabb>,
+}
+
+impl Chunks {
+    /// Chunks of the ground mesh of `side` vertices on `terrain`, boxes grown by `reach`
+    /// metres (the tallest blade).
+    pub fn new(terrain: &Terrain, side: (u32, u32), reach: f32) -> Self {
+        let (nx, nz) = side;
+        let (cells_x, cells_z) = (nx.saturating_sub(1), nz.saturating_sub(1));
+        let mut chunks = Self {
+            indices: Vec::with_capacity((cells_x * cells_z * 6) as usize),
+            ranges: Vec::new(),
+            bounds: Vec::new(),
+        };
+        for cz in (0..cells_z).step_by(CHUNK as usize) {
+            for cx in (0..cells_x).step_by(CHUNK as usize) {
+                let start = chunks.indices.len() as u32;
+                let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+                for j in cz..(cz + CHUNK).min(cells_z) {
+                    for i in cx..(cx + CHUNK).min(cells_x) {
+                        chunks
+                            .indices
+                            .extend_from_slice(&TerrainGpu::cell_indices(nx, i, j));
+                    }
+                }
+                for j in cz..=(cz + CHUNK).min(cells_z) {
+                    for i in cx..=(cx + CHUNK).min(cells_x) {
+                        let p = terrain.point_at(TerrainGpu::ground_xz(terrain, side, i, j));
+                        (lo, hi) = (lo.min(p), hi.max(p));
+                    }
+                }
+                chunks.ranges.push(start..chunks.indices.len() as u32);
+                chunks.bounds.push(Aabb {
+                    min: lo - Vec3::splat(reach),
+                    max: hi + Vec3::splat(reach),
+                });
+            }
+        }
+        chunks
+    }
+
+    /// Index ranges of the chunks whose box meets `frustum`, neighbours merged.
+    pub fn visible(&self, frustum: &Frustum) -> Vec<Range<u32>> {
+        let mut out: Vec<Range<u32>> = Vec::new();
+        for (range, b) in self.ranges.iter().zip(&self.bounds) {
+            if !frustum.intersects_aabb(b) {
+                continue;
+            }
+            match out.last_mut() {
+                Some(last) if last.end == range.start => last.end = range.end,
+                _ => out.push(range.clone()),
+            }
+        }
+        out
+    }
+
+    /// Chunks in the mesh.
+    pub fn len(&self) -> usize {
+        self.ranges.len()
+    }
+
+    /// Whether the mesh has no chunk (a terrain without cells).
+    pub fn is_empty(&self) -> bool {
+        self.ranges.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use grassbench::camera::Camera;
+    use grassbench::glam::Vec4;
+    use grassbench::terrain::{CoveringSource, MapSource, TerrainConfig};
+
+    /// A hilly terrain `size` metres a side.
+    fn terrain(size: f32) -> Terrain {
+        let config = TerrainConfig {
+            size: [size, size],
+            max_height: 3.0,
+            samples_per_metre: 1.0,
+            height: MapSource::default(),
+            density: MapSource::one(),
+            covering: CoveringSource::Grass,
+        };
+        Terrain::build(&config, 7, std::path::Path::new(".")).unwrap()
+    }
+
+    #[test]
+    fn every_triangle_once_in_the_cores_winding() {
+        let t = terrain(40.0);
+        let side = TerrainGpu::ground_side_for(&t);
+        let chunks = Chunks::new(&t, side, 1.0);
+        let mut core: Vec<[u32; 3]> = Vec::new();
+        for j in 0..side.1 - 1 {
+            for i in 0..side.0 - 1 {
+                let c = TerrainGpu::cell_indices(side.0, i, j);
+                core.extend([[c[0], c[1], c[2]], [c[3], c[4], c[5]]]);
+            }
+        }
+        let mut ours: Vec<[u32; 3]> = chunks
+            .indices
+            .chunks(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect();
+        assert_eq!(ours.len(), core.len());
+        core.sort_unstable();
+        ours.sort_unstable();
+        assert_eq!(ours, core);
+        // 40 cells a side: 3 x 3 chunks of up to 16.
+        assert_eq!(chunks.len(), 9);
+    }
+
+    #[test]
+    fn boxes_hold_their_vertices_and_the_reach() {
+        let t = terrain(40.0);
+        let side = TerrainGpu::ground_side_for(&t);
+        let reach = 0.8;
+        let chunks = Chunks::new(&t, side, reach);
+        for (range, b) in chunks.ranges.iter().zip(&chunks.bounds) {
+            for &v in &chunks.indices[range.start as usize..range.end as usize] {
+                let p = t.point_at(TerrainGpu::ground_xz(&t, side, v % side.0, v / side.0));
+                for q in [
+                    p,
+                    p + Vec3::Y * reach,
+                    p - Vec3::X * reach,
+                    p + Vec3::Z * reach,
+                ] {
+                    assert!(
+                        q.cmpge(b.min).all() && q.cmple(b.max).all(),
+                        "{q} outside {b:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_view_draws_what_it_sees_and_merges_neighbours() {
+        let t = terrain(160.0);
+        let side = TerrainGpu::ground_side_for(&t);
+        let chunks = Chunks::new(&t, side, 1.0);
+        let total = chunks.indices.len() as u32;
+        // Everything inside: one draw of the whole mesh.
+        let all = Frustum {
+            planes: [Vec4::new(0.0, 0.0, 0.0, 1.0); 6],
+        };
+        assert_eq!(chunks.visible(&all), vec![0..total]);
+        // Nothing inside.
+        let none = Frustum {
+            planes: [Vec4::new(0.0, 0.0, 0.0, -1.0); 6],
+        };
+        assert!(chunks.visible(&none).is_empty());
+        // A walker looking along +x from the terrain's west edge sees part of it, and every
+        // chunk holding a point in front of it within the far plane is drawn.
+        let cam = Camera::look_at(
+            Vec3::new(-75.0, 2.0, 0.0),
+            Vec3::new(0.0, 0.0, 0.0),
+            1.2,
+            0.1,
+            60.0,
+            16.0 / 9.0,
+        );
+        let f = cam.frustum();
+        let seen = chunks.visible(&f);
+        let drawn: u32 = seen.iter().map(|r| r.end - r.start).sum();
+        assert!(drawn > 0 && drawn < total / 2, "{drawn} of {total}");
+        let ahead = t.point_at(grassbench::glam::Vec2::new(-60.0, 0.0));
+        let hit = chunks
+            .ranges
+            .iter()
+            .zip(&chunks.bounds)
+            .find(|(_, b)| ahead.cmpge(b.min).all() && ahead.cmple(b.max).all())
+            .map(|(r, _)| r.clone())
+            .unwrap();
+        assert!(
+            seen.iter()
+                .any(|r| r.start <= hit.start && hit.end <= r.end)
+        );
+    }
+}
