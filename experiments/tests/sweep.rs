@@ -290,8 +290,9 @@ fn stopped_sweep_resumes_to_the_same_rows(stop: Stop, name: &str) {
     match stop {
         Stop::Kill => child.kill().unwrap(),
         Stop::Interrupt => {
-            let sent = Command::new("kill")
-                .args(["-INT", &child.id().to_string()])
+            // The shell's built-in kill: a fresh machine may have no kill program.
+            let sent = Command::new("sh")
+                .args(["-c", &format!("kill -INT {}", child.id())])
                 .status()
                 .unwrap();
             assert!(sent.success(), "kill -INT failed");
