@@ -71,7 +71,14 @@ impl Chunks {
 
     /// Index ranges of the chunks whose box meets `frustum`, neighbours merged.
     pub fn visible(&self, frustum: &Frustum) -> Vec<Range<u32>> {
-        let mut out: Vec<Range<u32>> = Vec::new();
+        let mut out = Vec::new();
+        self.visible_into(frustum, &mut out);
+        out
+    }
+
+    /// [`Self::visible`] into `out` (cleared first), so a frame reuses last frame's storage.
+    pub fn visible_into(&self, frustum: &Frustum, out: &mut Vec<Range<u32>>) {
+        out.clear();
         for (range, b) in self.ranges.iter().zip(&self.bounds) {
             if !frustum.intersects_aabb(b) {
                 continue;
@@ -81,7 +88,6 @@ impl Chunks {
                 _ => out.push(range.clone()),
             }
         }
-        out
     }
 
     /// Chunks in the mesh.

@@ -323,7 +323,8 @@ impl GrassTechnique for Bakay {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         // The chunks in view; wind vectors, intensities and offsets are computed on the GPU
         // from the time in the frame globals.
-        self.visible = self.chunks.visible(&inputs.camera.frustum());
+        self.chunks
+            .visible_into(&inputs.camera.frustum(), &mut self.visible);
         Ok(())
     }
 

@@ -110,11 +110,22 @@ fn where_the_time_goes(
     configs: &[&Config],
     plots: &std::path::Path,
 ) -> anyhow::Result<()> {
-    let modelled: Vec<&Config> = configs
+    let mut modelled: Vec<&Config> = configs
         .iter()
         .copied()
         .filter(|c| c.model_terms.is_some())
         .collect();
+    // Grouped as the reader compares them: scene, size, the reference first, then by name.
+    modelled.sort_by_key(|c| {
+        (
+            c.scene.clone(),
+            c.variant.clone(),
+            c.size.clone(),
+            c.technique != REFERENCE,
+            c.technique.clone(),
+            c.label.clone(),
+        )
+    });
     if modelled.is_empty() {
         return Ok(());
     }
