@@ -264,17 +264,32 @@ fn stopped_sweep_resumes_to_the_same_rows(stop: Stop, name: &str) {
     let expected = counts(&full.join("runs.csv"));
 
     let out = temp(name);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_grassbench"))
-        .args([
-            "sweep",
-            SMOKE,
-            "-o",
-            out.to_str().unwrap(),
-            "--no-calibration",
-        ])
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let bin = env!("CARGO_BIN_EXE_grassbench");
+    let args = [
+        "sweep",
+        SMOKE,
+        "-o",
+        out.to_str().unwrap(),
+        "--no-calibration",
+    ];
+    let mut command = match stop {
+        Stop::Kill => Command::new(bin),
+        // A job started in the background of a non-interactive shell (as CI may start this
+        // suite) inherits SIGINT ignored, and so would the sweep; Ctrl-C reaches a program
+        // with the default disposition, so the sweep is started as a terminal would start
+        // it: perl (Debian's essential perl-base) restores the default and execs it, keeping
+        // the pid the signal is sent to.
+        Stop::Interrupt => {
+            let mut c = Command::new("perl");
+            c.args([
+                "-e",
+                "$SIG{INT} = 'DEFAULT'; exec @ARGV or die \"exec: $!\"",
+                bin,
+            ]);
+            c
+        }
+    };
+    let mut child = command.args(args).stderr(Stdio::null()).spawn().unwrap();
     // Stop it once a few runs are recorded.
     let runs = out.join("runs.csv");
     let start = std::time::Instant::now();
