@@ -286,6 +286,7 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
         "meta.toml",
         "runs.csv",
         "README.md",
+        "report.html",
         "football_field/frames.csv",
         "football_field/runs.csv",
         "football_field/params.csv",

@@ -241,5 +241,5 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
         bar.finish_and_clear();
         eprintln!("{name}: wrote {}", dir.display());
     }
-    Ok(())
+    super::write_html(&args.out).context("writing report.html")
 }

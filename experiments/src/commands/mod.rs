@@ -17,7 +17,7 @@ pub use compare::{CompareArgs, MOTIONS, compare};
 pub use list::list;
 pub use merge::{MergeArgs, merge};
 pub use render::{RenderArgs, render};
-pub use report::{ReportArgs, report};
+pub use report::{REPORT_HTML, ReportArgs, report, write_html};
 pub use run::{RunArgs, run};
 pub use sweep::{SweepArgs, SweepMeta, parse_shard, sweep};
 pub use validate::{ValidateArgs, validate};

@@ -232,6 +232,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     write_atomic(&args.out.join("README.md"), |f| {
         std::io::Write::write_all(f, report(&all_runs, &provenance, &capture).as_bytes())
     })?;
+    super::write_html(&args.out).context("writing report.html")?;
     if !failures.is_empty() {
         bail!(
             "{} run(s) failed:\n  {}",
@@ -408,6 +409,12 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
             fmt_opt(r.host_other_cores, 2)
         );
     }
+    let _ = writeln!(
+        s,
+        "\n[report.html](report.html) holds the same runs as a page to open from disk: an image \
+         viewer per scene (flip with `f`, swipe, side by side, zoom to pixels), quality against \
+         cost, where the time goes and runs.csv as sortable tables."
+    );
     let _ = writeln!(s, "\n## Images\n");
     let mut scenes: Vec<&str> = runs.iter().map(|r| r.scene.as_str()).collect();
     scenes.dedup();

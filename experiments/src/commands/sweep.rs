@@ -199,6 +199,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         store.finished_count(),
         out.display()
     );
+    super::write_html(&out).context("writing report.html")?;
     if attempted > 0 && failed == attempted {
         anyhow::bail!(
             "every one of the {attempted} runs failed (their errors are in {}); nothing was measured",

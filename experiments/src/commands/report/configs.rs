@@ -113,6 +113,77 @@ impl Config {
 /// compile beside a run takes 1-2).
 pub(super) const BUSY_HOST_CORES: f64 = 0.25;
 
+impl Config {
+    /// Pools one row of runs.csv into the configuration: its identity, and its figures where
+    /// it finished (`false` for a failed run, which is only counted).
+    fn add_run(&mut self, r: &RunSummary) -> bool {
+        let c = self;
+        c.technique.clone_from(&r.technique);
+        c.scene.clone_from(&r.scene);
+        c.variant.clone_from(&r.scene_variant);
+        c.size = format!("{}x{}", r.width, r.height);
+        c.msaa = r.msaa;
+        if !r.is_ok() {
+            c.failed += 1;
+            return false;
+        }
+        c.params.clone_from(&r.params);
+        c.gpu_wall.extend(r.gpu_wall_ms_median);
+        c.gpu_wall_band.extend(
+            r.gpu_wall_ms_p95
+                .zip(r.gpu_wall_ms_p5)
+                .map(|(hi, lo)| hi - lo),
+        );
+        c.frame.extend(r.frame_ms_median);
+        c.update.extend(r.update_ms_median);
+        c.upload.extend(r.upload_ms_median);
+        c.encode.extend(r.encode_ms_median);
+        c.ratio.extend(r.gpu_wall_ratio_to_reference);
+        c.flip.extend(r.flip_vs_reference);
+        c.flip_quarter.extend(r.flip_vs_reference_quarter);
+        c.host_other_cores.extend(r.host_other_cores);
+        c.blades_drawn = r.blades_drawn.map(|b| b as f64);
+        c.blades_represented = r.blades_represented.map(|b| b as f64);
+        c.triangles = r.triangles.map(|t| t as f64);
+        c.gpu_mb = r.gpu_bytes.map(|b| b as f64 / 1e6);
+        c.model_ratio.extend(r.model_ratio);
+        c.model_terms = (|| {
+            Some([
+                r.model_fixed_ms?,
+                r.model_vertex_ms?,
+                r.model_primitive_ms?,
+                r.model_fragment_opaque_ms?,
+                r.model_fragment_alpha_tested_ms?,
+                r.model_fragment_blended_ms?,
+                r.model_draw_ms?,
+                r.model_compute_ms?,
+                r.model_upload_ms?,
+            ])
+        })()
+        .or(c.model_terms);
+        true
+    }
+}
+
+/// The configurations of a `grassbench run` folder (its runs.csv has no run ids: one run per
+/// scene and technique), keyed by scene, size and technique, for `report.html`. Frames,
+/// images and speed-up intervals stay where `run` wrote them (the page reads runs.csv).
+pub(super) fn load_run_folder(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
+    let path = dir.join("runs.csv");
+    let rows: Vec<RunSummary> =
+        read_rows(&path).with_context(|| format!("reading {}", path.display()))?;
+    let mut configs: BTreeMap<String, Config> = BTreeMap::new();
+    for r in &rows {
+        let key = format!(
+            "{}/{}/{}x{}/{}/{}",
+            r.scene, r.scene_variant, r.width, r.height, r.msaa, r.technique
+        );
+        configs.entry(key).or_default().add_run(r);
+    }
+    shorten_params(&mut configs);
+    Ok(configs)
+}
+
 /// Reads runs.csv into configurations keyed by configuration id, repetitions pooled. A run
 /// written before its group's reference (another shard's, after `merge`) has no ratio in
 /// runs.csv, and gets it here.
@@ -139,27 +210,9 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
     for r in &rows {
         let config_id = config_id_of(&r.run_id);
         let c = configs.entry(config_id.to_owned()).or_default();
-        c.technique.clone_from(&r.technique);
-        c.scene.clone_from(&r.scene);
-        c.variant.clone_from(&r.scene_variant);
-        c.size = format!("{}x{}", r.width, r.height);
-        c.msaa = r.msaa;
-        if !r.is_ok() {
-            c.failed += 1;
+        if !c.add_run(r) {
             continue;
         }
-        c.params.clone_from(&r.params);
-        c.gpu_wall.extend(r.gpu_wall_ms_median);
-        c.gpu_wall_band.extend(
-            r.gpu_wall_ms_p95
-                .zip(r.gpu_wall_ms_p5)
-                .map(|(hi, lo)| hi - lo),
-        );
-        c.frame.extend(r.frame_ms_median);
-        c.update.extend(r.update_ms_median);
-        c.upload.extend(r.upload_ms_median);
-        c.encode.extend(r.encode_ms_median);
-        c.ratio.extend(r.gpu_wall_ratio_to_reference);
         if let Some(walls) = frames.get(&r.run_id) {
             c.frame_walls.insert(r.repetition, walls.clone());
         }
@@ -169,28 +222,6 @@ pub(super) fn load(dir: &Path) -> anyhow::Result<BTreeMap<String, Config>> {
         {
             c.work = Some(work);
         }
-        c.flip.extend(r.flip_vs_reference);
-        c.flip_quarter.extend(r.flip_vs_reference_quarter);
-        c.host_other_cores.extend(r.host_other_cores);
-        c.blades_drawn = r.blades_drawn.map(|b| b as f64);
-        c.blades_represented = r.blades_represented.map(|b| b as f64);
-        c.triangles = r.triangles.map(|t| t as f64);
-        c.gpu_mb = r.gpu_bytes.map(|b| b as f64 / 1e6);
-        c.model_ratio.extend(r.model_ratio);
-        c.model_terms = (|| {
-            Some([
-                r.model_fixed_ms?,
-                r.model_vertex_ms?,
-                r.model_primitive_ms?,
-                r.model_fragment_opaque_ms?,
-                r.model_fragment_alpha_tested_ms?,
-                r.model_fragment_blended_ms?,
-                r.model_draw_ms?,
-                r.model_compute_ms?,
-                r.model_upload_ms?,
-            ])
-        })()
-        .or(c.model_terms);
         let image = image_path(config_id);
         if dir.join(&image).exists() {
             c.image = Some(image);

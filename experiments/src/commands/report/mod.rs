@@ -1,6 +1,7 @@
 //! `grassbench report DIR`: `REPORT.md` with tables and SVG plots for a sweep's results.
 
 mod configs;
+mod html;
 mod plots;
 mod projection;
 mod raw_rate;
@@ -16,9 +17,11 @@ use configs::{BUSY_HOST_CORES, Config, label, load, median};
 use grassbench::runner::bootstrap::Interval;
 use grassbench::sweep::REFERENCE;
 use plots::{
-    SPLIT_SEGMENTS, frame_time_plot, pareto_plot, scaling_plot, time_split, time_split_plot,
+    SPLIT_SEGMENTS, frame_time_plot, pareto_plot, scaling_plot, split_rows, time_split_plot,
 };
 use std::collections::BTreeMap;
+
+pub use html::{REPORT_HTML, write_html};
 
 /// Arguments of `report`.
 #[derive(Clone, Debug, clap::Args)]
@@ -110,23 +113,8 @@ fn where_the_time_goes(
     configs: &[&Config],
     plots: &std::path::Path,
 ) -> anyhow::Result<()> {
-    let mut modelled: Vec<&Config> = configs
-        .iter()
-        .copied()
-        .filter(|c| c.model_terms.is_some())
-        .collect();
-    // Grouped as the reader compares them: scene, size, the reference first, then by name.
-    modelled.sort_by_key(|c| {
-        (
-            c.scene.clone(),
-            c.variant.clone(),
-            c.size.clone(),
-            c.technique != REFERENCE,
-            c.technique.clone(),
-            c.label.clone(),
-        )
-    });
-    if modelled.is_empty() {
+    let rows = split_rows(configs);
+    if rows.is_empty() {
         return Ok(());
     }
     let _ = writeln!(md, "\n## Where the time goes\n");
@@ -143,10 +131,9 @@ fn where_the_time_goes(
         rule.push_str("---|");
     }
     let _ = writeln!(md, "{header}\n{rule}");
-    for c in &modelled {
-        let Some(split) = time_split(c) else { continue };
+    for row in &rows {
+        let (c, split) = (row.config, row.split);
         let total: f64 = split.iter().sum();
-        let gpu_model: f64 = split[3..].iter().sum();
         let mut line = format!(
             "| {} | {} | {} | {} | {} | {:.1} | {} |",
             c.scene,
@@ -154,7 +141,7 @@ fn where_the_time_goes(
             c.technique,
             c.label,
             fmt(median(&c.gpu_wall), 1),
-            gpu_model,
+            row.model_ms,
             fmt(median(&c.model_ratio), 2)
         );
         for v in split {
@@ -162,14 +149,25 @@ fn where_the_time_goes(
         }
         let _ = writeln!(md, "{line}");
     }
+    let modelled: Vec<&Config> = rows.iter().map(|r| r.config).collect();
     time_split_plot(&modelled, &plots.join("time_split.svg"))?;
     let _ = writeln!(md, "\n![Where the time goes](plots/time_split.svg)\n");
     Ok(())
 }
 
-/// Writes REPORT.md and plots/*.svg.
+/// Writes REPORT.md, plots/*.svg and report.html for a sweep's folder; report.html alone for
+/// a `run`'s or `compare`'s (their Markdown report is the README.md the command wrote).
 pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     let dir = &args.dir;
+    if !html::is_sweep_folder(dir)? {
+        if args.calibration.is_some() {
+            anyhow::bail!(
+                "--calibration projects a sweep's runs; `{}` is not a sweep's results folder",
+                dir.display()
+            );
+        }
+        return write_html(dir);
+    }
     // Read (and so check) the other adapter's calibration before writing anything.
     let other = args
         .calibration
@@ -396,5 +394,5 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(f, md.as_bytes())
     })?;
     eprintln!("wrote {}", dir.join("REPORT.md").display());
-    Ok(())
+    write_html(dir)
 }

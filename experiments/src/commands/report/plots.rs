@@ -371,6 +371,49 @@ pub(super) fn time_split(c: &Config) -> Option<[f64; 12]> {
     Some(out)
 }
 
+/// One configuration's row of "where the time goes": its frame split into
+/// [`SPLIT_SEGMENTS`] and the model's predicted GPU time (the sum of the GPU terms), ms.
+pub(super) struct SplitRow<'a> {
+    /// The configuration.
+    pub(super) config: &'a Config,
+    /// Its CPU stages and the model's GPU terms, ms ([`time_split`]).
+    pub(super) split: [f64; 12],
+    /// The model's predicted GPU time, ms.
+    pub(super) model_ms: f64,
+}
+
+/// The rows of "where the time goes" (the Markdown table, its bars and `report.html` all
+/// read these): every configuration with a cost model, grouped as a reader compares them —
+/// scene, size, the reference first, then by name.
+pub(super) fn split_rows<'a>(configs: &[&'a Config]) -> Vec<SplitRow<'a>> {
+    let mut modelled: Vec<&Config> = configs
+        .iter()
+        .copied()
+        .filter(|c| c.model_terms.is_some())
+        .collect();
+    modelled.sort_by_key(|c| {
+        (
+            c.scene.clone(),
+            c.variant.clone(),
+            c.size.clone(),
+            c.technique != grassbench::sweep::REFERENCE,
+            c.technique.clone(),
+            c.label.clone(),
+        )
+    });
+    modelled
+        .into_iter()
+        .filter_map(|config| {
+            let split = time_split(config)?;
+            Some(SplitRow {
+                config,
+                split,
+                model_ms: split[3..].iter().sum(),
+            })
+        })
+        .collect()
+}
+
 /// "Where the time goes": per configuration with a model, one bar stacking its CPU stages and
 /// the model's predicted GPU terms (ms, log-free so the parts add up), and a black tick at its
 /// measured frame time (CPU stages + measured GPU wall time): the gap between the bar's top
