@@ -539,7 +539,8 @@ fn scenes_of_runs(
         }
         name
     };
-    // Labels: a run folder's configurations are keyed by scene, size and technique.
+    // Labels: a sweep's configurations are keyed by configuration id, a run folder's by
+    // scene, size and technique.
     let run_label = |r: &[String]| -> String {
         let key = if sweep {
             config_id_of(runs.cell(r, "run_id")).to_owned()
@@ -554,9 +555,12 @@ fn scenes_of_runs(
                 runs.cell(r, "technique")
             )
         };
-        configs
-            .get(&key)
-            .map_or_else(|| runs.cell(r, "technique").to_owned(), label)
+        configs.get(&key).map_or_else(
+            || runs.cell(r, "technique").to_owned(),
+            // The scene's heading names the variant; the run, its technique and
+            // the parameters that vary.
+            |c| format!("{} {}", c.technique, c.label).trim().to_owned(),
+        )
     };
     let mut order: Vec<String> = Vec::new();
     let mut scenes: BTreeMap<String, ScenePage> = BTreeMap::new();

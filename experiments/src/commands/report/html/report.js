@@ -347,7 +347,7 @@
     const v = activeViewer || viewers[0];
     if (!v) return;
     switch (e.key) {
-      case 'f': case 'F': case ' ': v.flip(); break;
+      case 'f': case 'F': v.flip(); break;
       case '1': v.setMode('flip'); break;
       case '2': v.setMode('swipe'); break;
       case '3': v.setMode('side'); break;
