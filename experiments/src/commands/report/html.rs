@@ -183,6 +183,8 @@ pub(super) struct Page {
     pub(super) segments: Vec<String>,
     /// Where the time goes.
     pub(super) split: Vec<SplitEntry>,
+    /// REPORT.md's plots (`plots/*.svg`, where `report` drew them): relative URL, title.
+    pub(super) plots: Vec<(String, String)>,
 }
 
 /// `text` safe as HTML text or a quoted attribute value.
@@ -354,8 +356,33 @@ pub(super) fn gather(dir: &Path) -> anyhow::Result<Page> {
     } else {
         "no FLIP: this folder holds no reference frame to compare with".into()
     };
+    page.plots = report_plots(dir);
     page.runs = runs;
     Ok(page)
+}
+
+/// The SVG plots REPORT.md shows, where they exist, with their titles there.
+fn report_plots(dir: &Path) -> Vec<(String, String)> {
+    let title = |name: &str| match name {
+        "frame_time.svg" => "GPU time per technique and scene".to_owned(),
+        "pareto.svg" => "Quality against the reference versus cost".to_owned(),
+        "scaling_blades.svg" => "GPU time versus blades".to_owned(),
+        "scaling_resolution.svg" => "GPU time versus resolution".to_owned(),
+        "time_split.svg" => "Where the time goes".to_owned(),
+        other => other.trim_end_matches(".svg").replace('_', " "),
+    };
+    let mut names: Vec<String> = std::fs::read_dir(dir.join("plots"))
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| e.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".svg"))
+        .collect();
+    names.sort();
+    names
+        .into_iter()
+        .map(|n| (url_path(&format!("plots/{n}")), title(&n)))
+        .collect()
 }
 
 /// Title, description and provenance from meta.toml (a sweep's or a run's).

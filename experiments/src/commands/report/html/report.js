@@ -590,6 +590,46 @@
     return sec;
   }
 
+  // ---------------------------------------------------------------- temporal change
+  // compare's temporal.csv as bars: per technique (its first operating point) and motion,
+  // the spurious and the missing change against the reference's, at 1/4 scale.
+  function temporalBars(t) {
+    const col = (name) => t.columns.indexOf(name);
+    const [ct, cv, cm, cb, cs, csp, cmi] = ['technique', 'variant', 'motion', 'baseline', 'scale', 'spurious_mean', 'missing_mean'].map(col);
+    if ([ct, cv, cm, cb, cs, csp, cmi].some((k) => k < 0)) return null;
+    const firstVariant = {};
+    for (const r of t.rows) if (!(r[ct] in firstVariant)) firstVariant[r[ct]] = r[cv];
+    const rows = t.rows.filter((r) => r[cb] === 'reference' && r[cs] === 'quarter' && r[cv] === firstVariant[r[ct]] && r[ct] !== 'reference');
+    if (rows.length === 0) return null;
+    const max = Math.max(1, ...rows.flatMap((r) => [num(r[csp]) || 0, num(r[cmi]) || 0]));
+    const box = el('div');
+    const legend = el('div', { class: 'legend' });
+    for (const [name, color] of [['spurious change (shows what the reference does not)', '#d62728'], ['missing change (lacks what the reference shows)', '#1f77b4']]) {
+      const sw = el('span', { class: 'box' });
+      sw.style.background = color;
+      legend.append(el('span', {}, sw, name));
+    }
+    box.append(legend);
+    for (const r of rows) {
+      const bars = el('div');
+      for (const [k, color] of [[csp, '#d62728'], [cmi, '#1f77b4']]) {
+        const v = num(r[k]) || 0;
+        const bar = el('div', { class: 'split-bar thin' });
+        const seg = el('div', { class: 'seg', title: t.columns[k] + ': ' + fmt(v) });
+        seg.style.left = '0';
+        seg.style.width = (100 * v / max) + '%';
+        seg.style.background = color;
+        bar.append(seg);
+        bars.append(bar);
+      }
+      box.append(el('div', { class: 'split-row' },
+        el('span', { class: 'name', text: r[ct] + ' (' + r[cv] + ') · ' + r[cm] }),
+        bars,
+        el('span', { text: 'spurious ' + fmt(num(r[csp])) + ', missing ' + fmt(num(r[cmi])) })));
+    }
+    return box;
+  }
+
   // ---------------------------------------------------------------- the page
   const toc = document.getElementById('toc');
   data.scenes.forEach((scene) => {
@@ -620,7 +660,9 @@
       const title = t.name.endsWith('temporal.csv') ? 'Temporal change along camera motions (' + t.name + ')' : t.name;
       sec.append(el('h3', { text: title }));
       if (t.name.endsWith('temporal.csv')) {
-        sec.append(el('p', { class: 'note', text: 'Spurious change: change the technique shows where its baseline does not (popping, shimmer); missing change: the baseline\'s change it lacks; both in units of the baseline\'s mean change per step.' }));
+        sec.append(el('p', { class: 'note', text: 'Spurious change: change the technique shows where its baseline does not (popping, shimmer); missing change: the baseline\'s change it lacks; both in units of the baseline\'s mean change per step. Bars: against the reference, at 1/4 scale; the table holds every baseline and scale.' }));
+        const bars = temporalBars(t);
+        if (bars) sec.append(bars);
       }
       sec.append(table(t, null));
     }
@@ -629,6 +671,14 @@
   if (data.split.length > 0) {
     toc.append(el('a', { href: '#time', text: 'where the time goes' }));
     main.append(splitSection());
+  }
+  if (data.plots.length > 0) {
+    toc.append(el('a', { href: '#plots', text: 'REPORT.md\'s plots' }));
+    const sec = el('section', { id: 'plots' }, el('h2', { text: 'REPORT.md\'s plots' }));
+    for (const [src, title] of data.plots) {
+      sec.append(el('figure', {}, el('img', { src: src, alt: title }), el('figcaption', { text: title })));
+    }
+    main.append(sec);
   }
   if (data.runs) {
     toc.append(el('a', { href: '#runs', text: 'runs.csv' }));
