@@ -1,7 +1,8 @@
 //! `report.html` in a real browser (issue 23 §2): headless Chromium loads the page a tiny
-//! sweep (and a tiny `run`) wrote, and the page's own `?selftest=1` checks that a keystroke
-//! flips the image viewer, that the charts hold one point per run and that a header click
-//! sorts, and collects every error (`window.onerror`, `console.error`, an image that did not
+//! sweep (and a tiny `run` and `compare`) wrote, and the page's own `?selftest=1` checks that a
+//! keystroke flips the image viewer (and another lays a heat map over it where there is one),
+//! that hovering and clicking a chart point work, that the charts hold one point per run and
+//! that a header click sorts, and collects every error (`window.onerror`, `console.error`, an image that did not
 //! load) into `<html data-selftest>`, which these tests read from the dumped DOM. Broken
 //! copies of the page show the check can fail. Needs Chromium: `bash .ci/install-deps`
 //! installs it (`make test` runs that first).
@@ -297,5 +298,70 @@ fn a_runs_report_html_works_in_a_browser() {
     ])
     .unwrap();
     check_page(&out);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `grassbench compare` writes report.html too: its viewer lays the FLIP heat map of a pair
+/// over the images (key `h`), and the temporal figures are there.
+#[test]
+fn a_compares_report_html_shows_heat_maps() {
+    chromium();
+    let dir = temp("compare");
+    let out = dir.join("results");
+    grassbench(&[
+        "compare",
+        "-t",
+        "reference,perbet",
+        "-s",
+        "football_field",
+        "--size",
+        "96x54",
+        "--motion-frames",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ])
+    .unwrap();
+    let page = out.join("report.html");
+    let outcome = selftest(&page);
+    assert!(
+        outcome.selftest.starts_with("ok:") && outcome.selftest.contains("heat map"),
+        "{}",
+        outcome.selftest
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(
+        html.contains("football_field/temporal.csv"),
+        "no temporal table"
+    );
+    // With the heat map gone, the page says so instead of showing nothing.
+    std::fs::remove_file(out.join("football_field/diff_reference_perbet.png")).unwrap();
+    grassbench(&["report", out.to_str().unwrap()]).unwrap();
+    let outcome = selftest(&page);
+    assert!(
+        outcome.selftest.starts_with("ok:") && !outcome.selftest.contains("heat map"),
+        "{}",
+        outcome.selftest
+    );
+    let dom = String::from_utf8_lossy(
+        &Command::new(chromium())
+            .args([
+                "--headless=new",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--virtual-time-budget=5000",
+                &format!("--user-data-dir={}", tempdir_for(&page).display()),
+                "--dump-dom",
+                &format!("file://{}", page.display()),
+            ])
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .into_owned();
+    assert!(
+        dom.contains("No FLIP heat map for reference against perbet"),
+        "no note"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -734,6 +734,13 @@
       if (seenBefore === seenAfter) fails.push('key f did not change the visible image (' + seenAfter + ')');
       else if (seenAfter !== v.entryB().src) fails.push('after key f the visible image is ' + seenAfter + ', not B ' + v.entryB().src);
       notes.push('key f flipped ' + before + ' -> ' + after);
+      // Where the pair has a FLIP heat map, key h lays it over the images with its colour bar.
+      if (v.heatmap()) {
+        document.body.dispatchEvent(new KeyboardEvent('keydown', { key: 'h', bubbles: true }));
+        const heat = v.panes[0].imgs.heat;
+        if (!heat || getComputedStyle(heat).visibility !== 'visible' || v.colorbar.hidden) fails.push('key h did not show the FLIP heat map');
+        else notes.push('key h shows the heat map');
+      }
     }
     // Hovering a point shows its figures; clicking one loads its image into the viewer.
     const scene = data.scenes.find((sc) => sc.points.some((p) => p.image && p.technique !== 'reference'));
