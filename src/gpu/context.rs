@@ -51,20 +51,46 @@ const OPTIONAL_FEATURES: wgpu::Features =
     wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::PIPELINE_STATISTICS_QUERY);
 
 impl GpuContext {
-    /// Creates a headless context on the requested backend.
+    /// Creates a headless context on the requested backend, with a device that requests
+    /// [`wgpu::Limits::default`] (the limits WebGPU guarantees on any GPU; see
+    /// [`Self::for_needs`]).
     ///
     /// Adapters are ranked discrete > integrated > virtual > software; with
     /// [`BackendChoice::Auto`] Vulkan, Metal and DX12 come before GL at equal rank.
     pub fn new(choice: BackendChoice) -> Result<Self> {
-        Self::with_limits(choice, None)
+        Self::for_needs(choice, &wgpu::Limits::default())
     }
 
-    /// As [`Self::new`], with the device's limits: `None` requests everything the adapter
-    /// offers; `Some(limits)` requests exactly `limits` (the tests create every technique under
-    /// [`wgpu::Limits::default`], the limits WebGPU guarantees on any GPU, so nothing depends
-    /// silently on a software rasteriser's generous ones). An adapter offering less than
-    /// `limits` is refused with the limit it lacks.
+    /// As [`Self::new`], with a device that requests `needs` (the field-wise maximum of what
+    /// the techniques a run will create need: [`super::limits::needed_by`]), lowered to what
+    /// the adapter offers where it offers less ([`Self::request_limits`]); a technique the
+    /// device then cannot serve is refused when it is created, naming the limit.
+    pub fn for_needs(choice: BackendChoice, needs: &wgpu::Limits) -> Result<Self> {
+        let (instance, adapter) = Self::adapter(choice)?;
+        let limits = Self::request_limits(&adapter, needs);
+        Self::from_adapter_with_limits(instance, adapter, limits)
+    }
+
+    /// As [`Self::new`], with the device's limits exactly: `None` requests everything the
+    /// adapter offers (the tests compare pictures under it with pictures under the defaults);
+    /// `Some(limits)` requests exactly `limits`. An adapter offering less than `limits` is
+    /// refused with the limit it lacks.
     pub fn with_limits(choice: BackendChoice, limits: Option<wgpu::Limits>) -> Result<Self> {
+        let (instance, adapter) = Self::adapter(choice)?;
+        let limits = limits.unwrap_or_else(|| adapter.limits());
+        Self::from_adapter_with_limits(instance, adapter, limits)
+    }
+
+    /// The limits a device on `adapter` requests for a run that needs `needs`: `needs` (never
+    /// less than [`wgpu::Limits::default`] when made by [`super::limits::needed_by`]), lowered
+    /// to the adapter's own value wherever it offers less. The one rule for every device
+    /// grassbench creates: the headless commands' and the window's.
+    pub fn request_limits(adapter: &wgpu::Adapter, needs: &wgpu::Limits) -> wgpu::Limits {
+        super::limits::request(needs, &adapter.limits())
+    }
+
+    /// The instance for `choice` and its best adapter.
+    fn adapter(choice: BackendChoice) -> Result<(wgpu::Instance, wgpu::Adapter)> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = choice.backends();
         let instance = wgpu::Instance::new(desc);
@@ -88,14 +114,16 @@ impl GpuContext {
                 backend: choice.to_string(),
                 seen,
             })?;
-        let limits = limits.unwrap_or_else(|| adapter.limits());
-        Self::from_adapter_with_limits(instance, adapter, limits)
+        Ok((instance, adapter))
     }
 
-    /// Creates the device on a given adapter (used by the UI, which chooses its own adapter),
-    /// with every limit the adapter offers.
-    pub fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Self> {
-        let limits = adapter.limits();
+    /// Creates the device on a given adapter, requesting `needs` as [`Self::for_needs`] does.
+    pub fn from_adapter(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        needs: &wgpu::Limits,
+    ) -> Result<Self> {
+        let limits = Self::request_limits(&adapter, needs);
         Self::from_adapter_with_limits(instance, adapter, limits)
     }
 
@@ -115,7 +143,7 @@ impl GpuContext {
         }))
         .map_err(|e| Error::RequestDevice {
             adapter: info.name.clone(),
-            reason: e.to_string(),
+            reason: super::scope::chain(&e),
         })?;
         Ok(Self::from_device(instance, adapter, device, queue))
     }

@@ -3,6 +3,7 @@
 
 mod backend;
 mod context;
+pub mod limits;
 pub mod memory;
 mod scope;
 

@@ -61,7 +61,9 @@ impl<'g> World<'g> {
     }
 
     /// Creates a technique drawing into `view`: its defaults, overlaid with the scene file's
-    /// `[techniques.<id>]`, overlaid with `overrides`.
+    /// `[techniques.<id>]`, overlaid with `overrides`. Before any GPU work, a technique that
+    /// needs device limits the device lacks ([`crate::gpu::limits::check`]) or more memory than
+    /// the adapter has ([`crate::gpu::memory::check`]) is refused with the numbers.
     pub fn create(
         &self,
         view: &View,
@@ -76,6 +78,14 @@ impl<'g> World<'g> {
             ));
         }
         let params = self.scene.technique_params(entry.info.id, overrides);
+        let needs = entry.required_limits(&self.scene, &params)?;
+        crate::gpu::limits::check(
+            entry.info.id,
+            &needs,
+            &self.gpu.device.limits(),
+            &self.gpu.adapter.limits(),
+            &self.gpu.summary.name,
+        )?;
         let estimate = entry
             .estimate(&self.scene, &params)?
             .plus(view.target.estimate());

@@ -33,6 +33,16 @@ pub trait Technique: Sized + 'static {
     /// ([`crate::gpu::memory`]) before creating anything.
     fn estimate(scene: &Scene, params: &Self::Params) -> Result<GpuEstimate>;
 
+    /// The device limits [`Technique::new`] with these parameters needs, computed without any
+    /// GPU work: [`wgpu::Limits::default`] (what WebGPU guarantees on any GPU) unless the
+    /// technique needs more. The registry's line adds the largest buffer of
+    /// [`Technique::estimate`] to `max_buffer_size` by itself. Devices request the most any
+    /// of a run's techniques needs, and a technique needing more than the adapter offers is
+    /// refused before it is created ([`crate::gpu::limits`]).
+    fn required_limits(_scene: &Scene, _params: &Self::Params) -> wgpu::Limits {
+        wgpu::Limits::default()
+    }
+
     /// The parameters in use.
     fn params(&self) -> &Self::Params;
 }
@@ -114,6 +124,7 @@ pub struct TechniqueEntry {
     check: fn(&toml::Table) -> Result<toml::Table>,
     create: fn(&InitContext<'_>, &toml::Table) -> Result<Box<dyn GrassTechnique>>,
     estimate: fn(&Scene, &toml::Table) -> Result<GpuEstimate>,
+    limits: fn(&Scene, &toml::Table) -> Result<wgpu::Limits>,
 }
 
 /// The registry line of technique `T`.
@@ -125,6 +136,7 @@ pub const fn entry<T: Technique + GrassTechnique>() -> TechniqueEntry {
         check: check_of::<T>,
         create: create_of::<T>,
         estimate: estimate_of::<T>,
+        limits: limits_of::<T>,
     }
 }
 
@@ -146,6 +158,14 @@ fn create_of<T: Technique + GrassTechnique>(
 
 fn estimate_of<T: Technique>(scene: &Scene, overrides: &toml::Table) -> Result<GpuEstimate> {
     T::estimate(scene, &resolve::<T::Params>(T::INFO.id, overrides)?)
+}
+
+fn limits_of<T: Technique>(scene: &Scene, overrides: &toml::Table) -> Result<wgpu::Limits> {
+    let params = resolve::<T::Params>(T::INFO.id, overrides)?;
+    let mut limits = T::required_limits(scene, &params);
+    let largest = T::estimate(scene, &params)?.largest_buffer;
+    limits.max_buffer_size = limits.max_buffer_size.max(largest);
+    Ok(limits)
 }
 
 impl TechniqueEntry {
@@ -173,6 +193,13 @@ impl TechniqueEntry {
     /// What [`Self::create`] with `overrides` will allocate on the GPU (no GPU work).
     pub fn estimate(&self, scene: &Scene, overrides: &toml::Table) -> Result<GpuEstimate> {
         (self.estimate)(scene, overrides)
+    }
+
+    /// The device limits [`Self::create`] with `overrides` needs on `scene` (no GPU work):
+    /// [`Technique::required_limits`], with `max_buffer_size` raised to the estimate's largest
+    /// buffer.
+    pub fn required_limits(&self, scene: &Scene, overrides: &toml::Table) -> Result<wgpu::Limits> {
+        (self.limits)(scene, overrides)
     }
 
     /// The overrides of variant `name`, if the technique offers it.

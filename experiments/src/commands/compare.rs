@@ -87,7 +87,20 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
     let scenes = scenes::select(&args.scene)?;
     let size = Size::parse(&args.size)?;
     prepare_out_dir(&args.out, args.force)?;
-    let gpu = args.gpu.context()?;
+    // Every technique (and the reference) with its defaults and the variants drawn below.
+    let mut variants = Vec::new();
+    for entry in entries.iter().copied().chain([registry::find("reference")?]) {
+        variants.push((entry, toml::Table::new()));
+        variants.push((entry, entry.finest()?));
+        if let Some(v) = entry.variant(NO_TRANSITIONS) {
+            variants.push((entry, v?));
+        }
+    }
+    let gpu = args.gpu.context_for(&super::needs(
+        scenes
+            .iter()
+            .flat_map(|s| variants.iter().map(move |(e, o)| (*e, s, o))),
+    )?)?;
     write_atomic(&args.out.join("meta.toml"), |f| {
         std::io::Write::write_all(f, Provenance::collect(&gpu.summary).to_toml().as_bytes())
     })?;

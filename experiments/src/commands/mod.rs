@@ -23,8 +23,9 @@ pub use sweep::{SweepArgs, SweepMeta, parse_shard, sweep};
 pub use validate::{ValidateArgs, validate};
 
 use anyhow::Context as _;
-use grassbench::GpuContext;
 use grassbench::gpu::BackendChoice;
+use grassbench::technique::TechniqueEntry;
+use grassbench::{GpuContext, Scene};
 
 /// Options every GPU command shares.
 #[derive(Clone, Debug, clap::Args)]
@@ -35,14 +36,43 @@ pub struct GpuArgs {
 }
 
 impl GpuArgs {
-    /// Creates the GPU context the arguments ask for.
+    /// Creates the GPU context the arguments ask for, its device requesting
+    /// `wgpu::Limits::default()` (for commands that create no technique).
     pub fn context(&self) -> anyhow::Result<GpuContext> {
-        let choice = match &self.backend {
+        self.context_for(&grassbench::wgpu::Limits::default())
+    }
+
+    /// Creates the GPU context the arguments ask for, its device requesting `needs` (what the
+    /// command's techniques need: [`needs`]), lowered to what the adapter offers.
+    pub fn context_for(&self, needs: &grassbench::wgpu::Limits) -> anyhow::Result<GpuContext> {
+        GpuContext::for_needs(self.choice()?, needs).context("cannot start the GPU")
+    }
+
+    /// The backend the arguments (or `GRASSBENCH_BACKEND`) ask for.
+    pub fn choice(&self) -> anyhow::Result<BackendChoice> {
+        Ok(match &self.backend {
             Some(b) => b.parse::<BackendChoice>()?,
             None => BackendChoice::from_env()?,
-        };
-        GpuContext::new(choice).context("cannot start the GPU")
+        })
     }
+}
+
+/// The device limits a command needs to create each technique of `runs` (technique, scene,
+/// overrides on top of the scene's `[techniques.<id>]`): the field-wise maximum of what each
+/// declares, never less than `wgpu::Limits::default()`. Computed without GPU work.
+pub fn needs<'a>(
+    runs: impl IntoIterator<Item = (&'a TechniqueEntry, &'a Scene, &'a toml::Table)>,
+) -> anyhow::Result<grassbench::wgpu::Limits> {
+    let mut all = Vec::new();
+    for (entry, scene, overrides) in runs {
+        let params = scene.technique_params(entry.info.id, overrides);
+        all.push(
+            entry
+                .required_limits(scene, &params)
+                .with_context(|| format!("`{}` on scene `{}`", entry.info.id, scene.name()))?,
+        );
+    }
+    Ok(grassbench::gpu::limits::needed_by(&all))
 }
 
 /// `v` with `digits` decimals, or a dash where nothing was measured.

@@ -50,7 +50,9 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         None => scene.resolution(),
     };
     let overrides = param_table(&args.params)?;
-    let gpu = args.gpu.context()?;
+    let gpu = args
+        .gpu
+        .context_for(&super::needs([(entry, &scene, &overrides)])?)?;
     let mut harness = Harness::new(&gpu, scene, size, args.msaa)?;
     harness.view.debug_view = args.debug_view;
     let mut technique = harness.create(entry, &overrides)?;

@@ -102,7 +102,12 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         bail!("--frames must be at least 1");
     }
     prepare_out_dir(&args.out, args.force)?;
-    let gpu = args.gpu.context()?;
+    let o = &overrides;
+    let gpu = args.gpu.context_for(&super::needs(
+        scenes
+            .iter()
+            .flat_map(|s| entries.iter().map(move |e| (*e, s, o))),
+    )?)?;
     let provenance = Provenance::collect(&gpu.summary);
     // The adapter's unit costs at every size rendered, so each run's time can be set against
     // the cost model's prediction from its measured work (issue 20 §3).

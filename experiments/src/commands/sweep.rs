@@ -101,7 +101,12 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         .unwrap_or_else(|| PathBuf::from("results").join(&spec.name));
     let sweep_key = sweep_key(&text);
     let mut store = SweepStore::open(&out, &sweep_key, args.force)?;
-    let gpu = args.gpu.context()?;
+    let mut planned = Vec::new();
+    for run in &mine {
+        let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
+        planned.push((registry::find(&run.technique)?, scene, &run.params));
+    }
+    let gpu = args.gpu.context_for(&super::needs(planned)?)?;
     let (calibration, unit_costs) = if args.no_calibration {
         (None, Vec::new())
     } else {

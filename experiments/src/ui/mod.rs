@@ -140,14 +140,23 @@ pub fn run(args: &UiArgs) -> anyhow::Result<()> {
         Some(b) => b.parse::<BackendChoice>()?,
         None => BackendChoice::from_env()?,
     };
+    // The device requests what any registered technique needs on this scene (a pane can switch
+    // to any of them), the same way the headless commands request theirs.
+    let scene = crate::scenes::load(&args.scene)?;
+    let none = toml::Table::new();
+    let needs = crate::commands::needs(
+        crate::registry::TECHNIQUES
+            .iter()
+            .map(|entry| (entry, &scene, &none)),
+    )?;
     let mut setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor.backends = choice.backends();
     let setup = eframe::egui_wgpu::WgpuSetupCreateNew {
-        device_descriptor: Arc::new(|adapter: &eframe::wgpu::Adapter| {
+        device_descriptor: Arc::new(move |adapter: &eframe::wgpu::Adapter| {
             eframe::wgpu::DeviceDescriptor {
                 label: Some("grassbench ui"),
                 required_features: adapter.features() & eframe::wgpu::Features::TIMESTAMP_QUERY,
-                required_limits: adapter.limits(),
+                required_limits: GpuContext::request_limits(adapter, &needs),
                 ..Default::default()
             }
         }),

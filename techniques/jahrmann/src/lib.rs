@@ -241,6 +241,17 @@ impl Technique for Jahrmann {
         })
     }
 
+    /// Each per-blade array is bound whole as one storage buffer: beyond the default 128 MiB
+    /// binding (8.4 M blades) the device must allow a larger one.
+    fn required_limits(scene: &Scene, _params: &Params) -> grassbench::wgpu::Limits {
+        let defaults = grassbench::wgpu::Limits::default();
+        let array = gpu::largest_buffer(scene.blades.candidate_count(&scene.terrain));
+        grassbench::wgpu::Limits {
+            max_storage_buffer_binding_size: defaults.max_storage_buffer_binding_size.max(array),
+            ..defaults
+        }
+    }
+
     fn params(&self) -> &Params {
         &self.params
     }
