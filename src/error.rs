@@ -143,6 +143,16 @@ pub enum Error {
 }
 
 impl Error {
+    /// Whether this is a fault the device reported while working (a validation error, running
+    /// out of memory, a lost device), after which a run's device is not trusted again, as
+    /// opposed to a refusal before any GPU work or a file or parameter error.
+    pub fn is_device_fault(&self) -> bool {
+        matches!(
+            self,
+            Self::Validation { .. } | Self::OutOfMemory { .. } | Self::DeviceLost { .. }
+        )
+    }
+
     /// Shorthand for an [`Error::InvalidParameter`].
     pub fn param(
         name: impl Into<String>,

@@ -16,19 +16,30 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
 
 /// The entry with id `id`.
 pub fn find(id: &str) -> Result<&'static TechniqueEntry> {
-    TECHNIQUES
+    find_in(TECHNIQUES, id)
+}
+
+/// All ids.
+pub fn ids() -> Vec<&'static str> {
+    ids_in(TECHNIQUES)
+}
+
+/// The entry with id `id` in `entries` (the registry, or the registry extended by a test with
+/// techniques of its own, as `commands::sweep_with` takes it).
+pub fn find_in<'a>(entries: &'a [TechniqueEntry], id: &str) -> Result<&'a TechniqueEntry> {
+    entries
         .iter()
         .find(|e| e.info.id == id)
         .ok_or_else(|| Error::UnknownName {
             kind: "technique",
             name: id.to_owned(),
-            valid: ids().join(", "),
+            valid: ids_in(entries).join(", "),
         })
 }
 
-/// All ids.
-pub fn ids() -> Vec<&'static str> {
-    TECHNIQUES.iter().map(|e| e.info.id).collect()
+/// The ids of `entries`.
+pub fn ids_in(entries: &[TechniqueEntry]) -> Vec<&'static str> {
+    entries.iter().map(|e| e.info.id).collect()
 }
 
 /// Entries for a comma-separated list of ids, or every entry for `all`.

@@ -19,7 +19,7 @@ pub use merge::{MergeArgs, merge};
 pub use render::{RenderArgs, render};
 pub use report::{REPORT_HTML, ReportArgs, report, write_html};
 pub use run::{RunArgs, run};
-pub use sweep::{SweepArgs, SweepMeta, parse_shard, sweep};
+pub use sweep::{SweepArgs, SweepMeta, parse_shard, sweep, sweep_with};
 pub use validate::{ValidateArgs, validate};
 
 use anyhow::Context as _;

@@ -14,6 +14,7 @@ use grassbench::sweep::{
     compare_with_reference, image_path, sweep_key,
 };
 use grassbench::target::save_png;
+use grassbench::technique::TechniqueEntry;
 use grassbench::{GpuContext, Scene};
 
 use super::GpuArgs;
@@ -80,10 +81,21 @@ pub struct SweepMeta {
 
 /// Runs the sweep.
 pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
+    sweep_with(args, registry::TECHNIQUES)
+}
+
+/// Runs the sweep with the techniques of `techniques` (the registry; a test adds techniques of
+/// its own, e.g. ones that provoke a validation error or lose the device).
+///
+/// The device requests what the planned runs' techniques need (`commands::needs`). A run that
+/// fails is recorded as failed with its error and the sweep goes on; where it failed on the
+/// GPU (a validation error, out of memory, a lost device) or left an error behind, the device
+/// is dropped and the following runs get a fresh one, so one fault never fails the rest.
+pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Result<()> {
     let text = std::fs::read_to_string(&args.file)
         .with_context(|| format!("cannot read sweep file `{}`", args.file.display()))?;
     let spec = SweepSpec::from_toml(&text, &args.file)?;
-    let (plan, scene_cache) = load_plan(&spec, &args.file)?;
+    let (plan, scene_cache) = load_plan(&spec, &args.file, techniques)?;
     let (shard_i, shard_n) = args
         .shard
         .as_deref()
@@ -104,9 +116,14 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
     let mut planned = Vec::new();
     for run in &mine {
         let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
-        planned.push((registry::find(&run.technique)?, scene, &run.params));
+        planned.push((
+            registry::find_in(techniques, &run.technique)?,
+            scene,
+            &run.params,
+        ));
     }
-    let gpu = args.gpu.context_for(&super::needs(planned)?)?;
+    let needs = super::needs(planned)?;
+    let mut gpu = args.gpu.context_for(&needs)?;
     let (calibration, unit_costs) = if args.no_calibration {
         (None, Vec::new())
     } else {
@@ -173,6 +190,7 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
         let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
         match execute(
             &gpu,
+            techniques,
             &spec,
             scene,
             run,
@@ -193,6 +211,16 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
                     "run {} ({} on {}) failed: {e:#}",
                     run.id, run.technique, run.scene
                 ));
+                // A device that faulted (or holds an error nobody caught) is not trusted with
+                // the next run: it gets a fresh one.
+                if is_device_fault(&e) || gpu.check("after a failed run").is_err() {
+                    drop(gpu);
+                    gpu = args
+                        .gpu
+                        .context_for(&needs)
+                        .context("recreating the device after a failed run")?;
+                    bar.println("  the following runs use a fresh device");
+                }
             }
         }
         bar.inc(1);
@@ -221,18 +249,19 @@ pub fn sweep(args: &SweepArgs) -> anyhow::Result<()> {
 pub(crate) fn load_plan(
     spec: &SweepSpec,
     file: &std::path::Path,
+    techniques: &[TechniqueEntry],
 ) -> anyhow::Result<(Vec<PlannedRun>, HashMap<String, Scene>)> {
     let ids: Vec<&str> = if spec.techniques.iter().any(|t| t == "all") {
-        registry::ids()
+        registry::ids_in(techniques)
     } else {
         spec.techniques
             .iter()
-            .map(|t| registry::find(t).map(|e| e.info.id))
+            .map(|t| registry::find_in(techniques, t).map(|e| e.info.id))
             .collect::<Result<_, _>>()
             .with_context(|| format!("{}: techniques", file.display()))?
     };
     for technique in spec.params.keys() {
-        registry::find(technique)
+        registry::find_in(techniques, technique)
             .with_context(|| format!("{}: [params.{technique}]", file.display()))?;
     }
     let plan = spec.expand(&ids)?;
@@ -257,7 +286,7 @@ pub(crate) fn load_plan(
             e.insert(scene);
         }
         let overrides = scenes[&key].technique_params(&run.technique, &run.params);
-        registry::find(&run.technique)?
+        registry::find_in(techniques, &run.technique)?
             .check(&overrides)
             .with_context(|| {
                 format!(
@@ -272,6 +301,14 @@ pub(crate) fn load_plan(
     Ok((plan, scenes))
 }
 
+/// Whether `e` is a fault of the device (a validation error, out of memory, a lost device)
+/// rather than a refusal before any GPU work.
+fn is_device_fault(e: &anyhow::Error) -> bool {
+    e.chain()
+        .filter_map(|c| c.downcast_ref::<grassbench::Error>())
+        .any(grassbench::Error::is_device_fault)
+}
+
 fn scene_key(run: &PlannedRun) -> String {
     format!("{}|{}", run.scene, run.scene_variant())
 }
@@ -282,8 +319,10 @@ type Executed = (RunSummary, Vec<runner::FrameRecord>, Vec<ParamRow>);
 type Reference = (RunSummary, Vec<f64>, Option<image::RgbaImage>);
 
 /// One run: measure, compare with the group's reference, save its last frame for repetition 0.
+#[allow(clippy::too_many_arguments)]
 fn execute(
     gpu: &GpuContext,
+    techniques: &[TechniqueEntry],
     spec: &SweepSpec,
     scene: &Scene,
     run: &PlannedRun,
@@ -291,7 +330,7 @@ fn execute(
     dir: &std::path::Path,
     unit_costs: &[UnitCosts],
 ) -> anyhow::Result<Executed> {
-    let entry = registry::find(&run.technique)?;
+    let entry = registry::find_in(techniques, &run.technique)?;
     let size = run.size.unwrap_or(scene.resolution());
     let mut harness = Harness::new(gpu, scene.clone(), size, run.msaa)?;
     let mut technique = harness.create(entry, &run.params)?;

@@ -54,6 +54,6 @@ fn check(path: &std::path::Path) -> anyhow::Result<String> {
         ));
     }
     let spec = SweepSpec::from_toml(&text, path)?;
-    let (plan, _) = super::sweep::load_plan(&spec, path)?;
+    let (plan, _) = super::sweep::load_plan(&spec, path, registry::TECHNIQUES)?;
     Ok(format!("sweep `{}`, {} runs", spec.name, plan.len()))
 }
