@@ -37,6 +37,9 @@ pub struct DiffView {
     pub missing: Option<f64>,
     /// What went wrong last time (e.g. panes of different sizes).
     pub error: Option<String>,
+    /// What the shown difference was measured on: panes A and B, mode, and the frames each
+    /// had received.
+    pub measured: Option<(usize, usize, DiffMode, u64, u64)>,
 }
 
 impl Default for DiffView {
@@ -50,6 +53,7 @@ impl Default for DiffView {
             mean: None,
             missing: None,
             error: None,
+            measured: None,
         }
     }
 }

@@ -2,18 +2,23 @@
 //!
 //! Techniques render offscreen through the same [`World`](grassbench::runner::World),
 //! [`View`](grassbench::runner::View) and frame function as headless runs; the UI only
-//! displays the resulting textures, so what it shows is what sweeps measure. The window holds
-//! ONE world (scene, its GPU resources, the wind, advanced once per frame) and one clock; each
-//! pane holds a technique and its view (target, timer, debug view).
+//! displays the resulting images, so what it shows is what sweeps measure. They render on a
+//! worker thread with a device of its own, which holds ONE world (scene, its GPU resources,
+//! the wind, advanced once per frame) and each pane's technique and view (target, timer,
+//! debug view); the window holds the clock, the camera and each pane's latest finished frame,
+//! and stays responsive however long the panes take.
 //!
 //! | file | concept |
 //! |---|---|
 //! | `app.rs` | the window: the panel's sections, the panes, the frame loop |
+//! | `worker.rs` | the render thread (own device): the stage, commands in, finished frames out |
 //! | `stage.rs` | the one world and its panes, stepped together frame by frame |
-//! | `pane.rs` | one pane: a technique, its view, its figures and texture |
+//! | `pane.rs` | one pane on the worker: a technique, its view, its figures |
+//! | `display.rs` | one pane in the window: its latest finished frame (texture) and figures |
 //! | `clock.rs` | the frame shown, play, pause, time scale |
 //! | `views/` | the side panel's sections, one small view each |
-//! | `grid.rs` | the panes in a grid: pictures, overlays, the pointer on them |
+//! | `grid.rs` | the panes in the grid that fits them largest: pictures, overlays, pointer |
+//! | `wipe.rs` | the wipe view: two panes in one picture split by a divider, flipped by a key |
 //! | `overlay.rs` | figures, plot and errors drawn over a pane |
 //! | `camera.rs` | the shared camera: scene path, walker, orbit |
 //! | `editor.rs` | widgets generated from parameter tables (technique parameters, wind) |
@@ -26,6 +31,7 @@ mod app;
 mod camera;
 mod clock;
 mod diff;
+mod display;
 mod editor;
 mod grid;
 mod overlay;
@@ -35,11 +41,12 @@ mod script;
 mod spawn;
 mod stage;
 mod views;
+mod wipe;
+mod worker;
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use anyhow::Context as _;
 use grassbench::GpuContext;
 use grassbench::gpu::BackendChoice;
 pub use spawn::SpawnKind;
@@ -89,6 +96,27 @@ pub struct UiArgs {
     /// the panel's point-light controls would.
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
     pub point_light: Option<[f32; 3]>,
+    /// Wipe view of panes 1 and 2 (needs 2 panes or more); scripted mode: after the first
+    /// frame, drag its divider from the middle to SPLIT (0 = left edge, 1 = right edge), as the
+    /// mouse would.
+    #[arg(long, value_parser = parse_split)]
+    pub wipe: Option<f32>,
+    /// Scripted mode, with `--wipe`: after the drag, press the key that swaps the two sides.
+    #[arg(long, requires = "wipe")]
+    pub flip: bool,
+    /// Start with the side panel folded away (the panes take the whole window).
+    #[arg(long)]
+    pub hide_panel: bool,
+}
+
+/// A divider position in [0, 1].
+fn parse_split(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "{text}: expected a position from 0 (left) to 1 (right), e.g. 0.3"
+        )),
+    }
 }
 
 /// `X,Y,Z` in metres, finite.
@@ -136,6 +164,9 @@ pub fn run(args: &UiArgs) -> anyhow::Result<()> {
     if ![1, 2, 4].contains(&args.panes) {
         anyhow::bail!("--panes must be 1, 2 or 4 (got {})", args.panes);
     }
+    if args.wipe.is_some() && args.panes < 2 {
+        anyhow::bail!("--wipe shows panes 1 and 2: it needs --panes 2 or 4");
+    }
     let choice = match &args.backend {
         Some(b) => b.parse::<BackendChoice>()?,
         None => BackendChoice::from_env()?,
@@ -149,6 +180,8 @@ pub fn run(args: &UiArgs) -> anyhow::Result<()> {
             .iter()
             .map(|entry| (entry, &scene, &none)),
     )?;
+    // The panes render on the worker's device: it requests the same.
+    let worker_needs = needs.clone();
     let mut setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor.backends = choice.backends();
     let setup = eframe::egui_wgpu::WgpuSetupCreateNew {
@@ -180,18 +213,8 @@ pub fn run(args: &UiArgs) -> anyhow::Result<()> {
         "grassbench",
         options,
         Box::new(move |cc| {
-            let state = cc
-                .wgpu_render_state
-                .as_ref()
-                .context("eframe started without its wgpu renderer")?;
-            // The window lives as long as the process: leak the context so panes can borrow it.
-            let gpu: &'static GpuContext = Box::leak(Box::new(GpuContext::from_device(
-                state.instance.clone(),
-                state.adapter.clone(),
-                state.device.clone(),
-                state.queue.clone(),
-            )));
-            let app = app::App::new(cc, gpu, args, outcome_app)?;
+            // The panes render on the worker's own device (on `choice`), not on eframe's.
+            let app = app::App::new(cc, choice, worker_needs, args, outcome_app)?;
             Ok(Box::new(app))
         }),
     )

@@ -1,17 +1,21 @@
 //! What is drawn over each pane: technique name, live figures, a rolling plot of GPU time,
-//! and the error when the technique failed.
+//! and the error when the technique failed. A click on the name folds the figures and the
+//! plot away (in every pane) or unfolds them.
 
 use eframe::egui;
 
-use super::pane::{HISTORY, Pane};
+use super::display::PaneDisplay;
+use super::pane::HISTORY;
 
-/// Technique name, figures, rolling plot and errors drawn over a pane.
-pub fn draw(ui: &egui::Ui, pane: &Pane, pic: egui::Rect, k: usize) {
+/// Technique name, figures (when `figures`, which a click on the name toggles), rolling plot
+/// and errors drawn over pane `k`'s picture `pic`.
+pub fn draw(ui: &egui::Ui, pane: &PaneDisplay, pic: egui::Rect, k: usize, figures: &mut bool) {
     let painter = ui.painter_at(pic);
     let font = egui::FontId::monospace(11.0);
     let shadow = egui::Color32::from_black_alpha(160);
-    let mut lines = vec![format!("{} {}", k + 1, pane.technique_id)];
-    if let Some(r) = pane.history.back() {
+    let fold = if *figures { "[-]" } else { "[+]" };
+    let mut lines = vec![format!("{} {} {fold}", k + 1, pane.technique_id)];
+    if let Some(r) = pane.history.back().filter(|_| *figures) {
         lines.push(format!(
             "cpu update {:.2} upload {:.2} encode {:.2} ms",
             r.update_ms, r.upload_ms, r.encode_ms
@@ -54,9 +58,23 @@ pub fn draw(ui: &egui::Ui, pane: &Pane, pic: egui::Rect, k: usize) {
     let bg = egui::Rect::from_min_size(pic.min, galley.size() + egui::vec2(8.0, 6.0));
     painter.rect_filled(bg, 2.0, shadow);
     painter.galley(pic.min + egui::vec2(4.0, 3.0), galley, egui::Color32::WHITE);
+    // The name's line folds and unfolds the figures.
+    let title = egui::Rect::from_min_size(bg.min, egui::vec2(bg.width(), 17.0)).intersect(pic);
+    if title.is_positive()
+        && ui
+            .interact(
+                title,
+                ui.scope_id().with(("figures", k)),
+                egui::Sense::click(),
+            )
+            .on_hover_cursor(egui::CursorIcon::PointingHand)
+            .clicked()
+    {
+        *figures = !*figures;
+    }
 
     // Rolling plot of GPU wall time.
-    if pane.history.len() > 1 {
+    if *figures && pane.history.len() > 1 {
         let plot = egui::Rect::from_min_size(
             egui::pos2(pic.min.x + 4.0, pic.max.y - 44.0),
             egui::vec2(160.0, 40.0),

@@ -4,7 +4,6 @@
 
 use std::collections::VecDeque;
 
-use eframe::{egui, egui_wgpu};
 use grassbench::glam::Vec3;
 use grassbench::runner::{FrameRecord, View, World};
 use grassbench::target::Size;
@@ -44,7 +43,8 @@ pub struct Pane {
     pub full_size: Size,
     /// Rendering at reduced resolution (camera moving, frames slow).
     pub preview: bool,
-    texture: Option<egui::TextureId>,
+    /// The window's number of the last parameter edit applied (0: none).
+    pub edit: u64,
     dirty: bool,
 }
 
@@ -68,7 +68,7 @@ impl Pane {
             shown_frame: None,
             full_size: size,
             preview: false,
-            texture: None,
+            edit: 0,
             dirty: true,
         })
     }
@@ -145,10 +145,11 @@ impl Pane {
         )
     }
 
-    /// Renders `frame` of the world; reads the image back when `capture`.
-    pub fn draw(&mut self, world: &mut World<'_>, frame: u64, capture: bool) {
+    /// Renders `frame` of the world; reads the image back when `capture`. Returns whether it
+    /// drew (not when the technique is missing or failed now).
+    pub fn draw(&mut self, world: &mut World<'_>, frame: u64, capture: bool) -> bool {
         let Some(technique) = self.technique.as_mut() else {
-            return;
+            return false;
         };
         match world.frame(&mut self.view, technique.as_mut(), frame, capture) {
             Ok(out) => {
@@ -166,46 +167,14 @@ impl Pane {
                 self.shown_frame = Some(frame);
                 self.error = None;
                 self.dirty = false;
+                true
             }
             Err(e) => {
                 self.error = Some(e.to_string());
                 // A failed technique stays failed until changed: no retry every frame.
                 self.technique = None;
+                false
             }
-        }
-    }
-
-    /// The egui texture showing this pane's target (registered or updated after resizes).
-    pub fn texture(&mut self, render_state: &egui_wgpu::RenderState) -> egui::TextureId {
-        // egui composites in gamma space: give it the sRGB bytes undecoded.
-        let view = &self.view.target.display_view;
-        let mut renderer = render_state.renderer.write();
-        match self.texture {
-            Some(id) => {
-                renderer.update_egui_texture_from_wgpu_texture(
-                    &render_state.device,
-                    view,
-                    eframe::wgpu::FilterMode::Linear,
-                    id,
-                );
-                id
-            }
-            None => {
-                let id = renderer.register_native_texture(
-                    &render_state.device,
-                    view,
-                    eframe::wgpu::FilterMode::Linear,
-                );
-                self.texture = Some(id);
-                id
-            }
-        }
-    }
-
-    /// Frees the egui texture.
-    pub fn release(&mut self, render_state: &egui_wgpu::RenderState) {
-        if let Some(id) = self.texture.take() {
-            render_state.renderer.write().free_texture(&id);
         }
     }
 }

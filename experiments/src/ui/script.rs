@@ -1,6 +1,10 @@
 //! Scripted mode (`--frames N --screenshot FILE`): play N frames, save the window, every pane's
 //! image and the pane layout, exit. CI runs it under Xvfb and checks each pane of the window.
+//! What the user would do with the mouse and keys (drag the wipe view's divider, flip it) the
+//! script does by feeding egui the same input events, one group per window frame
+//! ([`Script::feed`]), so the window's own handling of them is what is tested.
 
+use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -9,7 +13,7 @@ use eframe::egui;
 use grassbench::target::save_png;
 use serde::{Deserialize, Serialize};
 
-use super::stage::Stage;
+use super::display::PaneDisplay;
 
 /// Where each pane lies in the window screenshot, in physical pixels.
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
@@ -31,6 +35,30 @@ pub struct Layout {
     /// controls or `--point-light`).
     #[serde(default)]
     pub point_light: Option<[f32; 3]>,
+    /// The wipe view, when on.
+    #[serde(default)]
+    pub wipe: Option<WipeLayout>,
+    /// Wall time between successive window frames while the script played, ms.
+    #[serde(default)]
+    pub window_frame_ms: Vec<f64>,
+    /// Each pane's GPU wall time of every frame the window received, ms.
+    #[serde(default)]
+    pub pane_gpu_wall_ms: Vec<Vec<f64>>,
+}
+
+/// The wipe view in a window screenshot.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct WipeLayout {
+    /// Pane shown left of the divider (0-based).
+    pub left: usize,
+    /// Pane shown right of the divider.
+    pub right: usize,
+    /// The divider's position across the picture, 0 to 1.
+    pub split: f32,
+    /// Whether the sides were swapped.
+    pub flipped: bool,
+    /// `[x, y, width, height]` of the picture, in physical pixels.
+    pub rect: [u32; 4],
 }
 
 impl Layout {
@@ -50,6 +78,8 @@ pub struct Script {
     pub requested: bool,
     /// Where the screenshot arrives.
     slot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
+    /// Input still to feed egui, one group per window frame.
+    input: VecDeque<Vec<egui::Event>>,
 }
 
 impl Script {
@@ -60,27 +90,65 @@ impl Script {
             screenshot,
             requested: false,
             slot: Arc::new(Mutex::new(None)),
+            input: VecDeque::new(),
         }
     }
 
-    /// Once every pane shows the last frame: asks for the window's screenshot, then saves it
-    /// with the layout `layout(pixels_per_point)` and every pane's image. Returns `None` while
-    /// waiting, then the outcome (the window is then to be closed).
+    /// Queues a drag with the primary button from `from` to `to` (points), over a few frames.
+    pub fn drag(&mut self, from: egui::Pos2, to: egui::Pos2) {
+        let button = |pos, pressed| egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        };
+        self.input.push_back(vec![egui::Event::PointerMoved(from)]);
+        self.input.push_back(vec![button(from, true)]);
+        for t in [0.25, 0.5, 0.75, 1.0] {
+            self.input
+                .push_back(vec![egui::Event::PointerMoved(from.lerp(to, t))]);
+        }
+        self.input.push_back(vec![button(to, false)]);
+    }
+
+    /// Queues a press and release of `key`.
+    pub fn key(&mut self, key: egui::Key) {
+        let event = |pressed| egui::Event::Key {
+            key,
+            physical_key: None,
+            pressed,
+            repeat: false,
+            modifiers: egui::Modifiers::NONE,
+        };
+        self.input.push_back(vec![event(true)]);
+        self.input.push_back(vec![event(false)]);
+    }
+
+    /// Feeds this frame's queued input to egui.
+    pub fn feed(&mut self, raw: &mut egui::RawInput) {
+        if let Some(events) = self.input.pop_front() {
+            raw.events.extend(events);
+        }
+    }
+
+    /// Whether queued input remains.
+    pub fn feeding(&self) -> bool {
+        !self.input.is_empty()
+    }
+
+    /// Once every pane shown shows the last frame (`ready`) and the queued input is fed: asks
+    /// for the window's screenshot, then saves it with the layout `layout(pixels_per_point)`
+    /// and every pane's image. Returns `None` while waiting, then the outcome (the window is
+    /// then to be closed).
     pub fn poll(
         &mut self,
         ctx: &egui::Context,
-        stage: &Stage,
+        panes: &[PaneDisplay],
+        ready: bool,
         frame: u64,
         layout: impl FnOnce(f32) -> Layout,
     ) -> Option<anyhow::Result<()>> {
-        if frame < self.frames {
-            return None;
-        }
-        let ready = stage
-            .panes
-            .iter()
-            .all(|p| p.shown_frame == Some(self.frames) || p.technique.is_none());
-        if !ready {
+        if frame < self.frames || !ready || self.feeding() {
             return None;
         }
         if !self.requested {
@@ -105,7 +173,7 @@ impl Script {
             save_png(&window, path)?;
             let layout = layout(ctx.pixels_per_point());
             std::fs::write(Layout::path_for(path), toml::to_string(&layout)?)?;
-            for (k, pane) in stage.panes.iter().enumerate() {
+            for (k, pane) in panes.iter().enumerate() {
                 if let Some(img) = &pane.last_image {
                     save_png(img, &path.with_extension(format!("pane{}.png", k + 1)))?;
                 }

@@ -52,11 +52,6 @@ impl Stage {
         })
     }
 
-    /// The scene every pane shows.
-    pub fn scene(&self) -> &Scene {
-        &self.world.scene
-    }
-
     /// Replaces the scene with `scene` (loaded as `name`): a new world; the panes are to be
     /// rebuilt ([`Stage::build_panes`]).
     pub fn set_scene(&mut self, name: &str, scene: Scene) -> anyhow::Result<()> {
@@ -84,13 +79,6 @@ impl Stage {
         }
         self.recreate(&(0..count).collect::<Vec<_>>(), frame);
         Ok(())
-    }
-
-    /// Frees the panes' egui textures.
-    pub fn release(&mut self, render_state: &eframe::egui_wgpu::RenderState) {
-        for p in &mut self.panes {
-            p.release(render_state);
-        }
     }
 
     /// Rebuilds the techniques of panes `which` with their overrides and catches them up to
@@ -138,22 +126,25 @@ impl Stage {
     }
 
     /// Brings every pane that needs it to `frame` (seen from `camera`, read back when
-    /// `capture`, at half resolution where `preview` says): frames skipped since a pane last
-    /// drew are simulated first, frame by frame with every pane in turn, then each pane draws.
-    /// The world's wind thus advances once per frame, whatever the number of panes.
+    /// `capture`); `want` says for pane `k` whether to draw it at all (`None`: not now) and at
+    /// half resolution (`Some(true)`). Frames skipped since a pane last drew are simulated
+    /// first, frame by frame with every pane in turn, then each pane draws and is handed to
+    /// `done`. The world's wind thus advances once per frame, whatever the number of panes.
     pub fn render(
         &mut self,
         frame: u64,
         camera: Option<(Vec3, Vec3)>,
         capture: bool,
-        preview: impl Fn(&Pane) -> bool,
+        want: impl Fn(usize, &Pane) -> Option<bool>,
+        mut done: impl FnMut(usize, &Pane),
     ) {
         let world = &self.world;
         let mut plans: Vec<Option<u64>> = self
             .panes
             .iter_mut()
-            .map(|p| {
-                let preview = preview(p);
+            .enumerate()
+            .map(|(k, p)| {
+                let preview = want(k, p)?;
                 p.plan(world, frame, camera, capture, preview)
             })
             .collect();
@@ -168,9 +159,9 @@ impl Stage {
                 }
             }
         }
-        for (p, plan) in self.panes.iter_mut().zip(plans) {
-            if plan.is_some() {
-                p.draw(&mut self.world, frame, capture);
+        for (k, (p, plan)) in self.panes.iter_mut().zip(plans).enumerate() {
+            if plan.is_some() && p.draw(&mut self.world, frame, capture) {
+                done(k, p);
             }
         }
     }
@@ -236,9 +227,9 @@ mod tests {
     /// Plays frames 0..=`to` as the window does at time scale `step`.
     fn play(stage: &mut Stage, to: u64, step: usize) {
         for f in (0..=to).step_by(step) {
-            stage.render(f, None, true, |_| false);
+            stage.render(f, None, true, |_, _| Some(false), |_, _| {});
         }
-        stage.render(to, None, true, |_| false);
+        stage.render(to, None, true, |_, _| Some(false), |_, _| {});
     }
 
     #[test]
@@ -254,7 +245,7 @@ mod tests {
         assert_eq!(one.world.wind_steps(), 10);
         // The wind stands where a single pane's does, and every pane shows the same picture.
         let probe = Vec3::new(3.0, 0.5, -2.0);
-        let t = two.scene().time_of(9);
+        let t = two.world.scene.time_of(9);
         assert_eq!(
             two.world.wind().velocity(probe, t),
             one.world.wind().velocity(probe, t)
@@ -266,7 +257,7 @@ mod tests {
         // A sun moved in the panel reaches every pane: both redraw, alike, and differently.
         let before = image(&two, 0);
         two.set_sun(crate::ui::sun_direction([-60.0, 25.0]));
-        two.render(9, None, true, |_| false);
+        two.render(9, None, true, |_, _| Some(false), |_, _| {});
         assert_eq!(two.world.wind_steps(), 10, "a redraw steps no wind");
         let (a, b) = (image(&two, 0), image(&two, 1));
         assert_eq!(a, b);

@@ -3,7 +3,7 @@
 use eframe::egui;
 
 use crate::ui::diff::{DiffMode, DiffView};
-use crate::ui::pane::Pane;
+use crate::ui::display::PaneDisplay;
 
 /// Draws the difference settings (which panes, which measure) for `panes` panes.
 pub fn ui(ui: &mut egui::Ui, diff: &mut DiffView, panes: usize) {
@@ -32,22 +32,30 @@ pub fn ui(ui: &mut egui::Ui, diff: &mut DiffView, panes: usize) {
 }
 
 /// The difference window: the two panes' last images compared, the mean and the map.
-pub fn window(ctx: &egui::Context, diff: &mut DiffView, panes: &[Pane]) {
+pub fn window(ctx: &egui::Context, diff: &mut DiffView, panes: &[PaneDisplay]) {
     let (a, b) = (diff.a, diff.b);
+    // Measured again only when a pane has a new frame or the settings changed: FLIP takes a
+    // good part of a second on large panes, and the window must not wait for it every frame.
+    let received = |k: usize| panes.get(k).map_or(0, |p| p.received);
+    let key = (a, b, diff.mode, received(a), received(b));
+    let stale = diff.measured != Some(key);
+    diff.measured = Some(key);
     let step = |k: usize| {
         panes
             .get(k)
             .and_then(|p| Some((p.previous_image.as_ref()?, p.last_image.as_ref()?)))
     };
-    if diff.mode == DiffMode::Temporal {
-        if let (Some(sa), Some(sb)) = (step(a), step(b)) {
-            diff.update_temporal(ctx, sa, sb);
+    if stale {
+        if diff.mode == DiffMode::Temporal {
+            if let (Some(sa), Some(sb)) = (step(a), step(b)) {
+                diff.update_temporal(ctx, sa, sb);
+            }
+        } else if let (Some(ia), Some(ib)) = (
+            panes.get(a).and_then(|p| p.last_image.as_ref()),
+            panes.get(b).and_then(|p| p.last_image.as_ref()),
+        ) {
+            diff.update(ctx, ia, ib);
         }
-    } else if let (Some(ia), Some(ib)) = (
-        panes.get(a).and_then(|p| p.last_image.as_ref()),
-        panes.get(b).and_then(|p| p.last_image.as_ref()),
-    ) {
-        diff.update(ctx, ia, ib);
     }
     egui::Window::new("difference")
         .default_width(420.0)

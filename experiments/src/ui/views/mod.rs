@@ -1,6 +1,6 @@
 //! The side panel's sections, one small view each, in the manner of egui's demo windows: each
 //! draws its section from the state it is given and reports what the user asked for as
-//! [`Action`]s, which the window ([`super::app`]) carries out on the stage.
+//! [`Action`]s, which the window ([`super::app`]) carries out (through the render worker).
 //!
 //! | file | section |
 //! |---|---|
@@ -10,6 +10,7 @@
 //! | `wind.rs` | wind model and its settings, the spawn tool |
 //! | `lights.rs` | the sun and the point light |
 //! | `difference.rs` | the difference view: its settings and its window |
+//! | `wipe.rs` | the wipe view: which two panes, the divider, flipped or not |
 //! | `pane.rs` | one pane: technique, debug view, parameters |
 
 pub mod camera;
@@ -19,6 +20,7 @@ pub mod pane;
 pub mod playback;
 pub mod scene;
 pub mod wind;
+pub mod wipe;
 
 use grassbench::scene::PointLight;
 
@@ -39,6 +41,8 @@ pub enum Action {
     SetPointLight(Option<PointLight>),
     /// Switch pane `.0` to technique `.1`.
     SetTechnique(usize, &'static str),
-    /// Rebuild pane `.0`'s technique with its (edited) parameters.
-    Recreate(usize),
+    /// Rebuild pane `.0`'s technique with parameter overrides `.1` (empty: the defaults).
+    Recreate(usize, toml::Table),
+    /// Show debug view `.1` (0 = none) in pane `.0`.
+    DebugView(usize, u32),
 }

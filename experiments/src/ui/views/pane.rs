@@ -5,11 +5,11 @@ use eframe::egui;
 
 use super::Action;
 use crate::registry;
+use crate::ui::display::PaneDisplay;
 use crate::ui::editor::edit_table;
-use crate::ui::pane::Pane;
 
 /// Draws the settings of pane `k`.
-pub fn ui(ui: &mut egui::Ui, k: usize, pane: &mut Pane, actions: &mut Vec<Action>) {
+pub fn ui(ui: &mut egui::Ui, k: usize, pane: &PaneDisplay, actions: &mut Vec<Action>) {
     ui.collapsing(format!("pane {}: {}", k + 1, pane.technique_id), |ui| {
         egui::ComboBox::from_id_salt(("technique", k))
             .selected_text(&pane.technique_id)
@@ -23,9 +23,9 @@ pub fn ui(ui: &mut egui::Ui, k: usize, pane: &mut Pane, actions: &mut Vec<Action
                     }
                 }
             });
-        if let Some((info, params)) = pane.technique.as_ref().map(|t| (t.info(), t.param_table())) {
+        if let Some(info) = pane.info.filter(|_| pane.alive) {
             ui.small(info.paper);
-            let mut view = pane.view.debug_view;
+            let mut view = pane.debug_view;
             let name = |v: u32| {
                 if v == 0 {
                     "none"
@@ -40,19 +40,16 @@ pub fn ui(ui: &mut egui::Ui, k: usize, pane: &mut Pane, actions: &mut Vec<Action
                         ui.selectable_value(&mut view, v, name(v));
                     }
                 });
-            if view != pane.view.debug_view {
-                pane.view.debug_view = view;
-                pane.invalidate();
+            if view != pane.debug_view {
+                actions.push(Action::DebugView(k, view));
             }
-            let mut params = params;
+            let mut params = pane.params.clone();
             if edit_table(ui, &mut params, &[]) {
-                pane.overrides = params;
-                actions.push(Action::Recreate(k));
+                actions.push(Action::Recreate(k, params));
             }
         }
         if ui.button("reset parameters").clicked() {
-            pane.overrides.clear();
-            actions.push(Action::Recreate(k));
+            actions.push(Action::Recreate(k, toml::Table::new()));
         }
     });
 }

@@ -4,15 +4,26 @@ use eframe::egui;
 
 use super::Action;
 use crate::scenes;
-use crate::ui::stage::Stage;
 use grassbench::target::Size;
 
 /// Pane sizes offered (16:9).
 const SIZES: &[&str] = &["320x180", "480x270", "640x360", "960x540", "1280x720"];
 
-/// Draws the scene and layout settings of `stage`.
-pub fn ui(ui: &mut egui::Ui, stage: &mut Stage, actions: &mut Vec<Action>) {
-    let count = stage.panes.len();
+/// What the scene section edits.
+pub struct Setup {
+    /// Built-in scene name (or path) the scene was loaded by.
+    pub scene_name: String,
+    /// Number of panes.
+    pub count: usize,
+    /// Size of every pane at full resolution.
+    pub size: Size,
+    /// 4x MSAA in every pane.
+    pub msaa: bool,
+}
+
+/// Draws the scene and layout settings `stage`.
+pub fn ui(ui: &mut egui::Ui, stage: &mut Setup, actions: &mut Vec<Action>) {
+    let count = stage.count;
     egui::ComboBox::from_label("scene")
         .selected_text(&stage.scene_name)
         .show_ui(ui, |ui| {

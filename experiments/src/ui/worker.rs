@@ -1,0 +1,559 @@
+//! The render worker: a thread with its own device that owns the [`Stage`] (the world, the
+//! panes' techniques and targets) and renders what the window last asked for, so the window
+//! answers input within its own frame however long the panes take.
+//!
+//! The window sends [`Command`]s: a [`Request`] (frame, camera, which panes, at which
+//! resolution) whenever it changes, and every setting changed in the panel. The worker
+//! applies every waiting command, keeps only the latest request, renders it, and sends each
+//! pane's finished frame back as a [`Report::Frame`] with its image read back; the window
+//! copies that into an egui texture. A device of its own (not eframe's) keeps the panes' long
+//! submissions off the queue the window presents with: on a software rasteriser one queue
+//! runs its submissions in order, so sharing it would make every window frame wait for the
+//! panes.
+
+use std::path::PathBuf;
+use std::sync::mpsc::{self, Receiver, Sender};
+
+use eframe::egui;
+use grassbench::glam::Vec3;
+use grassbench::gpu::{AdapterSummary, BackendChoice};
+use grassbench::runner::FrameRecord;
+use grassbench::scene::PointLight;
+use grassbench::target::Size;
+use grassbench::technique::TechniqueInfo;
+use grassbench::wind::WindConfig;
+use grassbench::{GpuContext, Scene};
+
+use super::stage::Stage;
+
+/// How the window wants one pane drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Want {
+    /// Not at all (hidden, e.g. by the wipe view).
+    Skip,
+    /// At full resolution.
+    Full,
+    /// At half resolution (the camera moves and frames are slow).
+    Half,
+}
+
+/// What the window shows now: the worker brings the panes there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Request {
+    /// Scene frame.
+    pub frame: u64,
+    /// Eye and view direction, or `None` for the scene's path.
+    pub camera: Option<(Vec3, Vec3)>,
+    /// Each pane's want, in order (missing panes are skipped).
+    pub panes: Vec<Want>,
+}
+
+/// What the window asks of the worker.
+#[derive(Debug)]
+pub enum Command {
+    /// Bring the panes to this frame and camera.
+    Render(Request),
+    /// Show `scene` (loaded as `name`) with `count` panes of techniques `ids`, caught up to
+    /// `frame`.
+    LoadScene {
+        /// Name the scene was loaded by.
+        name: String,
+        /// The scene.
+        scene: Box<Scene>,
+        /// Panes.
+        count: usize,
+        /// Techniques, cycled over the panes.
+        ids: Vec<String>,
+        /// Frame to catch up to.
+        frame: u64,
+    },
+    /// Rebuild `count` panes of techniques `ids` at `size`, with MSAA or not, caught up to
+    /// `frame`.
+    BuildPanes {
+        /// Panes.
+        count: usize,
+        /// Techniques, cycled over the panes.
+        ids: Vec<String>,
+        /// Size of each pane at full resolution.
+        size: Size,
+        /// 4x MSAA.
+        msaa: bool,
+        /// Frame to catch up to.
+        frame: u64,
+    },
+    /// Rebuild every pane's technique at this frame (restart).
+    RecreateAll(u64),
+    /// Switch a pane to a technique (default parameters) at `frame`.
+    SetTechnique {
+        /// Pane.
+        pane: usize,
+        /// Technique id.
+        id: String,
+        /// Frame to catch up to.
+        frame: u64,
+    },
+    /// Rebuild a pane's technique with these parameter overrides at `frame`.
+    Recreate {
+        /// Pane.
+        pane: usize,
+        /// Parameter overrides.
+        overrides: toml::Table,
+        /// Frame to catch up to.
+        frame: u64,
+        /// The window's number of this edit (reported back in [`PaneSummary::edit`]).
+        edit: u64,
+    },
+    /// Show a pane's debug view (0 = none).
+    SetDebugView {
+        /// Pane.
+        pane: usize,
+        /// Debug view.
+        view: u32,
+    },
+    /// Replace the wind (restarted from time 0).
+    SetWind(WindConfig),
+    /// Point the sun this way (unit vector towards it).
+    SetSun([f32; 3]),
+    /// Switch the point light on (with these settings) or off.
+    SetPointLight(Option<PointLight>),
+    /// Save every pane at full resolution, and their composite, into a new folder under
+    /// `root`.
+    Screenshot {
+        /// Frame.
+        frame: u64,
+        /// Camera.
+        camera: Option<(Vec3, Vec3)>,
+        /// Folder the new folder goes into.
+        root: PathBuf,
+    },
+}
+
+/// What the window knows of one pane's technique.
+#[derive(Clone, Debug)]
+pub struct PaneSummary {
+    /// Technique id.
+    pub technique_id: String,
+    /// Who the technique is, once created.
+    pub info: Option<TechniqueInfo>,
+    /// Its parameters in use.
+    pub params: toml::Table,
+    /// The last error.
+    pub error: Option<String>,
+    /// Whether the technique exists (not failed).
+    pub alive: bool,
+    /// The window's number of the last parameter edit applied ([`Command::Recreate`]).
+    pub edit: u64,
+}
+
+/// What the worker tells the window.
+#[derive(Debug)]
+pub enum Report {
+    /// The worker's device is ready.
+    Ready(AdapterSummary),
+    /// The worker could not start (no device): nothing will be rendered.
+    Failed(String),
+    /// The panes now (after building, switching or a failure). `epoch` counts the times the
+    /// panes were rebuilt: frames of older epochs are stale.
+    Panes {
+        /// Rebuilds so far.
+        epoch: u64,
+        /// Every pane.
+        panes: Vec<PaneSummary>,
+    },
+    /// A pane finished a frame.
+    Frame {
+        /// Rebuilds so far.
+        epoch: u64,
+        /// Pane.
+        pane: usize,
+        /// Technique that drew it.
+        technique_id: String,
+        /// Scene frame.
+        frame: u64,
+        /// Its figures.
+        record: Box<FrameRecord>,
+        /// Its picture.
+        image: image::RgbaImage,
+        /// Drawn at half resolution.
+        preview: bool,
+    },
+    /// The wind was replaced (`None`) or refused (why).
+    Wind(Option<String>),
+    /// A line for the panel's status (screenshot saved, a failure).
+    Status(String),
+}
+
+/// The window's end of the worker.
+pub struct Worker {
+    commands: Sender<Command>,
+    reports: Receiver<Report>,
+    last: Option<Request>,
+}
+
+/// What the worker starts with.
+pub struct Start {
+    /// Backend of its device.
+    pub backend: BackendChoice,
+    /// The limits its device requests (what the techniques need: `commands::needs`), lowered
+    /// to what the adapter offers.
+    pub limits: grassbench::wgpu::Limits,
+    /// Scene name.
+    pub scene_name: String,
+    /// Scene.
+    pub scene: Scene,
+    /// Pane size.
+    pub size: Size,
+    /// 4x MSAA.
+    pub msaa: bool,
+    /// Panes.
+    pub count: usize,
+    /// Their techniques, cycled.
+    pub ids: Vec<String>,
+}
+
+impl Worker {
+    /// Starts the worker thread; `ctx` is woken whenever it reports.
+    pub fn start(start: Start, ctx: egui::Context) -> anyhow::Result<Self> {
+        let (commands, inbox) = mpsc::channel();
+        let (outbox, reports) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("grassbench panes".into())
+            .spawn(move || {
+                let out = Outbox { tx: outbox, ctx };
+                run(start, &inbox, &out);
+            })?;
+        Ok(Self {
+            commands,
+            reports,
+            last: None,
+        })
+    }
+
+    /// Sends a command (lost if the worker has stopped: it reported why).
+    pub fn send(&self, command: Command) {
+        let _ = self.commands.send(command);
+    }
+
+    /// Sends `request` unless it is the one sent last.
+    pub fn request(&mut self, request: Request) {
+        if self.last.as_ref() != Some(&request) {
+            self.last = Some(request.clone());
+            self.send(Command::Render(request));
+        }
+    }
+
+    /// Forgets the last request, so the next is sent even if equal (after a rebuild).
+    pub fn forget_request(&mut self) {
+        self.last = None;
+    }
+
+    /// Reports waiting, without blocking.
+    pub fn reports(&self) -> impl Iterator<Item = Report> + '_ {
+        self.reports.try_iter()
+    }
+}
+
+/// The worker's end: reports, each waking the window.
+struct Outbox {
+    tx: Sender<Report>,
+    ctx: egui::Context,
+}
+
+impl Outbox {
+    fn send(&self, report: Report) {
+        let _ = self.tx.send(report);
+        self.ctx.request_repaint();
+    }
+}
+
+/// The worker's state.
+struct State {
+    stage: Stage,
+    epoch: u64,
+    request: Option<Request>,
+    camera: Option<Option<(Vec3, Vec3)>>,
+}
+
+/// The worker thread: its device, then commands until the window goes.
+fn run(start: Start, inbox: &Receiver<Command>, out: &Outbox) {
+    let setup = || -> anyhow::Result<Stage> {
+        let gpu = GpuContext::for_needs(start.backend, &start.limits)?;
+        // The worker lives as long as the process: leak the context so the world can borrow it.
+        let gpu: &'static GpuContext = Box::leak(Box::new(gpu));
+        out.send(Report::Ready(gpu.summary.clone()));
+        let mut stage = Stage::new(gpu, &start.scene_name, start.scene, start.size, start.msaa)?;
+        stage.build_panes(start.count, &start.ids, 0)?;
+        Ok(stage)
+    };
+    let stage = match setup() {
+        Ok(stage) => stage,
+        Err(e) => {
+            out.send(Report::Failed(format!("{e:#}")));
+            return;
+        }
+    };
+    let mut state = State {
+        stage,
+        epoch: 0,
+        request: None,
+        camera: None,
+    };
+    state.summarise(out);
+    // Block for a command, apply every one waiting (less those a later one replaces), render
+    // the latest request; again.
+    while let Ok(command) = inbox.recv() {
+        let waiting: Vec<Command> = std::iter::once(command).chain(inbox.try_iter()).collect();
+        for command in coalesce(waiting) {
+            state.apply(command, out);
+        }
+        state.render(out);
+    }
+}
+
+/// What a later command of the same kind replaces (dragging a parameter sends one edit a
+/// window frame: only the last waiting one is worth a rebuild).
+#[derive(PartialEq)]
+enum Slot {
+    Render,
+    Recreate(usize),
+    DebugView(usize),
+    Wind,
+    Sun,
+    PointLight,
+}
+
+fn slot(command: &Command) -> Option<Slot> {
+    Some(match command {
+        Command::Render(_) => Slot::Render,
+        Command::Recreate { pane, .. } => Slot::Recreate(*pane),
+        Command::SetDebugView { pane, .. } => Slot::DebugView(*pane),
+        Command::SetWind(_) => Slot::Wind,
+        Command::SetSun(_) => Slot::Sun,
+        Command::SetPointLight(_) => Slot::PointLight,
+        _ => return None,
+    })
+}
+
+/// `commands` less each one a later command of the same slot replaces, in order.
+fn coalesce(commands: Vec<Command>) -> Vec<Command> {
+    let slots: Vec<Option<Slot>> = commands.iter().map(slot).collect();
+    commands
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| {
+            slots[*i]
+                .as_ref()
+                .is_none_or(|s| !slots[i + 1..].iter().any(|t| t.as_ref() == Some(s)))
+        })
+        .map(|(_, c)| c)
+        .collect()
+}
+
+impl State {
+    /// Sends the panes' summaries.
+    fn summarise(&self, out: &Outbox) {
+        let panes = self
+            .stage
+            .panes
+            .iter()
+            .map(|p| PaneSummary {
+                technique_id: p.technique_id.clone(),
+                info: p.technique.as_ref().map(|t| t.info()),
+                params: p
+                    .technique
+                    .as_ref()
+                    .map(|t| t.param_table())
+                    .unwrap_or_default(),
+                error: p.error.clone(),
+                alive: p.technique.is_some(),
+                edit: p.edit,
+            })
+            .collect();
+        out.send(Report::Panes {
+            epoch: self.epoch,
+            panes,
+        });
+    }
+
+    fn apply(&mut self, command: Command, out: &Outbox) {
+        let stage = &mut self.stage;
+        let status = |r: anyhow::Result<()>| {
+            if let Err(e) = r {
+                out.send(Report::Status(format!("{e:#}")));
+            }
+        };
+        match command {
+            Command::Render(request) => {
+                if self.camera != Some(request.camera) {
+                    self.camera = Some(request.camera);
+                    stage.invalidate();
+                }
+                self.request = Some(request);
+                return;
+            }
+            Command::LoadScene {
+                name,
+                scene,
+                count,
+                ids,
+                frame,
+            } => {
+                status(
+                    stage
+                        .set_scene(&name, *scene)
+                        .and_then(|()| stage.build_panes(count, &ids, frame)),
+                );
+                self.epoch += 1;
+            }
+            Command::BuildPanes {
+                count,
+                ids,
+                size,
+                msaa,
+                frame,
+            } => {
+                stage.size = size;
+                stage.msaa = msaa;
+                status(stage.build_panes(count, &ids, frame));
+                self.epoch += 1;
+            }
+            Command::RecreateAll(frame) => stage.recreate_all(frame),
+            Command::SetTechnique { pane, id, frame } => stage.set_technique(pane, &id, frame),
+            Command::Recreate {
+                pane,
+                overrides,
+                frame,
+                edit,
+            } => {
+                if let Some(p) = stage.panes.get_mut(pane) {
+                    p.overrides = overrides;
+                    p.edit = edit;
+                }
+                stage.recreate(&[pane], frame);
+            }
+            Command::SetDebugView { pane, view } => {
+                if let Some(p) = stage.panes.get_mut(pane) {
+                    p.view.debug_view = view;
+                    p.invalidate();
+                }
+                return;
+            }
+            Command::SetWind(config) => {
+                let result = stage.set_wind(config);
+                out.send(Report::Wind(result.err().map(|e| e.to_string())));
+                return;
+            }
+            Command::SetSun(direction) => {
+                stage.set_sun(direction);
+                return;
+            }
+            Command::SetPointLight(light) => {
+                stage.set_point_light(light);
+                return;
+            }
+            Command::Screenshot {
+                frame,
+                camera,
+                root,
+            } => {
+                let line = match super::screenshot::save(stage, frame, camera, &root) {
+                    Ok(dir) => format!("saved to {}", dir.display()),
+                    Err(e) => format!("{e:#}"),
+                };
+                out.send(Report::Status(line));
+                // The panes now hold full-resolution frames the window has not seen.
+                stage.invalidate();
+                return;
+            }
+        }
+        self.summarise(out);
+    }
+
+    /// Brings the panes the latest request wants to its frame, sending each finished frame.
+    fn render(&mut self, out: &Outbox) {
+        let Some(request) = &self.request else {
+            return;
+        };
+        let epoch = self.epoch;
+        let failed_before = self.failed();
+        self.stage.render(
+            request.frame,
+            request.camera,
+            true,
+            |k, _| match request.panes.get(k).copied().unwrap_or(Want::Skip) {
+                Want::Skip => None,
+                Want::Full => Some(false),
+                Want::Half => Some(true),
+            },
+            |k, pane| {
+                let (Some(record), Some(image)) = (pane.history.back(), &pane.last_image) else {
+                    return;
+                };
+                out.send(Report::Frame {
+                    epoch,
+                    pane: k,
+                    technique_id: pane.technique_id.clone(),
+                    frame: request.frame,
+                    record: Box::new(record.clone()),
+                    image: image.clone(),
+                    preview: pane.preview,
+                });
+            },
+        );
+        if self.failed() != failed_before {
+            self.summarise(out);
+        }
+    }
+
+    /// Which panes have failed.
+    fn failed(&self) -> Vec<bool> {
+        self.stage
+            .panes
+            .iter()
+            .map(|p| p.technique.is_none())
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_last_of_each_kind_of_waiting_edit_is_applied() {
+        let recreate = |pane, edit| Command::Recreate {
+            pane,
+            overrides: toml::Table::new(),
+            frame: 0,
+            edit,
+        };
+        let kept = coalesce(vec![
+            recreate(0, 1),
+            Command::SetSun([0.0, 1.0, 0.0]),
+            recreate(1, 2),
+            Command::RecreateAll(0),
+            recreate(0, 3),
+            Command::SetSun([1.0, 0.0, 0.0]),
+            Command::RecreateAll(0),
+        ]);
+        let names: Vec<String> = kept
+            .iter()
+            .map(|c| match c {
+                Command::Recreate { pane, edit, .. } => format!("recreate {pane} #{edit}"),
+                Command::SetSun(d) => format!("sun {d:?}"),
+                Command::RecreateAll(_) => "all".into(),
+                other => format!("{other:?}"),
+            })
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "recreate 1 #2",
+                "all",
+                "recreate 0 #3",
+                "sun [1.0, 0.0, 0.0]",
+                "all"
+            ]
+        );
+    }
+}
