@@ -517,7 +517,132 @@ impl State {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
     use super::*;
+    use std::time::{Duration, Instant};
+
+    /// Reports until `done` says enough (panics after a minute).
+    fn until(worker: &Worker, mut done: impl FnMut(&Report) -> bool) -> Vec<Report> {
+        let start = Instant::now();
+        let mut seen = Vec::new();
+        loop {
+            for report in worker.reports() {
+                if let Report::Failed(e) = &report {
+                    panic!("the worker failed: {e}");
+                }
+                let enough = done(&report);
+                seen.push(report);
+                if enough {
+                    return seen;
+                }
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(60),
+                "waited: {seen:?}"
+            );
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    }
+
+    fn frame_of(report: &Report) -> Option<(usize, u64)> {
+        match report {
+            Report::Frame { pane, frame, .. } => Some((*pane, *frame)),
+            _ => None,
+        }
+    }
+
+    fn image_of(reports: &[Report], k: usize) -> image::RgbaImage {
+        reports
+            .iter()
+            .rev()
+            .find_map(|r| match r {
+                Report::Frame { pane, image, .. } if *pane == k => Some(image.clone()),
+                _ => None,
+            })
+            .unwrap()
+    }
+
+    #[test]
+    fn the_worker_draws_the_panes_asked_for_and_reports_each_frame() {
+        let base = crate::scenes::load("meadow").unwrap();
+        let mut config = base.config.clone();
+        config.grass.density *= 0.02;
+        let scene = Scene::from_config(config, base.base_dir.clone()).unwrap();
+        let mut worker = Worker::start(
+            Start {
+                backend: BackendChoice::from_env().unwrap(),
+                limits: grassbench::wgpu::Limits::default(),
+                scene_name: "meadow".into(),
+                scene,
+                size: Size {
+                    width: 96,
+                    height: 54,
+                },
+                msaa: false,
+                count: 2,
+                ids: vec!["reference".into(), "zhang".into()],
+            },
+            egui::Context::default(),
+        )
+        .unwrap();
+        let panes = until(&worker, |r| matches!(r, Report::Panes { .. }));
+        match panes.last() {
+            Some(Report::Panes { epoch: 0, panes }) => {
+                assert_eq!(panes.len(), 2);
+                assert!(
+                    panes.iter().all(|p| p.alive && p.info.is_some()),
+                    "{panes:?}"
+                );
+                assert_eq!(panes[1].technique_id, "zhang");
+            }
+            other => panic!("{other:?}"),
+        }
+        let request = |frame, panes: &[Want]| Request {
+            frame,
+            camera: None,
+            panes: panes.to_vec(),
+        };
+        // Both panes drawn, each reported with its picture.
+        worker.request(request(3, &[Want::Full, Want::Full]));
+        let mut drawn = Vec::new();
+        let first = until(&worker, |r| {
+            drawn.extend(frame_of(r));
+            drawn.len() == 2
+        });
+        assert_eq!(drawn, [(0, 3), (1, 3)]);
+        assert_eq!(image_of(&first, 0).dimensions(), (96, 54));
+        // Pane 2 hidden: only pane 1 draws frame 4.
+        worker.request(request(4, &[Want::Full, Want::Skip]));
+        until(&worker, |r| frame_of(r) == Some((0, 4)));
+        // A new sun, then both wanted: pane 1 redraws frame 4 in the new light, pane 2 catches
+        // up, and the window's last request is the one drawn.
+        worker.send(Command::SetSun(crate::ui::sun_direction([-60.0, 25.0])));
+        worker.request(request(4, &[Want::Full, Want::Full]));
+        let mut drawn = Vec::new();
+        let lit = until(&worker, |r| {
+            drawn.extend(frame_of(r));
+            drawn.len() == 2
+        });
+        assert_eq!(drawn, [(0, 4), (1, 4)]);
+        assert_ne!(image_of(&lit, 0), image_of(&first, 0));
+        // Rebuilt with one pane: a new epoch.
+        worker.send(Command::BuildPanes {
+            count: 1,
+            ids: vec!["reference".into()],
+            size: Size {
+                width: 96,
+                height: 54,
+            },
+            msaa: false,
+            frame: 4,
+        });
+        let rebuilt = until(&worker, |r| matches!(r, Report::Panes { .. }));
+        assert!(matches!(
+            rebuilt.last(),
+            Some(Report::Panes { epoch: 1, panes }) if panes.len() == 1
+        ));
+    }
 
     #[test]
     fn only_the_last_of_each_kind_of_waiting_edit_is_applied() {
