@@ -24,6 +24,11 @@ pub const BUILT_IN: &[(&str, &str)] = &[
         "meadow_primitives",
         include_str!("../scenes/meadow_primitives.toml"),
     ),
+    ("meadow_fluid", include_str!("../scenes/meadow_fluid.toml")),
+    (
+        "meadow_point_source",
+        include_str!("../scenes/meadow_point_source.toml"),
+    ),
 ];
 
 /// The scenes the default comparison runs (`--scene default`).

@@ -52,6 +52,7 @@ fn every_shipped_sweep_and_scene_file_validates() {
         root.to_path_buf(),
         root.join("scenes"),
         root.join("boulanger_views"),
+        root.join("departures"),
     ] {
         for entry in std::fs::read_dir(&dir).unwrap() {
             let path = entry.unwrap().path();
@@ -69,6 +70,7 @@ fn every_shipped_sweep_and_scene_file_validates() {
     let (ok, _, err) = grassbench_in(root.parent().unwrap(), &args);
     assert!(ok, "{err}");
     assert!(err.contains("sweep `zhang_target`"), "{err}");
+    assert!(err.contains("sweep `departures_zhang`"), "{err}");
 }
 
 #[test]
@@ -512,6 +514,12 @@ fn list_shows_values_as_written_and_variants() {
         out.contains("variant no_transitions  transitions = false"),
         "{out}"
     );
+    // Each paper's operating point, with what it sets.
+    assert!(
+        out.contains("variant paper           shells = 16, wind = \"point_source\""),
+        "{out}"
+    );
+    assert_eq!(out.matches("variant paper ").count(), 4, "{out}");
 }
 
 /// `calibrate -o` writes the raw limits, the unit costs with their fit, every sample with its
@@ -544,4 +552,58 @@ fn calibrate_writes_unit_costs_samples_and_provenance() {
         "{opaque:?}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The default comparison, small, on wgpu's GL backend (issue 24 §1): every technique runs
+/// there and gets its rows, and the work columns that need pipeline statistics (which GL does
+/// not have) are empty, never zeros.
+#[test]
+fn the_default_comparison_runs_on_gl_too() {
+    let out = temp("gl-run");
+    let out_s = out.to_str().unwrap();
+    let (ok, _, err) = grassbench(&[
+        "run",
+        "-t",
+        "all",
+        "-s",
+        "meadow",
+        "--frames",
+        "2",
+        "--warmup",
+        "1",
+        "--size",
+        "160x90",
+        "--no-calibration",
+        "--backend",
+        "gl",
+        "-o",
+        out_s,
+        "--force",
+    ]);
+    assert!(ok, "{err}");
+    let runs = std::fs::read_to_string(out.join("meadow/runs.csv")).unwrap();
+    let mut rows = csv::Reader::from_reader(runs.as_bytes());
+    let header = rows.headers().unwrap().clone();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (technique, status, fragments) =
+        (col("technique"), col("status"), col("fragment_invocations"));
+    let mut seen = Vec::new();
+    for row in rows.records() {
+        let row = row.unwrap();
+        assert_eq!(&row[status], "ok", "{runs}");
+        assert_eq!(&row[fragments], "", "GL has no statistics: {runs}");
+        seen.push(row[technique].to_owned());
+    }
+    for id in [
+        "reference",
+        "zhang",
+        "boulanger",
+        "bakay",
+        "perbet",
+        "jahrmann",
+    ] {
+        assert!(seen.iter().any(|s| s == id), "{id} missing: {runs}");
+    }
+    let meta = std::fs::read_to_string(out.join("meta.toml")).unwrap();
+    assert!(meta.to_lowercase().contains("gl"), "{meta}");
 }

@@ -91,17 +91,19 @@ pub struct LodFidelity {
     pub finest_image: image::RgbaImage,
 }
 
-/// LOD fidelity of `entry` at `frame` (every technique has a finest variant: the type of
-/// [`crate::technique::Variants`] requires it).
+/// LOD fidelity of `entry` at `frame`: its rendering with `base` overrides (empty for its
+/// defaults, or a variant such as `paper`) against the same with its finest variant laid on
+/// top (every technique has one: the type of [`crate::technique::Variants`] requires it).
 pub fn lod_fidelity(
     gpu: &GpuContext,
     scene: &Scene,
     entry: &TechniqueEntry,
+    base: &toml::Table,
     frame: u64,
     size: Size,
 ) -> Result<LodFidelity> {
-    let finest = entry.finest()?;
-    let default_image = render(gpu, scene, entry, &toml::Table::new(), frame, size)?;
+    let finest = crate::technique::overlay(base, &entry.finest()?);
+    let default_image = render(gpu, scene, entry, base, frame, size)?;
     let finest_image = render(gpu, scene, entry, &finest, frame, size)?;
     Ok(LodFidelity {
         scores: scores(&finest_image, &default_image)?,

@@ -170,11 +170,12 @@ impl SweepSpec {
         crate::params::check_int("warmup", self.warmup, 0..=100_000)?;
         crate::params::check_int("frames", self.frames, 1..=1_000_000)?;
         for (technique, grid) in &self.params {
-            if !grid.is_table() {
+            if configurations(grid).is_none() {
                 return Err(Error::param(
                     format!("params.{technique}"),
                     grid,
-                    "a table of parameter = [values…]",
+                    "a table of parameter = [values…], or an array of such tables \
+                     (`[[params.<technique>]]`, one configuration grid each)",
                 ));
             }
         }
@@ -198,8 +199,8 @@ impl SweepSpec {
         let params: f64 = self
             .params
             .values()
-            .filter_map(|v| v.as_table())
-            .map(grid)
+            .filter_map(configurations)
+            .map(|tables| tables.iter().map(|t| grid(t)).sum::<f64>())
             .fold(1.0, f64::max);
         self.scenes.len() as f64
             * grid(&self.scene_params)
@@ -238,13 +239,12 @@ impl SweepSpec {
                                 format!("{scene}|{scene_overrides:?}|{resolution}|{msaa}");
                             let groups_before = runs.len();
                             for &technique in &techniques {
-                                let grid = self
+                                let grids = self
                                     .params
                                     .get(technique)
-                                    .and_then(|v| v.as_table())
-                                    .cloned()
-                                    .unwrap_or_default();
-                                for params in cartesian(&grid) {
+                                    .and_then(configurations)
+                                    .unwrap_or_else(|| vec![toml::Table::new()]);
+                                for params in grids.iter().flat_map(cartesian) {
                                     let params: toml::Table = params.into_iter().collect();
                                     let config_key = format!("{group_key}|{technique}|{params}");
                                     let config_id = format!("{:012x}", fnv(&config_key) >> 16);
@@ -295,6 +295,17 @@ pub fn config_id_of(run_id: &str) -> &str {
 /// holds one version of one sweep.
 pub fn sweep_key(text: &str) -> String {
     format!("{:016x}", fnv(text))
+}
+
+/// A technique's `[params.<id>]`: one grid table, or an array of grid tables
+/// (`[[params.<id>]]`) whose configurations follow each other (so "the paper's settings, then
+/// each with one key changed" needs no product of every key); `None` for anything else.
+fn configurations(value: &toml::Value) -> Option<Vec<toml::Table>> {
+    match value {
+        toml::Value::Table(t) => Some(vec![t.clone()]),
+        toml::Value::Array(a) if !a.is_empty() => a.iter().map(|v| v.as_table().cloned()).collect(),
+        _ => None,
+    }
 }
 
 /// Every combination of a table of `key = [values…]` (a scalar counts as one value), in key
@@ -387,6 +398,41 @@ k = [1, 2, 3]
 [scene_params]
 "grass.density" = [5.0, 10.0]
 "#;
+
+    #[test]
+    fn an_array_of_tables_lists_configurations_one_after_another() {
+        let spec = SweepSpec::from_toml(
+            r#"
+name = "t"
+scenes = ["a"]
+techniques = ["y"]
+[[params.y]]
+variant = "paper"
+[[params.y]]
+variant = "paper"
+k = [1, 2]
+"#,
+            Path::new("t.toml"),
+        )
+        .unwrap();
+        let runs = spec.expand(&["y"]).unwrap();
+        let params: Vec<String> = runs.iter().map(|r| r.params.to_string()).collect();
+        // 1 + 2 configurations, in the file's order, not the product of every key.
+        assert_eq!(runs.len(), 3, "{params:?}");
+        assert!(!params[0].contains('k'), "{params:?}");
+        assert!(params[1].contains("k = 1") && params[2].contains("k = 2"), "{params:?}");
+        assert!(runs.iter().all(|r| r.params.get("variant").is_some()));
+        assert_eq!(spec.count(1), 3.0);
+        // Distinct configurations, distinct ids.
+        assert_ne!(runs[0].config_id, runs[1].config_id);
+        let bad = SweepSpec::from_toml(
+            "name = \"t\"\nscenes = [\"a\"]\n[params]\ny = [1, 2]\n",
+            Path::new("t.toml"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(bad.contains("params.y"), "{bad}");
+    }
 
     #[test]
     fn expands_the_grid_interleaved_with_stable_ids() {

@@ -111,6 +111,41 @@ impl Variants {
 pub const FINEST: &str = "finest";
 /// Name of the variant that switches levels of detail without transitions.
 pub const NO_TRANSITIONS: &str = "no_transitions";
+/// Name of the variant that sets a technique to its paper's own operating point, as far as the
+/// paper states it (each value cited in the technique's `params.rs`).
+pub const PAPER: &str = "paper";
+/// The parameter key that names a variant in any override table (`--param variant=paper`, a
+/// scene's `[techniques.<id>]`, a sweep's `[params.<id>] variant = ["default", "paper"]`): the
+/// variant's overrides apply first, the table's other keys on top of them.
+pub const VARIANT_KEY: &str = "variant";
+/// The value of [`VARIANT_KEY`] that names no variant: the parameter struct's defaults.
+pub const DEFAULT_VARIANT: &str = "default";
+
+/// `top`'s keys laid over `base`'s: what a variant with further overrides resolves to.
+pub fn overlay(base: &toml::Table, top: &toml::Table) -> toml::Table {
+    let mut table = base.clone();
+    table.extend(top.iter().map(|(k, v)| (k.clone(), v.clone())));
+    table
+}
+
+/// The variant `overrides` names through [`VARIANT_KEY`], if any other than
+/// [`DEFAULT_VARIANT`].
+pub fn variant_of(overrides: &toml::Table) -> Option<&str> {
+    overrides
+        .get(VARIANT_KEY)
+        .and_then(toml::Value::as_str)
+        .filter(|&name| name != DEFAULT_VARIANT)
+}
+
+/// A result row's `key=value;...` parameter string with the variant `overrides` named put
+/// first (`variant=paper;...`), so a reader sees which operating point a row was measured at.
+pub fn label_params(overrides: &toml::Table, params: &str) -> String {
+    match variant_of(overrides) {
+        Some(name) if params.is_empty() => format!("{VARIANT_KEY}={name}"),
+        Some(name) => format!("{VARIANT_KEY}={name};{params}"),
+        None => params.to_owned(),
+    }
+}
 
 /// One line of the registry: a [`Technique`] behind function pointers, so techniques of
 /// different types sit in one table. Made by [`entry`], never by hand.
@@ -178,7 +213,7 @@ impl TechniqueEntry {
     /// value of the right type and in range. Returns the full table the technique would run
     /// with; the error names the key and what would be accepted.
     pub fn check(&self, overrides: &toml::Table) -> Result<toml::Table> {
-        (self.check)(overrides)
+        (self.check)(&self.expand(overrides)?)
     }
 
     /// Creates the technique with `overrides` (checked as by [`Self::check`]).
@@ -187,19 +222,59 @@ impl TechniqueEntry {
         ctx: &InitContext<'_>,
         overrides: &toml::Table,
     ) -> Result<Box<dyn GrassTechnique>> {
-        (self.create)(ctx, overrides)
+        (self.create)(ctx, &self.expand(overrides)?)
     }
 
     /// What [`Self::create`] with `overrides` will allocate on the GPU (no GPU work).
     pub fn estimate(&self, scene: &Scene, overrides: &toml::Table) -> Result<GpuEstimate> {
-        (self.estimate)(scene, overrides)
+        (self.estimate)(scene, &self.expand(overrides)?)
+    }
+
+    /// `overrides` with its [`VARIANT_KEY`] replaced by the variant it names: the variant's
+    /// overrides first, the table's other keys on top. Without the key, the table as it is;
+    /// with a name the technique does not offer, an error listing those it does.
+    pub fn expand(&self, overrides: &toml::Table) -> Result<toml::Table> {
+        let Some(value) = overrides.get(VARIANT_KEY) else {
+            return Ok(overrides.clone());
+        };
+        let offered = || {
+            std::iter::once(DEFAULT_VARIANT)
+                .chain(self.variants.iter().map(|v| v.name))
+                .map(|n| format!("\"{n}\""))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let Some(name) = value.as_str() else {
+            return Err(Error::param(
+                format!("{}.{VARIANT_KEY}", self.info.id),
+                value,
+                format!("a variant name, one of {}", offered()),
+            ));
+        };
+        let variant = if name == DEFAULT_VARIANT {
+            toml::Table::new()
+        } else {
+            match self.variant(name) {
+                Some(parsed) => parsed?,
+                None => {
+                    return Err(Error::param(
+                        format!("{}.{VARIANT_KEY}", self.info.id),
+                        name,
+                        format!("one of {}", offered()),
+                    ));
+                }
+            }
+        };
+        let mut rest = overrides.clone();
+        rest.remove(VARIANT_KEY);
+        Ok(overlay(&variant, &rest))
     }
 
     /// The device limits [`Self::create`] with `overrides` needs on `scene` (no GPU work):
     /// [`Technique::required_limits`], with `max_buffer_size` raised to the estimate's largest
     /// buffer.
     pub fn required_limits(&self, scene: &Scene, overrides: &toml::Table) -> Result<wgpu::Limits> {
-        (self.limits)(scene, overrides)
+        (self.limits)(scene, &self.expand(overrides)?)
     }
 
     /// The overrides of variant `name`, if the technique offers it.
@@ -370,5 +445,46 @@ mod tests {
             table("bend = 0.0")
         );
         assert!(TOY.variant("paper").is_none());
+    }
+
+    #[test]
+    fn a_variant_key_expands_under_the_other_overrides_and_unknown_names_are_refused() {
+        // The variant's own value, the defaults elsewhere.
+        assert_eq!(
+            TOY.check(&table("variant = \"finest\"")).unwrap(),
+            table("shells = 64\nbend = 0.5")
+        );
+        // An explicit key wins over the variant's.
+        assert_eq!(
+            TOY.check(&table("variant = \"finest\"\nshells = 3"))
+                .unwrap(),
+            table("shells = 3\nbend = 0.5")
+        );
+        assert_eq!(
+            TOY.check(&table("variant = \"default\"")).unwrap(),
+            TOY.default_params()
+        );
+        let scene = Scene::from_toml(TOY_SCENE, std::path::Path::new("toy.toml")).unwrap();
+        assert_eq!(
+            TOY.estimate(&scene, &table("variant = \"finest\""))
+                .unwrap()
+                .bytes,
+            6400
+        );
+        let unknown = TOY
+            .check(&table("variant = \"paper\""))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            unknown.contains("toy.variant") && unknown.contains("\"no_transitions\""),
+            "{unknown}"
+        );
+        assert_eq!(
+            label_params(&table("variant = \"paper\""), "a=1"),
+            "variant=paper;a=1"
+        );
+        assert_eq!(label_params(&table("variant = \"default\""), "a=1"), "a=1");
+        let kind = TOY.check(&table("variant = 3")).unwrap_err().to_string();
+        assert!(kind.contains("toy.variant"), "{kind}");
     }
 }

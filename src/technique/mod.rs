@@ -22,7 +22,8 @@ pub mod ranges;
 pub mod work;
 
 pub use definition::{
-    Describe, FINEST, NO_TRANSITIONS, Technique, TechniqueEntry, Variant, Variants, entry,
+    DEFAULT_VARIANT, Describe, FINEST, NO_TRANSITIONS, PAPER, Technique, TechniqueEntry,
+    VARIANT_KEY, Variant, Variants, entry, label_params, overlay, variant_of,
 };
 pub use encoder::{FrameEncoder, PassKind, PassTime, PassTimer};
 pub use no_grass::{NoGrass, NoParams};

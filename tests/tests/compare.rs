@@ -159,7 +159,8 @@ fn snapshots_and_lod_fidelity_of_every_technique_and_scene() -> anyhow::Result<(
             ) {
                 failures.push(format!("{e:#}"));
             }
-            let lod = compare::lod_fidelity(&gpu, &scene, entry, FRAME, TEST_SIZE)?;
+            let lod =
+                compare::lod_fidelity(&gpu, &scene, entry, &toml::Table::new(), FRAME, TEST_SIZE)?;
             eprintln!(
                 "measured: {id} on {name}: LOD fidelity FLIP mean {:.4} p95 {:.4}",
                 lod.scores.flip_mean, lod.scores.flip_p95

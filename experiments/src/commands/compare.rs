@@ -8,7 +8,7 @@ use grassbench::compare::{self, CameraMotion, Scale};
 use grassbench::metrics;
 use grassbench::runner::{Provenance, write_atomic, write_csv};
 use grassbench::target::{Size, save_png};
-use grassbench::technique::{NO_TRANSITIONS, NoGrass};
+use grassbench::technique::{DEFAULT_VARIANT, NO_TRANSITIONS, NoGrass, TechniqueEntry, overlay};
 
 use super::GpuArgs;
 use super::out_dir::prepare_out_dir;
@@ -29,6 +29,12 @@ pub struct CompareArgs {
     /// Target size WxH.
     #[arg(long, default_value = "640x360")]
     pub size: String,
+    /// The operating point every technique is compared at: `default` (its defaults) or a
+    /// variant name such as `paper` (each paper's own settings, `grassbench list` shows
+    /// them). A technique without that variant is compared at its defaults, and `lod.csv`
+    /// and `temporal.csv` say which it was.
+    #[arg(long, default_value = DEFAULT_VARIANT)]
+    pub variant: String,
     /// Frame steps along each camera motion for the temporal figures (0 skips them).
     #[arg(long, default_value_t = 24)]
     pub motion_frames: u32,
@@ -46,6 +52,8 @@ pub struct CompareArgs {
 #[derive(serde::Serialize)]
 struct LodRow {
     technique: String,
+    /// The operating point (`default`, `paper`, …) the technique was rendered at.
+    variant: String,
     scene: String,
     flip_mean: f64,
     flip_p95: f64,
@@ -89,12 +97,25 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
     prepare_out_dir(&args.out, args.force)?;
     // Every technique (and the reference) with its defaults and the variants drawn below.
     let mut variants = Vec::new();
-    for entry in entries.iter().copied().chain([registry::find("reference")?]) {
-        variants.push((entry, toml::Table::new()));
-        variants.push((entry, entry.finest()?));
+    for entry in entries
+        .iter()
+        .copied()
+        .chain([registry::find("reference")?])
+    {
+        let (_, base) = operating_point(entry, &args.variant)?;
+        variants.push((entry, overlay(&base, &entry.finest()?)));
         if let Some(v) = entry.variant(NO_TRANSITIONS) {
-            variants.push((entry, v?));
+            variants.push((entry, overlay(&base, &v?)));
         }
+        variants.push((entry, base));
+    }
+    if args.variant != DEFAULT_VARIANT
+        && !entries.iter().any(|e| e.variant(&args.variant).is_some())
+    {
+        anyhow::bail!(
+            "--variant {}: none of the selected techniques offers it (`grassbench list` shows each technique's variants)",
+            args.variant
+        );
     }
     let gpu = args.gpu.context_for(&super::needs(
         scenes
@@ -131,18 +152,20 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
         let mut lod_rows = Vec::new();
         for entry in &entries {
             let id = entry.info.id;
+            let (variant, base) = operating_point(entry, &args.variant)?;
             bar.set_message(format!("{id}: frame and LOD fidelity"));
-            let image = compare::render(&gpu, scene, entry, &toml::Table::new(), args.frame, size)
-                .with_context(|| format!("{id} on {name}"))?;
+            let image = compare::render(&gpu, scene, entry, &base, args.frame, size)
+                .with_context(|| format!("{id} ({variant}) on {name}"))?;
             save_png(&image, &dir.join(format!("{id}.png")))?;
             {
-                let lod = compare::lod_fidelity(&gpu, scene, entry, args.frame, size)?;
+                let lod = compare::lod_fidelity(&gpu, scene, entry, &base, args.frame, size)?;
                 save_png(
                     &metrics::flip(&lod.finest_image, &lod.default_image)?.heatmap,
                     &dir.join(format!("lod_{id}_flip.png")),
                 )?;
                 lod_rows.push(LodRow {
                     technique: id.into(),
+                    variant: variant.into(),
                     scene: name.clone(),
                     flip_mean: lod.scores.flip_mean,
                     flip_p95: lod.scores.flip_p95,
@@ -192,11 +215,17 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                 bar.inc(1);
                 for entry in &entries {
                     bar.set_message(format!("{}: {}", motion.name(), entry.info.id));
-                    let mut variants = vec![("default", toml::Table::new())];
+                    let (point, at) = operating_point(entry, &args.variant)?;
+                    let mut variants = vec![(point.to_owned(), at.clone())];
                     if let Some(v) = entry.variant(NO_TRANSITIONS) {
-                        variants.push((NO_TRANSITIONS, v?));
+                        let name = if point == DEFAULT_VARIANT {
+                            NO_TRANSITIONS.to_owned()
+                        } else {
+                            format!("{point}+{NO_TRANSITIONS}")
+                        };
+                        variants.push((name, overlay(&at, &v?)));
                     }
-                    let finest = entry.finest()?;
+                    let finest = overlay(&at, &entry.finest()?);
                     let own = if finest.is_empty() {
                         None
                     } else {
@@ -229,7 +258,7 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
                                 let c = compare::temporal_change(motion, scale, &frames, against)?;
                                 rows.push(TemporalRow {
                                     technique: entry.info.id.into(),
-                                    variant: variant.into(),
+                                    variant: variant.clone(),
                                     scene: name.clone(),
                                     motion: c.motion.into(),
                                     baseline: baseline.into(),
@@ -255,4 +284,17 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
         eprintln!("{name}: wrote {}", dir.display());
     }
     super::write_html(&args.out).context("writing report.html")
+}
+
+/// The operating point `entry` is compared at for `--variant name`: the variant's name and
+/// overrides where the technique offers it, `default` and none where it does not (or where
+/// `name` is `default`).
+fn operating_point(
+    entry: &TechniqueEntry,
+    name: &str,
+) -> anyhow::Result<(&'static str, toml::Table)> {
+    Ok(match entry.variants.iter().find(|v| v.name == name) {
+        Some(v) => (v.name, entry.expand(&toml::toml! { variant = name })?),
+        None => (DEFAULT_VARIANT, toml::Table::new()),
+    })
 }

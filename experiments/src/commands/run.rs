@@ -17,6 +17,7 @@ use grassbench::technique::NoGrass;
 use super::out_dir::prepare_out_dir;
 use super::{GpuArgs, fmt_opt, param_table};
 use crate::{registry, scenes};
+use grassbench::technique::label_params;
 
 /// Arguments of `run`.
 #[derive(Clone, Debug, clap::Args)]
@@ -205,7 +206,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
             bar.finish_and_clear();
             for (id, result) in ids.into_iter().zip(results) {
                 match result {
-                    Ok(r) => out.add(id, r)?,
+                    Ok(mut r) => {
+                        let overrides = harness.world.scene.technique_params(id, &overrides);
+                        r.summary.params = label_params(&overrides, &r.summary.params);
+                        out.add(id, r)?
+                    }
                     Err(e) => fail(id, &e),
                 }
             }
@@ -224,7 +229,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
                 });
                 bar.finish_and_clear();
                 match result {
-                    Ok(r) => out.add(id, r)?,
+                    Ok(mut r) => {
+                        let overrides = harness.world.scene.technique_params(id, &overrides);
+                        r.summary.params = label_params(&overrides, &r.summary.params);
+                        out.add(id, r)?
+                    }
                     Err(e) => fail(id, &e),
                 }
             }

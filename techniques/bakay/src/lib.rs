@@ -129,13 +129,14 @@
 pub mod bend;
 pub mod chunks;
 mod gpu;
+pub mod paper;
 pub mod params;
 pub mod texture;
 pub mod wind;
 
 use grassbench::glam::Vec2;
 use grassbench::gpu::GpuEstimate;
-use grassbench::technique::{Technique, TechniqueEntry, Variants};
+use grassbench::technique::{Technique, TechniqueEntry, Variant, Variants};
 use grassbench::terrain::{Terrain, covering};
 use grassbench::{
     FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, TechniqueInfo,
@@ -178,7 +179,10 @@ impl Technique for Bakay {
     // representation is many shells sampling the base level at every distance.
     const VARIANTS: Variants = Variants {
         finest: "shells = 64\nmipmaps = \"none\"",
-        others: &[],
+        others: &[Variant {
+            name: grassbench::technique::PAPER,
+            params: paper::VARIANT,
+        }],
     };
 
     /// Generates the grass texture and builds the passes.

@@ -156,7 +156,7 @@ pub fn bake(
     // Each layer is resolved and mip-mapped in a single-layer texture, then copied into its
     // layer: resolving or rendering into a layer of an array texture is not reliable on every
     // driver (on lavapipe every layer's resolve landed in layer 0).
-    let scratch = create_textures(device, width, height, 1);
+    let scratch = create(device, width, height, 1);
     let ms = [
         multisampled("boulanger BTF colour (msaa)", FORMAT),
         multisampled("boulanger BTF diffuse (msaa)", FORMAT),
@@ -277,13 +277,32 @@ pub fn bake(
     Ok(wrap(textures, width, height, count))
 }
 
-/// The three textures (colour, diffuse, extra) of `layers` layers with full mip chains.
+/// Fewest layers an array texture is given. wgpu's GL backend picks a texture's GL target when
+/// the texture is created, from its layer count alone: one layer makes a `TEXTURE_2D`, which a
+/// `texture_2d_array` binding then samples as nothing (gfx-rs/wgpu#2161, #4081). On GL llvmpipe
+/// the one-layer shadow mask and horizontal slice read as zero: blades lit as fully shadowed
+/// (about 11 levels darker), the far band a dark grey (issue 24 §1). A second, unused layer
+/// makes every array an array on every backend, for 1/N more memory where N is 1.
+pub const MIN_ARRAY_LAYERS: u32 = 2;
+
+/// Layers allocated for an array of `layers` layers (at least [`MIN_ARRAY_LAYERS`]).
+pub fn array_layers(layers: u32) -> u32 {
+    layers.max(MIN_ARRAY_LAYERS)
+}
+
+/// The three textures (colour, diffuse, extra) of an array of `layers` layers with full mip
+/// chains (allocated with [`array_layers`], so a one-layer array is an array on GL too).
 pub fn create_textures(
     device: &wgpu::Device,
     width: u32,
     height: u32,
     layers: u32,
 ) -> [wgpu::Texture; 3] {
+    create(device, width, height, array_layers(layers))
+}
+
+/// The three textures with exactly `layers` layers (1 for a render scratch viewed as 2D).
+fn create(device: &wgpu::Device, width: u32, height: u32, layers: u32) -> [wgpu::Texture; 3] {
     [
         "boulanger BTF colour",
         "boulanger BTF diffuse",
@@ -322,7 +341,7 @@ pub fn wrap(textures: [wgpu::Texture; 3], width: u32, height: u32, layers: u32) 
         color: array_view(&textures[0]),
         diffuse: array_view(&textures[1]),
         extra: array_view(&textures[2]),
-        bytes: texture_bytes(width, height, layers),
+        bytes: texture_bytes(width, height, array_layers(layers)),
         textures,
     }
 }

@@ -165,27 +165,57 @@ pub fn read_back(gpu: &GpuContext, btf: &BtfTextures, dims: Dims) -> Result<Vec<
                 usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
                 mapped_at_creation: false,
             });
-            encoder.copy_texture_to_buffer(
-                wgpu::TexelCopyTextureInfo {
-                    texture,
-                    mip_level: level,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                wgpu::TexelCopyBufferInfo {
-                    buffer: &buffer,
-                    layout: wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(padded),
-                        rows_per_image: Some(h),
-                    },
-                },
-                wgpu::Extent3d {
+            // Layer by layer through a one-layer texture: wgpu's GL backend copies an array
+            // texture to a buffer as zeros (gfx-rs/wgpu#10015, wgpu 30), which the cache would
+            // then serve as a black BTF; a texture-to-texture copy and a 2D texture's read-back
+            // work on every backend.
+            let scratch = device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("boulanger BTF read-back layer"),
+                size: wgpu::Extent3d {
                     width: w,
                     height: h,
-                    depth_or_array_layers: dims.layers,
+                    depth_or_array_layers: 1,
                 },
-            );
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: btf::FORMAT,
+                usage: wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            });
+            let extent = wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            };
+            for layer in 0..dims.layers {
+                encoder.copy_texture_to_texture(
+                    wgpu::TexelCopyTextureInfo {
+                        texture,
+                        mip_level: level,
+                        origin: wgpu::Origin3d {
+                            x: 0,
+                            y: 0,
+                            z: layer,
+                        },
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    scratch.as_image_copy(),
+                    extent,
+                );
+                encoder.copy_texture_to_buffer(
+                    scratch.as_image_copy(),
+                    wgpu::TexelCopyBufferInfo {
+                        buffer: &buffer,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset: u64::from(padded) * u64::from(h) * u64::from(layer),
+                            bytes_per_row: Some(padded),
+                            rows_per_image: Some(h),
+                        },
+                    },
+                    extent,
+                );
+            }
             copies.push((buffer, row as usize, padded as usize));
         }
     }

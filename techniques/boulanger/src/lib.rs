@@ -234,6 +234,7 @@ mod gpu;
 pub mod ground_shadow;
 pub mod lod;
 pub mod occlusion;
+pub mod paper;
 pub mod params;
 pub mod patch;
 mod pipelines;
@@ -304,10 +305,16 @@ impl Technique for Boulanger {
         // Sec. 3.1's levels switched per cell at the middle of each transition band, without
         // Sec. 3.4's density split or Eq. 5's blending: each cell entirely geometry or
         // entirely slices.
-        others: &[Variant {
-            name: grassbench::technique::NO_TRANSITIONS,
-            params: "transitions = false",
-        }],
+        others: &[
+            Variant {
+                name: grassbench::technique::NO_TRANSITIONS,
+                params: "transitions = false",
+            },
+            Variant {
+                name: grassbench::technique::PAPER,
+                params: paper::VARIANT,
+            },
+        ],
     };
 
     /// GPU memory `new` will allocate: the patch, the horizontal and vertical BTF arrays, the
@@ -322,7 +329,11 @@ impl Technique for Boulanger {
             // At least one record: an empty patch still binds a buffer.
             GpuEstimate::buffer(u64::from(spec.blades.max(1)).saturating_mul(blade)),
             GpuEstimate::textures(slice::texture_bytes(params.slice_resolution)),
-            GpuEstimate::textures(btf::texture_bytes(shadow::WIDTH, shadow::HEIGHT, 1)),
+            GpuEstimate::textures(btf::texture_bytes(
+                shadow::WIDTH,
+                shadow::HEIGHT,
+                btf::array_layers(1),
+            )),
             GpuEstimate::textures(if params.external_ao {
                 let c = scene.terrain.covering();
                 (c.width() * c.height()) as u64

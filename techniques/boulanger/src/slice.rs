@@ -20,7 +20,7 @@ use glam::{IVec2, Vec2};
 
 /// GPU memory of the horizontal slice's BTF of side `resolution` with its mip chain.
 pub fn texture_bytes(resolution: u32) -> u64 {
-    crate::btf::texture_bytes(resolution, resolution, 1)
+    crate::btf::texture_bytes(resolution, resolution, crate::btf::array_layers(1))
 }
 
 /// The horizontal slice's one layer for [`crate::btf::bake`]: nine cells with the top-view

@@ -108,6 +108,7 @@ pub mod gpu;
 pub mod lod;
 pub mod morph;
 pub mod paint;
+pub mod paper;
 pub mod params;
 pub mod patch;
 pub mod population;
@@ -190,10 +191,16 @@ impl Technique for Perbet {
 
     const VARIANTS: Variants = Variants {
         finest: "strip_range = [100000, 100000]",
-        others: &[Variant {
-            name: grassbench::technique::NO_TRANSITIONS,
-            params: "transition_steps = 0",
-        }],
+        others: &[
+            Variant {
+                name: grassbench::technique::NO_TRANSITIONS,
+                params: "transition_steps = 0",
+            },
+            Variant {
+                name: grassbench::technique::PAPER,
+                params: paper::VARIANT,
+            },
+        ],
     };
 
     /// Builds the patches, paints their strip and 2D textures, simulates the postures and

@@ -136,3 +136,13 @@ fn fs_wing_point_lit(in: WingOut) -> @location(0) vec4<f32> {
     let light = in.light + direct * direct_occlusion(wing_ao(in.uv.y));
     return wing_color(albedo, light, in.fog);
 }
+
+// `wing_lighting = "pixel"`: the thesis's way, every light per pixel with the blades'
+// `shade_leaf` and fog (the picture of `fs_wing` / `fs_wing_point_lit` to rounding, at the
+// cost of a full lighting evaluation per fragment).
+@fragment
+fn fs_wing_pixel_lit(in: WingOut) -> @location(0) vec4<f32> {
+    let albedo = wing_albedo(in);
+    let lit = shade_leaf(albedo.rgb, in.normal, in.world, wing_ao(in.uv.y), params.color_tip.w);
+    return vec4(apply_fog(lit, in.world), albedo.a);
+}

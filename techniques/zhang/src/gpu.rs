@@ -145,6 +145,7 @@ impl PrairieGpu {
             scene.config.seed,
             (&texture.texels, texture.layers),
             sort,
+            params.wing_lighting,
         );
         let sorted = sort.then(|| {
             let capacity = sorted_capacity(params, &plants.layout, planted.len() as u64) as usize;

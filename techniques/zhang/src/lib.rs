@@ -280,6 +280,7 @@ pub mod frame_plan;
 pub mod gpu;
 pub mod lod;
 pub mod order;
+pub mod paper;
 pub mod params;
 pub mod pipelines;
 pub mod plants;
@@ -289,7 +290,7 @@ pub mod textures;
 pub mod wing_trim;
 
 use grassbench::gpu::GpuEstimate;
-use grassbench::technique::{LevelBlades, Technique, TechniqueEntry, Variants};
+use grassbench::technique::{LevelBlades, Technique, TechniqueEntry, Variant, Variants};
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
     TechniqueInfo, TechniqueStats,
@@ -332,7 +333,10 @@ impl Technique for Zhang {
     // switch itself is measured by `gpu_zhang`'s crossing test instead.
     const VARIANTS: Variants = Variants {
         finest: "lod = false",
-        others: &[],
+        others: &[Variant {
+            name: grassbench::technique::PAPER,
+            params: paper::VARIANT,
+        }],
     };
 
     /// Plants the prairie, builds the animation state, textures and pipelines.

@@ -17,6 +17,18 @@ pub enum Sorting {
     AlphaToCoverage,
 }
 
+/// Where the billboard wings are lit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WingLighting {
+    /// Ambient and sun per vertex (exact over a wing: only the ambient occlusion varies,
+    /// affinely in height), the point light and nothing else per pixel (ours).
+    Vertex,
+    /// Every light per pixel, as the single blades are lit (the thesis lights its
+    /// billboards no differently from its plants).
+    Pixel,
+}
+
 /// Parameters of [`crate::Zhang`]. Defaults follow the thesis where it gives numbers.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -75,6 +87,9 @@ pub struct Params {
     /// wing is planar, a quarter less fill; [`crate::wing_trim`]); off draws whole
     /// rectangles as the thesis does.
     pub trim_wings: bool,
+    /// Billboard wing lighting: `"vertex"` (ambient and sun per vertex, the picture of per
+    /// pixel for less fill work; ours) or `"pixel"` (every light per pixel, the thesis's).
+    pub wing_lighting: WingLighting,
 }
 
 impl Default for Params {
@@ -98,6 +113,7 @@ impl Default for Params {
             sorting: Sorting::Sort,
             fade_radius: 0.25,
             trim_wings: true,
+            wing_lighting: WingLighting::Vertex,
         }
     }
 }

@@ -7,6 +7,7 @@ use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{InitContext, bytemuck, shaders, wgpu};
 
 use crate::billboard_texture;
+use crate::params::WingLighting;
 use crate::prairie::PETAL_TEXTURES;
 use crate::shader_data::{BladeDynamic, BladeStatic, FlowerInstance, ParamsUniform, WingInstance};
 use crate::textures::{BLADE_SIZE, PETAL_SIZE, blade_texture, petal_textures};
@@ -124,6 +125,7 @@ impl Pipelines {
         seed: u64,
         (billboard, layers): (&[[u8; 4]], u32),
         blend: bool,
+        wing_lighting: WingLighting,
     ) -> Self {
         let device = &ctx.gpu.device;
         let queue = &ctx.gpu.queue;
@@ -279,17 +281,22 @@ impl Pipelines {
             false,
             &[Some(FLOWER_LAYOUT.clone())],
         );
+        // Per pixel, one fragment shader serves frames with and without a point light.
+        let (plain, point_lit) = match wing_lighting {
+            WingLighting::Vertex => ("fs_wing", "fs_wing_point_lit"),
+            WingLighting::Pixel => ("fs_wing_pixel_lit", "fs_wing_pixel_lit"),
+        };
         let wings = pipeline(
             "zhang billboard wings",
             &billboard_module,
-            ("vs_wing", "fs_wing"),
+            ("vs_wing", plain),
             blend,
             &[Some(WING_LAYOUT.clone())],
         );
         let wings_point_lit = pipeline(
             "zhang billboard wings (point light)",
             &billboard_module,
-            ("vs_wing", "fs_wing_point_lit"),
+            ("vs_wing", point_lit),
             blend,
             &[Some(WING_LAYOUT.clone())],
         );

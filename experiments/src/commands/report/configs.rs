@@ -8,6 +8,7 @@ use anyhow::{Context as _, bail};
 use grassbench::runner::bootstrap::{Interval, speedup_interval};
 use grassbench::runner::{FrameRecord, Percentiles, RunSummary};
 use grassbench::sweep::{REFERENCE, config_id_of, fill_ratios, image_path, read_rows};
+use grassbench::technique::VARIANT_KEY;
 
 /// One configuration, its repetitions pooled.
 #[derive(Clone, Debug, Default)]
@@ -292,16 +293,61 @@ fn shorten_params(configs: &mut BTreeMap<String, Config>) {
         }
     }
     for c in configs.values_mut() {
-        c.label = split(&c.params)
-            .into_iter()
-            .filter(|(k, _)| {
-                values
-                    .get(&(c.technique.clone(), k.clone()))
+        let params = split(&c.params);
+        let variant = params.get(VARIANT_KEY).cloned();
+        // What the row's operating point sets by itself: a row at `variant=paper` is labelled
+        // `variant=paper` and only the keys it changes beyond the paper's settings, not every
+        // key the paper's settings change.
+        let baseline = operating_point(&c.technique, variant.as_deref());
+        let changed = params.iter().filter(|(k, v)| {
+            *k != VARIANT_KEY
+                && values
+                    .get(&(c.technique.clone(), (*k).clone()))
                     .is_some_and(|v| v.len() > 1)
-            })
-            .map(|(k, v)| format!("{k}={v}"))
+                && baseline.get(*k) != Some(*v)
+        });
+        c.label = variant
+            .iter()
+            .map(|v| format!("{VARIANT_KEY}={v}"))
+            .chain(changed.map(|(k, v)| format!("{k}={v}")))
             .collect::<Vec<_>>()
             .join(" ");
+    }
+}
+
+/// The parameter values (`key` → value as `runs.csv` writes it) of `technique` at `variant`
+/// (its defaults for none or `default`); empty for a technique or variant this build does not
+/// know (a results folder from another revision), which then labels every varying key.
+fn operating_point(technique: &str, variant: Option<&str>) -> BTreeMap<String, String> {
+    let Ok(entry) = crate::registry::find(technique) else {
+        return BTreeMap::new();
+    };
+    let mut overrides = toml::Table::new();
+    if let Some(v) = variant {
+        // `runs.csv` writes strings quoted.
+        overrides.insert(VARIANT_KEY.into(), v.trim_matches('"').into());
+    }
+    entry
+        .check(&overrides)
+        .map(|t| {
+            t.iter()
+                .map(|(k, v)| (k.clone(), grassbench::params::format_value(v)))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+impl Config {
+    /// The operating point the row was measured at: the `variant` its parameters name, or
+    /// `default`.
+    pub(super) fn operating_point(&self) -> &str {
+        self.params
+            .split(';')
+            .filter_map(|kv| kv.split_once('='))
+            .find(|(k, _)| *k == VARIANT_KEY)
+            .map_or(grassbench::technique::DEFAULT_VARIANT, |(_, v)| {
+                v.trim_matches('"')
+            })
     }
 }
 
@@ -348,5 +394,43 @@ mod tests {
         assert_eq!(config(&[1.0], &[0.1], &[0.02, 1.3]).busy_host(), Some(1.3));
         assert_eq!(config(&[1.0], &[0.1], &[0.02, 0.2]).busy_host(), None);
         assert_eq!(config(&[1.0], &[0.1], &[]).busy_host(), None);
+    }
+
+    /// A row at `paper` is labelled by its variant and what it changes beyond it, not by every
+    /// key the paper's settings change; a default row by what it changes beyond the defaults.
+    #[test]
+    fn variant_rows_are_labelled_by_their_operating_point() {
+        let entry = crate::registry::find("bakay").unwrap();
+        let row = |overrides: &str| {
+            let overrides: toml::Table = overrides.parse().unwrap();
+            let params = grassbench::technique::label_params(
+                &overrides,
+                &entry
+                    .check(&overrides)
+                    .unwrap()
+                    .iter()
+                    .map(|(k, v)| format!("{k}={}", grassbench::params::format_value(v)))
+                    .collect::<Vec<_>>()
+                    .join(";"),
+            );
+            Config {
+                technique: "bakay".into(),
+                params,
+                ..Config::default()
+            }
+        };
+        let mut configs = BTreeMap::new();
+        configs.insert("a".into(), row(""));
+        configs.insert("b".into(), row("variant = \"paper\""));
+        configs.insert("c".into(), row("variant = \"paper\"\nmipmaps = \"custom\""));
+        configs.insert("d".into(), row("shells = 9"));
+        shorten_params(&mut configs);
+        let labels: Vec<&str> = configs.values().map(|c| c.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            ["", "variant=paper", "variant=paper mipmaps=custom", "shells=9"]
+        );
+        let points: Vec<&str> = configs.values().map(Config::operating_point).collect();
+        assert_eq!(points, ["default", "paper", "paper", "default"]);
     }
 }

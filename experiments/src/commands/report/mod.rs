@@ -33,6 +33,12 @@ pub struct ReportArgs {
     /// measured here.
     #[arg(long)]
     pub calibration: Option<PathBuf>,
+    /// Only the rows at one operating point: `paper` (each technique's `paper` variant, the
+    /// reference beside them), `default` (rows without a variant), or any variant name a
+    /// sweep's `variant` parameter used. Writes `REPORT-<variant>.md` and `plots-<variant>/`
+    /// beside the full report instead of replacing it.
+    #[arg(long)]
+    pub variant: Option<String>,
 }
 
 /// "Which is faster": per group (scene, variant, size, MSAA), its configurations by speed-up
@@ -113,6 +119,7 @@ fn where_the_time_goes(
     configs: &[&Config],
     plots: &std::path::Path,
 ) -> anyhow::Result<()> {
+    let link = plots_link(plots);
     let rows = split_rows(configs);
     if rows.is_empty() {
         return Ok(());
@@ -151,7 +158,7 @@ fn where_the_time_goes(
     }
     let modelled: Vec<&Config> = rows.iter().map(|r| r.config).collect();
     time_split_plot(&modelled, &plots.join("time_split.svg"))?;
-    let _ = writeln!(md, "\n![Where the time goes](plots/time_split.svg)\n");
+    let _ = writeln!(md, "\n![Where the time goes]({link}/time_split.svg)\n");
     Ok(())
 }
 
@@ -174,11 +181,25 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(projection::Calibration::load)
         .transpose()?;
-    let configs = load(dir)?;
+    let mut configs = load(dir)?;
+    if let Some(want) = &args.variant {
+        configs.retain(|_, c| c.technique == REFERENCE || c.operating_point() == want.as_str());
+        if configs.values().all(|c| c.technique == REFERENCE) {
+            anyhow::bail!(
+                "--variant {want}: no run in {} is at that operating point (the rows' `variant=` parameter names it; `default` is rows without one)",
+                dir.display()
+            );
+        }
+    }
+    let suffix = args
+        .variant
+        .as_ref()
+        .map_or(String::new(), |v| format!("-{v}"));
     let meta: Option<SweepMeta> = std::fs::read_to_string(dir.join("meta.toml"))
         .ok()
         .and_then(|t| toml::from_str(&t).ok());
-    let plots = dir.join("plots");
+    let plots = dir.join(format!("plots{suffix}"));
+    let link = plots_link(&plots);
     std::fs::create_dir_all(&plots)?;
     let mut md = String::new();
     let title = meta
@@ -332,13 +353,13 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     frame_time_plot(&ok, &plots.join("frame_time.svg"))?;
     let _ = writeln!(
         md,
-        "![GPU time per technique and scene](plots/frame_time.svg)\n"
+        "![GPU time per technique and scene]({link}/frame_time.svg)\n"
     );
     if ok.iter().any(|c| !c.flip_quarter.is_empty()) {
         pareto_plot(&ok, &plots.join("pareto.svg"))?;
         let _ = writeln!(
             md,
-            "![Quality against the reference versus cost](plots/pareto.svg)\n"
+            "![Quality against the reference versus cost]({link}/pareto.svg)\n"
         );
     }
     let distinct = |f: &dyn Fn(&Config) -> String| {
@@ -354,7 +375,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             "blades shown (drawn + represented)",
             &plots.join("scaling_blades.svg"),
         )?;
-        let _ = writeln!(md, "![GPU time versus blades](plots/scaling_blades.svg)\n");
+        let _ = writeln!(md, "![GPU time versus blades]({link}/scaling_blades.svg)\n");
     }
     if distinct(&|c| c.size.clone()) > 1 {
         let pixels = |c: &Config| {
@@ -371,7 +392,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         )?;
         let _ = writeln!(
             md,
-            "![GPU time versus resolution](plots/scaling_resolution.svg)\n"
+            "![GPU time versus resolution]({link}/scaling_resolution.svg)\n"
         );
     }
     let images: Vec<&Config> = configs.values().filter(|c| c.image.is_some()).collect();
@@ -390,9 +411,15 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
-    write_atomic(&dir.join("REPORT.md"), |f| {
-        std::io::Write::write_all(f, md.as_bytes())
-    })?;
-    eprintln!("wrote {}", dir.join("REPORT.md").display());
+    let path = dir.join(format!("REPORT{suffix}.md"));
+    write_atomic(&path, |f| std::io::Write::write_all(f, md.as_bytes()))?;
+    eprintln!("wrote {}", path.display());
     write_html(dir)
+}
+
+/// The folder name of `plots` as REPORT.md links it (relative to the results folder).
+fn plots_link(plots: &std::path::Path) -> String {
+    plots
+        .file_name()
+        .map_or("plots".into(), |n| n.to_string_lossy().into_owned())
 }
