@@ -13,6 +13,7 @@
 
 use std::path::PathBuf;
 use std::sync::mpsc::{self, Receiver, Sender};
+use std::time::{Duration, Instant};
 
 use eframe::egui;
 use grassbench::glam::Vec3;
@@ -185,7 +186,8 @@ pub enum Report {
 
 /// The window's end of the worker.
 pub struct Worker {
-    commands: Sender<Command>,
+    /// `None` once dropped (the worker then stops after its current frame).
+    commands: Option<Sender<Command>>,
     reports: Receiver<Report>,
     last: Option<Request>,
 }
@@ -223,7 +225,7 @@ impl Worker {
                 run(start, &inbox, &out);
             })?;
         Ok(Self {
-            commands,
+            commands: Some(commands),
             reports,
             last: None,
         })
@@ -231,7 +233,9 @@ impl Worker {
 
     /// Sends a command (lost if the worker has stopped: it reported why).
     pub fn send(&self, command: Command) {
-        let _ = self.commands.send(command);
+        if let Some(commands) = &self.commands {
+            let _ = commands.send(command);
+        }
     }
 
     /// Sends `request` unless it is the one sent last.
@@ -250,6 +254,25 @@ impl Worker {
     /// Reports waiting, without blocking.
     pub fn reports(&self) -> impl Iterator<Item = Report> + '_ {
         self.reports.try_iter()
+    }
+}
+
+/// The longest the window waits, when it closes, for the worker to finish its frame.
+const STOP_WAIT: Duration = Duration::from_secs(20);
+
+impl Drop for Worker {
+    /// Stops the worker and waits (at most [`STOP_WAIT`]) for it to finish the frame it is
+    /// drawing: the process must not exit, tearing the driver down, while its device works.
+    fn drop(&mut self) {
+        self.commands = None;
+        let deadline = Instant::now() + STOP_WAIT;
+        // The reports' channel closes when the worker's thread ends.
+        while let Some(left) = deadline.checked_duration_since(Instant::now()) {
+            match self.reports.recv_timeout(left) {
+                Ok(_) => {}
+                Err(_) => break,
+            }
+        }
     }
 }
 
@@ -520,7 +543,6 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
     use super::*;
-    use std::time::{Duration, Instant};
 
     /// Reports until `done` says enough (panics after a minute).
     fn until(worker: &Worker, mut done: impl FnMut(&Report) -> bool) -> Vec<Report> {
