@@ -3,15 +3,30 @@
 //!
 //! Parameters travel as `toml::Table`s between the registry, the CLI and the techniques, so a
 //! result file can record every value a run used (long format: run, key, value).
+//!
+//! Each struct also derives [`schemars::JsonSchema`]: its doc comments and range attributes
+//! are the parameters' descriptions and valid ranges ([`describe`], [`check_ranges`]).
+
+mod schema;
+
+pub use schema::{
+    ParamDoc, check_ranges, describe, first_sentence, range_disagreements, schema_of,
+    schema_problems, undocumented,
+};
 
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 use crate::{Error, Result};
 
-/// A technique's parameter struct.
-pub trait TechniqueParams: Serialize + DeserializeOwned + Default + Clone {
-    /// Rejects NaN, out-of-range and absurd values with a message naming the key.
+/// A technique's parameter struct. Its [`schemars::JsonSchema`] derive carries a doc comment
+/// for every field (the key's description) and `#[schemars(range(min = …, max = …))]` on every
+/// numeric field (its valid range, `inner(range(…))` for arrays).
+pub trait TechniqueParams:
+    Serialize + DeserializeOwned + Default + Clone + schemars::JsonSchema
+{
+    /// Rejects NaN, out-of-range and absurd values with a message naming the key: calls
+    /// [`check_ranges`] (the schema's ranges) first, then checks what a range cannot say.
     fn validate(&self) -> Result<()>;
 }
 
@@ -110,10 +125,12 @@ pub fn check_int<T: PartialOrd + std::fmt::Display + Copy>(
 mod tests {
     use super::*;
 
-    #[derive(Clone, Debug, Serialize, serde::Deserialize, PartialEq)]
+    #[derive(Clone, Debug, Serialize, serde::Deserialize, PartialEq, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     struct P {
+        /// Segments.
         segments: u32,
+        /// Bend.
         bend: f32,
     }
 

@@ -56,6 +56,49 @@ mod tests {
 
     use super::*;
 
+    /// Every parameter of every registered technique has a description, each numeric one a
+    /// range (or its type's), and the technique's check accepts each range's ends and refuses
+    /// the values just past them: the schema and `validate` are one source of truth.
+    #[test]
+    fn every_parameter_is_described_and_checked_by_its_schema_range() {
+        // Fig. 13's ordering and the blades a patch may hold narrow these.
+        let narrowed = [
+            "boulanger.blades_per_m2",
+            "boulanger.max_geom",
+            "boulanger.min_btf",
+            "boulanger.max_btf",
+        ];
+        let mut problems = Vec::new();
+        for e in TECHNIQUES {
+            let docs = e.describe();
+            assert_eq!(
+                docs.iter()
+                    .map(|d| d.key.clone())
+                    .collect::<std::collections::BTreeSet<_>>(),
+                e.default_params().keys().cloned().collect(),
+                "{}: described keys are the parameter keys",
+                e.info.id
+            );
+            for d in &docs {
+                if d.description.trim().is_empty() {
+                    problems.push(format!("{}.{}: no description", e.info.id, d.key));
+                }
+                let numeric = matches!(
+                    d.default,
+                    toml::Value::Float(_) | toml::Value::Integer(_) | toml::Value::Array(_)
+                );
+                if numeric && d.range.is_none() {
+                    problems.push(format!("{}.{}: no range in the schema", e.info.id, d.key));
+                }
+            }
+            let check = |o: &toml::Table| e.check(o);
+            problems.extend(grassbench::params::range_disagreements(
+                e.info.id, &docs, &check, &narrowed,
+            ));
+        }
+        assert!(problems.is_empty(), "{problems:#?}");
+    }
+
     #[test]
     fn ids_are_unique_and_every_variant_passes_its_technique_check() {
         let mut ids = ids();

@@ -520,6 +520,30 @@ fn list_shows_values_as_written_and_variants() {
         "{out}"
     );
     assert_eq!(out.matches("variant paper ").count(), 4, "{out}");
+    // Each parameter explains itself on the line after its default: valid range (with the
+    // unit its description names) or choices, then the description's first sentence.
+    for line in [
+        "      flutter = 0.15\n          [0, 1]  Per-blade flutter amplitude, relative to the wind push.\n",
+        "      petal_size = 0.07\n          [0.001, 10] m  Petal quad side, m.\n",
+        "      sorting = sort\n          \"sort\" | \"alpha_to_coverage\"  Far-to-near sorting",
+        "      source_position = [",
+        "          each [-1000000, 1000000]  `point_source` wind: world position of the source.\n",
+        "      max_tilt = 0.4\n          [0, 1.5] radians  Largest launch angle",
+        "      lod = true\n          Level of detail (Sec. 5.2): the camera grid",
+    ] {
+        assert!(out.contains(line), "missing {line:?} in:\n{out}");
+    }
+    // Every parameter line has its explanation.
+    let lines: Vec<&str> = out.lines().collect();
+    for (i, line) in lines.iter().enumerate() {
+        if line.starts_with("      ") && !line.starts_with("          ") && line.contains(" = ") {
+            let next = lines.get(i + 1).copied().unwrap_or_default();
+            assert!(
+                next.starts_with("          ") && next.trim().len() > 3,
+                "no explanation after {line:?}: {next:?}"
+            );
+        }
+    }
 }
 
 /// `calibrate -o` writes the raw limits, the unit costs with their fit, every sample with its

@@ -9,7 +9,7 @@
 
 use super::{GrassTechnique, InitContext, TechniqueInfo};
 use crate::gpu::GpuEstimate;
-use crate::params::{TechniqueParams, resolve, to_table};
+use crate::params::{ParamDoc, TechniqueParams, describe, resolve, to_table};
 use crate::{Error, Result, Scene};
 
 /// A real-time grass technique, typed: implement this (and [`GrassTechnique`] for the
@@ -128,6 +128,38 @@ pub fn overlay(base: &toml::Table, top: &toml::Table) -> toml::Table {
     table
 }
 
+/// Where the variant overrides `variant` (TOML) fail to set exactly the values of `cited`, one
+/// line per difference (none: they do): the variant must resolve to `cited`, each key it names
+/// must hold `cited`'s value, and it must name `count` keys, one per cited constant, so it
+/// sets nothing the paper does not state. For the `paper` variants' tests.
+pub fn variant_differences<P: TechniqueParams + PartialEq + std::fmt::Debug>(
+    technique: &str,
+    variant: &str,
+    cited: &P,
+    count: usize,
+) -> Vec<String> {
+    let table = match variant.parse::<toml::Table>() {
+        Ok(t) => t,
+        Err(e) => return vec![format!("not valid TOML: {e}")],
+    };
+    let mut out = Vec::new();
+    match resolve::<P>(technique, &table) {
+        Ok(p) if &p == cited => {}
+        Ok(p) => out.push(format!("resolves to {p:?}, cited {cited:?}")),
+        Err(e) => out.push(e.to_string()),
+    }
+    let full = to_table(cited);
+    for (key, value) in &table {
+        if full.get(key) != Some(value) {
+            out.push(format!("`{key} = {value}` is not the cited value"));
+        }
+    }
+    if table.len() != count {
+        out.push(format!("{} keys for {count} cited constants", table.len()));
+    }
+    out
+}
+
 /// The variant `overrides` names through [`VARIANT_KEY`], if any other than
 /// [`DEFAULT_VARIANT`].
 pub fn variant_of(overrides: &toml::Table) -> Option<&str> {
@@ -156,6 +188,7 @@ pub struct TechniqueEntry {
     /// Parameter variants for the comparison suite (see [`FINEST`], [`NO_TRANSITIONS`]).
     pub variants: Variants,
     defaults: fn() -> toml::Table,
+    describe: fn() -> Vec<ParamDoc>,
     check: fn(&toml::Table) -> Result<toml::Table>,
     create: fn(&InitContext<'_>, &toml::Table) -> Result<Box<dyn GrassTechnique>>,
     estimate: fn(&Scene, &toml::Table) -> Result<GpuEstimate>,
@@ -168,6 +201,7 @@ pub const fn entry<T: Technique + GrassTechnique>() -> TechniqueEntry {
         info: T::INFO,
         variants: T::VARIANTS,
         defaults: defaults_of::<T>,
+        describe: describe::<T::Params>,
         check: check_of::<T>,
         create: create_of::<T>,
         estimate: estimate_of::<T>,
@@ -207,6 +241,12 @@ impl TechniqueEntry {
     /// The defaults of its parameter struct.
     pub fn default_params(&self) -> toml::Table {
         (self.defaults)()
+    }
+
+    /// Every parameter: key, description, unit, default, valid range or choices, read from the
+    /// parameter struct's schema ([`crate::params::describe`]).
+    pub fn describe(&self) -> Vec<ParamDoc> {
+        (self.describe)()
     }
 
     /// The one parameter check: the defaults overlaid with `overrides`, every key known, every
@@ -309,14 +349,18 @@ impl std::fmt::Debug for TechniqueEntry {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::{check, check_int};
+    use crate::params::check_ranges;
     use crate::technique::{FrameEncoder, TechniqueStats};
     use serde::{Deserialize, Serialize};
 
-    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     struct Knobs {
+        /// Shells.
+        #[schemars(range(min = 1, max = 64))]
         shells: u32,
+        /// Bend.
+        #[schemars(range(min = 0.0, max = 1.0))]
         bend: f32,
     }
 
@@ -331,8 +375,7 @@ mod tests {
 
     impl TechniqueParams for Knobs {
         fn validate(&self) -> Result<()> {
-            check_int("toy.shells", self.shells, 1..=64)?;
-            check("toy.bend", self.bend, 0.0..=1.0)
+            check_ranges("toy", self)
         }
     }
 
@@ -445,6 +488,22 @@ mod tests {
             table("bend = 0.0")
         );
         assert!(TOY.variant("paper").is_none());
+    }
+
+    #[test]
+    fn variant_differences_catch_a_wrong_value_an_uncited_key_and_bad_toml() {
+        let cited = Knobs {
+            shells: 64,
+            ..Knobs::default()
+        };
+        assert!(variant_differences("toy", "shells = 64", &cited, 1).is_empty());
+        // A value other than the cited one.
+        assert_eq!(variant_differences("toy", "shells = 63", &cited, 1).len(), 2);
+        // A key that merely repeats the default is still a key the paper does not state.
+        let extra = variant_differences("toy", "shells = 64\nbend = 0.5", &cited, 1);
+        assert_eq!(extra, ["2 keys for 1 cited constants"]);
+        assert!(!variant_differences("toy", "shells = ", &cited, 1).is_empty());
+        assert!(!variant_differences("toy", "shellz = 64", &cited, 1).is_empty());
     }
 
     #[test]

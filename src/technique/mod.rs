@@ -23,7 +23,7 @@ pub mod work;
 
 pub use definition::{
     DEFAULT_VARIANT, Describe, FINEST, NO_TRANSITIONS, PAPER, Technique, TechniqueEntry,
-    VARIANT_KEY, Variant, Variants, entry, label_params, overlay, variant_of,
+    VARIANT_KEY, Variant, Variants, entry, label_params, overlay, variant_differences, variant_of,
 };
 pub use encoder::{FrameEncoder, PassKind, PassTime, PassTimer};
 pub use no_grass::{NoGrass, NoParams};

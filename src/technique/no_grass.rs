@@ -14,7 +14,9 @@ use crate::{Result, Scene};
 pub struct NoGrass;
 
 /// [`NoGrass`] has no parameters.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct NoParams {}
 

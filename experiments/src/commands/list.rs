@@ -4,7 +4,9 @@ use std::io::Write as _;
 
 use crate::{registry, scenes};
 
-/// Prints the registry and the built-in scenes to stdout.
+/// Prints the registry and the built-in scenes to stdout: each technique's parameters with
+/// their defaults, then on the next line their valid range or choices (with the unit, where the
+/// description names one) and the first sentence of their description.
 pub fn list() -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
     writeln!(out, "techniques:")?;
@@ -14,8 +16,16 @@ pub fn list() -> anyhow::Result<()> {
             "  {:<12} {} — {}",
             e.info.id, e.info.name, e.info.paper
         )?;
-        for (k, v) in e.default_params() {
-            writeln!(out, "      {k} = {}", grassbench::params::format_value(&v))?;
+        for p in e.describe() {
+            writeln!(
+                out,
+                "      {} = {}",
+                p.key,
+                grassbench::params::format_value(&p.default)
+            )?;
+            let bounds = p.bounds_with_unit();
+            let sep = if bounds.is_empty() { "" } else { "  " };
+            writeln!(out, "          {bounds}{sep}{}", p.summary())?;
         }
         for v in e.variants.iter() {
             let sets = v.params.lines().collect::<Vec<_>>().join(", ");

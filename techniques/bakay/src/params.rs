@@ -2,13 +2,14 @@
 //! line) and their validation.
 
 use grassbench::Result;
-use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::params::{TechniqueParams, check_ranges};
 use grassbench::wind::PointSourceConfig;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// How the coarser levels of the grass texture are made (Bakay Sec. 5: automatic mipmaps lose
 /// the high-frequency blades).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Mipmaps {
     /// Representative blades: each coarse texel is one of its four children, so every level
@@ -23,7 +24,7 @@ pub enum Mipmaps {
 }
 
 /// How a texture lookup picks its mip level.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Lod {
     /// The sampler's isotropic choice, from the footprint's major axis: at grazing angles many
@@ -35,7 +36,7 @@ pub enum Lod {
 }
 
 /// Where the wind that bends the shells comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum WindSource {
     /// The scene's `WindField`, read per vertex through the prelude's `wind_at`, so bakay runs
@@ -46,14 +47,17 @@ pub enum WindSource {
 }
 
 /// Parameters of the shell technique.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// Number of shells `N`, the ground shell included (Bakay Table 2 counts it too).
+    #[schemars(range(min = 1, max = 128))]
     pub shells: u32,
     /// Texels along each side of the grass texture (a power of two).
+    #[schemars(range(min = 16, max = 4096))]
     pub texture_size: u32,
     /// World size of one texture tile, m.
+    #[schemars(range(min = 0.1, max = 64.0))]
     pub tile_size: f32,
     /// Blades in the texture per m², relative to the scene's `grass.density`: 1 (the default)
     /// is the scene's population, which every technique shows. Anything else is a departure
@@ -63,11 +67,14 @@ pub struct Params {
     /// measured to give `reference`'s grass coverage on the meadow (frame 3, 640x360: coverage
     /// 0.344 at 6, 0.432 at 8, 0.458 at 9, 0.484 at 10, 0.531 at 12; reference 0.463); the
     /// blade counts then reported 9 times the scene's blades.
+    #[schemars(range(min = 0.01, max = 16.0))]
     pub density_scale: f32,
     /// Blade heights are `min + (max − min)·u^height_skew` for uniform `u` over the scene's
     /// height range: 1 = uniform (as the scene's blade field), > 1 = mostly short blades.
+    #[schemars(range(min = 0.1, max = 10.0))]
     pub height_skew: f32,
     /// Thickness of a blade's cross-section relative to its width (1 = round stalks).
+    #[schemars(range(min = 0.05, max = 1.0))]
     pub blade_aspect: f32,
     /// How the texture's mip levels are made: `custom`, `box` or `none`.
     pub mipmaps: Mipmaps,
@@ -75,27 +82,37 @@ pub struct Params {
     pub lod: Lod,
     /// Anisotropic filtering clamp (1 = off; 2, 4, 8 or 16). On lavapipe 16x costs 18x the
     /// frame (meadow 640x360: 3.8 s against 0.21 s), hence `lod = "minor_axis"`.
+    #[schemars(range(min = 1, max = 16))]
     pub anisotropy: u16,
     /// Exponent `p` of the tilt profile `θ_j = I·(π/2)·(j/N)^p`: 1 = the paper's constant
     /// increment, < 1 = floppy (bends low), > 1 = stiff (bends near the tip).
+    #[schemars(range(min = 0.1, max = 8.0))]
     pub stiffness: f32,
     /// Largest wind intensity `|I|` (the paper's intensity lives in `[-1, 1]`; more over-bends).
+    #[schemars(range(min = 0.0, max = 4.0))]
     pub max_intensity: f32,
     /// Wind model: `scene` or `point_source`.
     pub wind: WindSource,
     /// `scene` wind: speed (m/s) at which the intensity reaches 1.
+    #[schemars(range(min = 0.01, max = 100.0))]
     pub reference_speed: f32,
     /// `point_source` wind: world position of the source.
+    #[schemars(inner(range(min = -1e6, max = 1e6)))]
     pub source_position: [f32; 3],
     /// `point_source` wind: period of the intensity function, s.
+    #[schemars(range(min = 0.01, max = 10_000.0))]
     pub source_period: f32,
     /// `point_source` wind: width of one animation step (distance band), m.
+    #[schemars(range(min = 0.01, max = 10_000.0))]
     pub source_step_length: f32,
     /// `point_source` wind: delay between neighbouring animation steps, s.
+    #[schemars(range(min = 0.0, max = 10_000.0))]
     pub source_step_delay: f32,
     /// `point_source` wind: constant added to the intensity (0 = swings both ways).
+    #[schemars(range(min = -2.0, max = 2.0))]
     pub source_bias: f32,
     /// Fraction of back-side sunlight passing through a blade (as `reference`).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub translucency: f32,
 }
 
@@ -143,8 +160,7 @@ impl Params {
 
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
-        check_int("bakay.shells", self.shells, 1..=128)?;
-        check_int("bakay.texture_size", self.texture_size, 16..=4096)?;
+        check_ranges("bakay", self)?;
         if !self.texture_size.is_power_of_two() {
             return Err(grassbench::Error::param(
                 "bakay.texture_size",
@@ -159,29 +175,7 @@ impl TechniqueParams for Params {
                 "1, 2, 4, 8 or 16",
             ));
         }
-        check("bakay.tile_size", self.tile_size, 0.1..=64.0)?;
-        check("bakay.density_scale", self.density_scale, 0.01..=16.0)?;
-        check("bakay.height_skew", self.height_skew, 0.1..=10.0)?;
-        check("bakay.blade_aspect", self.blade_aspect, 0.05..=1.0)?;
-        check("bakay.stiffness", self.stiffness, 0.1..=8.0)?;
-        check("bakay.max_intensity", self.max_intensity, 0.0..=4.0)?;
-        check("bakay.reference_speed", self.reference_speed, 0.01..=100.0)?;
-        for (k, v) in self.source_position.iter().enumerate() {
-            check(&format!("bakay.source_position[{k}]"), *v, -1e6..=1e6)?;
-        }
-        check("bakay.source_period", self.source_period, 0.01..=10_000.0)?;
-        check(
-            "bakay.source_step_length",
-            self.source_step_length,
-            0.01..=10_000.0,
-        )?;
-        check(
-            "bakay.source_step_delay",
-            self.source_step_delay,
-            0.0..=10_000.0,
-        )?;
-        check("bakay.source_bias", self.source_bias, -2.0..=2.0)?;
-        check("bakay.translucency", self.translucency, 0.0..=1.0)
+        Ok(())
     }
 }
 
@@ -218,5 +212,15 @@ mod tests {
         );
         assert!(with("mipmaps", "auto".into()).is_err());
         assert!(with("shellz", 3.into()).is_err());
+    }
+
+    /// Every key has a description, and `validate` accepts each end of the schema's ranges
+    /// and refuses the values just past them (the schema is where the ranges are written).
+    #[test]
+    fn the_schema_describes_every_key_and_validate_keeps_its_ranges() {
+        assert_eq!(
+            grassbench::params::schema_problems::<Params>("bakay", &[]),
+            Vec::<String>::new()
+        );
     }
 }

@@ -2,14 +2,15 @@
 //! command line).
 
 use grassbench::grass::GrassConfig;
-use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::params::{TechniqueParams, check, check_ranges};
 use grassbench::{Error, Result};
 
 use crate::patch::PatchSpec;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// How semi-transparent blades and slices are composited (Sec. 4.2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Transparency {
     /// Alpha test with a low threshold removes what is clearly outside a blade, blending
@@ -23,28 +24,36 @@ pub enum Transparency {
 pub const MAX_BLADES_PER_PATCH: u32 = 512 * 512;
 
 /// The technique's parameters.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// Side of the base patch and of a grid cell, m (Sec. 3.1).
+    #[schemars(range(min = 0.05, max = 16.0))]
     pub patch_size: f32,
     /// Blades per square metre in the patch, tiled over the whole terrain; 0 (the default)
     /// takes the scene's `[grass] density`, so the field is comparable with the other
     /// techniques'. 87 800 gives the paper's ~627 M virtual blades on the 105 x 68 m football
     /// field (`football_field_human` sets it). A scene without grass (`grass.density = 0`)
     /// has none whatever this says.
+    #[schemars(range(min = 0.0, max = 1e7))]
     pub blades_per_m2: f32,
     /// Quads per blade strip (Sec. 3.2).
+    #[schemars(range(min = 1, max = 16))]
     pub segments: u32,
     /// Geometry at full weight up to this distance, m (Fig. 13).
+    #[schemars(range(min = 0.0, max = 1e4))]
     pub min_geom: f32,
     /// No geometry beyond this distance, m.
+    #[schemars(range(min = 0.0, max = 1e4))]
     pub max_geom: f32,
     /// Vertical slices at full weight up to this distance, m.
+    #[schemars(range(min = 0.0, max = 1e5))]
     pub min_btf: f32,
     /// No vertical slices beyond this distance, m.
+    #[schemars(range(min = 0.0, max = 1e5))]
     pub max_btf: f32,
     /// Half width of the smooth opacity transition, Eq. 5's ω (0 = hard test).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub omega: f32,
     /// Sec. 3.4's seamless transitions: between two levels both representations draw the
     /// cell, the blades split between them by Eq. 2-5. `false` switches Sec. 3.1's levels
@@ -54,32 +63,42 @@ pub struct Params {
     /// variant, so that comparing the two isolates the paper's mechanism).
     pub transitions: bool,
     /// A macro-cell is drawn whole only when at least this many times its side away.
+    #[schemars(range(min = 0.25, max = 64.0))]
     pub macro_factor: f32,
     /// Semi-transparency: `blend` or `alpha_to_coverage` (Sec. 4.2).
     pub transparency: Transparency,
     /// Alpha-test threshold of the `blend` mode.
+    #[schemars(range(min = 0.0, max = 0.99))]
     pub alpha_threshold: f32,
     /// Side of the horizontal slice texture, texels.
+    #[schemars(range(min = 16, max = 4096))]
     pub slice_resolution: u32,
     /// Vertical slices across each horizontal axis of a patch (Sec. 3.3; the paper's 10).
+    #[schemars(range(min = 1, max = 32))]
     pub vertical_slices: u32,
     /// Width of a vertical slice's BTF texture, texels (along the patch side). The paper's
     /// 512 would take the start-up bake far past 10 s on lavapipe, where it is bound by fill;
     /// 128 halves the vertical part of the bake but ties `compare`'s popping with and without
     /// transitions on the meadow, so 256 (2 mm texels on a 0.5 m patch).
+    #[schemars(range(min = 8, max = 2048))]
     pub vslice_width: u32,
     /// Height of a vertical slice's BTF texture, texels (the paper's slices are 512 x 64).
+    #[schemars(range(min = 8, max = 2048))]
     pub vslice_height: u32,
     /// Folder of the BTF disk cache: empty for `$XDG_CACHE_HOME/grassbench/boulanger` (or
     /// `~/.cache/...`), `off` to bake at every start ([`crate::cache`]).
     pub btf_cache: String,
     /// Height of the horizontal slice above the ground, as a fraction of the tallest blade.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub slice_height: f32,
     /// Largest launch angle of a blade's particle from the vertical, radians.
+    #[schemars(range(min = 0.0, max = 1.5))]
     pub max_tilt: f32,
     /// Gravity on the blade's particle, relative to its launch speed (droop).
+    #[schemars(range(min = 0.0, max = 1.9))]
     pub gravity: f32,
     /// Wind push on the particle per m/s of wind, relative to gravity's scale.
+    #[schemars(range(min = 0.0, max = 2.0))]
     pub wind_response: f32,
     /// Blade-to-blade shadows through the shadow mask (Sec. 3.5), on the blades and baked
     /// into the slices.
@@ -90,15 +109,19 @@ pub struct Params {
     /// Ambient occlusion of the grass by the covering map's trees and stones (Sec. 3.5).
     pub external_ao: bool,
     /// Height given to the covering map's trees, m (for the occlusion map).
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub tree_height: f32,
     /// Height given to the covering map's stones, m.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub stone_height: f32,
     /// Animation (beyond the paper): the shared wind bends the geometric blades and shears
     /// the vertical slices' tops with them; `false` gives the paper's static grass.
     pub animate: bool,
     /// Fraction of back-side sunlight passing through a blade.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub translucency: f32,
     /// Ambient occlusion at the root (1 at the tip, linear in height: Sec. 3.2).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub ao_root: f32,
 }
 
@@ -188,7 +211,8 @@ impl Params {
 
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
-        check("boulanger.patch_size", self.patch_size, 0.05..=16.0)?;
+        check_ranges("boulanger", self)?;
+        // 0 takes the scene's density; anything else is at least one blade per m².
         if self.blades_per_m2 != 0.0 {
             check("boulanger.blades_per_m2", self.blades_per_m2, 1.0..=1e7)?;
         }
@@ -203,11 +227,6 @@ impl TechniqueParams for Params {
                 ),
             ));
         }
-        check_int("boulanger.segments", self.segments, 1..=16)?;
-        check("boulanger.min_geom", self.min_geom, 0.0..=1e4)?;
-        check("boulanger.max_geom", self.max_geom, 0.0..=1e4)?;
-        check("boulanger.min_btf", self.min_btf, 0.0..=1e5)?;
-        check("boulanger.max_btf", self.max_btf, 0.0..=1e5)?;
         for (name, lo, hi) in [
             ("boulanger.max_geom", self.min_geom, self.max_geom),
             ("boulanger.min_btf", self.max_geom, self.min_btf),
@@ -225,18 +244,6 @@ impl TechniqueParams for Params {
                 ));
             }
         }
-        check("boulanger.omega", self.omega, 0.0..=1.0)?;
-        check("boulanger.macro_factor", self.macro_factor, 0.25..=64.0)?;
-        check(
-            "boulanger.alpha_threshold",
-            self.alpha_threshold,
-            0.0..=0.99,
-        )?;
-        check_int(
-            "boulanger.slice_resolution",
-            self.slice_resolution,
-            16..=4096,
-        )?;
         if !self.slice_resolution.is_power_of_two() {
             return Err(Error::param(
                 "boulanger.slice_resolution",
@@ -244,12 +251,10 @@ impl TechniqueParams for Params {
                 "a power of two (the mip chain halves it exactly)",
             ));
         }
-        check_int("boulanger.vertical_slices", self.vertical_slices, 1..=32)?;
         for (name, v) in [
             ("boulanger.vslice_width", self.vslice_width),
             ("boulanger.vslice_height", self.vslice_height),
         ] {
-            check_int(name, v, 8..=2048)?;
             if !v.is_power_of_two() {
                 return Err(Error::param(
                     name,
@@ -258,14 +263,7 @@ impl TechniqueParams for Params {
                 ));
             }
         }
-        check("boulanger.slice_height", self.slice_height, 0.0..=1.0)?;
-        check("boulanger.tree_height", self.tree_height, 0.0..=100.0)?;
-        check("boulanger.stone_height", self.stone_height, 0.0..=100.0)?;
-        check("boulanger.max_tilt", self.max_tilt, 0.0..=1.5)?;
-        check("boulanger.gravity", self.gravity, 0.0..=1.9)?;
-        check("boulanger.wind_response", self.wind_response, 0.0..=2.0)?;
-        check("boulanger.translucency", self.translucency, 0.0..=1.0)?;
-        check("boulanger.ao_root", self.ao_root, 0.0..=1.0)
+        Ok(())
     }
 }
 
@@ -296,5 +294,24 @@ mod tests {
         assert_eq!(p.transparency, Transparency::AlphaToCoverage);
         t.insert("transparency".into(), "sorted".into());
         assert!(grassbench::params::resolve::<Params>("boulanger", &t).is_err());
+    }
+
+    /// Every key has a description, and `validate` accepts each end of the schema's ranges
+    /// and refuses the values just past them (the schema is where the ranges are written).
+    #[test]
+    fn the_schema_describes_every_key_and_validate_keeps_its_ranges() {
+        assert_eq!(
+            grassbench::params::schema_problems::<Params>(
+                "boulanger",
+                &[
+                    // Fig. 13's ordering and the blades a patch may hold narrow these.
+                    "boulanger.blades_per_m2",
+                    "boulanger.max_geom",
+                    "boulanger.min_btf",
+                    "boulanger.max_btf",
+                ]
+            ),
+            Vec::<String>::new()
+        );
     }
 }

@@ -2,63 +2,79 @@
 //! variants the comparison suite asks for.
 
 use grassbench::Result;
-use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::params::{TechniqueParams, check_ranges};
 use grassbench::technique::{NO_TRANSITIONS, Variant, Variants};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Every parameter of the technique. The defaults and where each came from are in the crate's
 /// essay (`src/lib.rs`, "Parameters").
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// Recovery rate (Hooke, Sec. 5.1) of a blade of the scene's stiffness 1, per second: the
     /// tip returns to rest with time constant `1 / (stiffness × blade stiffness)`.
+    #[schemars(range(min = 0.1, max = 10_000.0))]
     pub stiffness: f32,
     /// Magnitude of the environmental gravity, m/s² of tip displacement rate (Sec. 5.1; the
     /// model is first order, so this is not the physical 9.81: see the essay).
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub gravity: f32,
     /// Wind force on the tip per metre of blade height per m/s of wind, before the alignment
     /// term (Sec. 5.1).
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub wind_response: f32,
     /// Cull blades seen edge-on (the paper's orientation test).
     pub orientation_culling: bool,
     /// `|view direction · width direction|` above which a blade is culled (the paper's 0.9).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub orientation_threshold: f32,
     /// Cull blades whose root, midpoint and tip all lie outside the view frustum.
     pub frustum_culling: bool,
     /// How far outside a frustum plane a point may lie and still count as inside, m.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub frustum_tolerance: f32,
     /// Drop blades progressively with distance by bucket (the paper's distance test).
     pub distance_culling: bool,
     /// Ground distance from the eye beyond which no blade is kept, m (the paper's `d_max`).
+    #[schemars(range(min = 1.0, max = 100_000.0))]
     pub cull_distance: f32,
     /// Distance buckets (the paper's `n`): blades of the first `cull_distance / buckets`
     /// metres are all kept, then one bucket's blades fewer per further bucket.
+    #[schemars(range(min = 1, max = 64))]
     pub buckets: u32,
     /// Two levels of detail (Ghost of Tsushima): 15 vertices a blade near, 7 far.
     pub lod: bool,
     /// Side of the square ground tiles whose blades change level together, m (Ghost of
     /// Tsushima's tiles; 0 chooses each blade's level by its own root).
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub tile_size: f32,
     /// Distance from the eye to a tile's centre where the far level begins, m.
+    #[schemars(range(min = 0.0, max = 100_000.0))]
     pub lod_distance: f32,
     /// The far level keeps one blade in `far_keep`.
+    #[schemars(range(min = 1, max = 64))]
     pub far_keep: u32,
     /// Width factor of the far level's blades, so the survivors cover what the dropped
     /// blades covered.
+    #[schemars(range(min = 0.1, max = 64.0))]
     pub far_widen: f32,
     /// Blend the hand-overs (near to far, distance culling, orientation culling) instead of
     /// switching.
     pub transitions: bool,
     /// Depth of the near-to-far hand-over band, m: over it the near level's shapes morph to
     /// the far level's, the dropped blades narrow to nothing and the survivors widen.
+    #[schemars(range(min = 0.0, max = 10_000.0))]
     pub band: f32,
     /// Distance over which a blade narrows to nothing before distance culling drops it, m.
+    #[schemars(range(min = 0.0, max = 10_000.0))]
     pub distance_fade: f32,
     /// Range of `|view · width|` below the orientation threshold over which a blade narrows
     /// to nothing before orientation culling drops it.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub orientation_fade: f32,
     /// Fraction of back-side sunlight passing through a blade (as `reference`).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub translucency: f32,
 }
 
@@ -91,37 +107,7 @@ impl Default for Params {
 
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
-        check("jahrmann.stiffness", self.stiffness, 0.1..=10_000.0)?;
-        check("jahrmann.gravity", self.gravity, 0.0..=100.0)?;
-        check("jahrmann.wind_response", self.wind_response, 0.0..=1000.0)?;
-        check(
-            "jahrmann.orientation_threshold",
-            self.orientation_threshold,
-            0.0..=1.0,
-        )?;
-        check(
-            "jahrmann.frustum_tolerance",
-            self.frustum_tolerance,
-            0.0..=100.0,
-        )?;
-        check(
-            "jahrmann.cull_distance",
-            self.cull_distance,
-            1.0..=100_000.0,
-        )?;
-        check_int("jahrmann.buckets", self.buckets, 1..=64)?;
-        check("jahrmann.tile_size", self.tile_size, 0.0..=1000.0)?;
-        check("jahrmann.lod_distance", self.lod_distance, 0.0..=100_000.0)?;
-        check_int("jahrmann.far_keep", self.far_keep, 1..=64)?;
-        check("jahrmann.far_widen", self.far_widen, 0.1..=64.0)?;
-        check("jahrmann.band", self.band, 0.0..=10_000.0)?;
-        check("jahrmann.distance_fade", self.distance_fade, 0.0..=10_000.0)?;
-        check(
-            "jahrmann.orientation_fade",
-            self.orientation_fade,
-            0.0..=1.0,
-        )?;
-        check("jahrmann.translucency", self.translucency, 0.0..=1.0)
+        check_ranges("jahrmann", self)
     }
 }
 
@@ -162,6 +148,16 @@ mod tests {
                 .unwrap_err()
                 .to_string()
                 .contains("jahrmann.far_widen")
+        );
+    }
+
+    /// Every key has a description, and `validate` accepts each end of the schema's ranges
+    /// and refuses the values just past them (the schema is where the ranges are written).
+    #[test]
+    fn the_schema_describes_every_key_and_validate_keeps_its_ranges() {
+        assert_eq!(
+            grassbench::params::schema_problems::<Params>("jahrmann", &[]),
+            Vec::<String>::new()
         );
     }
 }

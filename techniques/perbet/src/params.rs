@@ -1,13 +1,14 @@
 //! Parameters of the technique (`[techniques.perbet]` in scene files, `--param` on the command
 //! line), with the paper's three quality presets (Sec. 5.1's table).
 
-use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::params::{TechniqueParams, check_int, check_ranges};
 use grassbench::{Error, Result};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Perbet & Cani's quality instances (Sec. 5.1): blades per patch, segments per blade and the
 /// discrete-distance range of the 2.5D representation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Quality {
     /// 160 blades a patch, 3 segments, 2.5D from distance 3 to 8.
@@ -19,7 +20,7 @@ pub enum Quality {
 }
 
 /// Where the number of blades in a patch comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Density {
     /// The scene's `[grass] density` times the patch area, so perbet shows the same population
@@ -72,7 +73,7 @@ pub const MAX_DISTANCE: u32 = 100_000;
 
 /// The technique's parameters. Zero in `segments` or `strip_range` means "from the quality
 /// preset"; zero in `blades_per_patch` means "as `density` says".
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// `low`, `medium` or `high` (Sec. 5.1).
@@ -81,49 +82,66 @@ pub struct Params {
     /// density, the default, for comparisons) or `preset` (the paper's table).
     pub density: Density,
     /// Blades in a patch; 0 = as `density` says.
+    #[schemars(range(min = 0, max = MAX_BLADES_PER_PATCH))]
     pub blades_per_patch: u32,
     /// Line segments per blade; 0 = the preset's.
+    #[schemars(range(min = 0, max = MAX_SEGMENTS))]
     pub segments: u32,
     /// First and last discrete (Chebyshev) distance, in patches, drawn as 2.5D strips; 3D
     /// below, 2D beyond; `[0, 0]` = the preset's.
+    #[schemars(inner(range(min = 0, max = MAX_DISTANCE)))]
     pub strip_range: [u32; 2],
     /// Side of a patch, m (the paper's 2.5 m).
+    #[schemars(range(min = 0.25, max = 50.0))]
     pub patch_size: f32,
     /// Different pre-computed patches tiled over the terrain (chosen per patch by a hash).
+    #[schemars(range(min = 1, max = 16))]
     pub variants: u32,
     /// Kinds of grass (Sec. 3.2): the scene's height range cut into this many classes, each
     /// with its own simulated postures, so one wind bends tall grass further than short.
+    #[schemars(range(min = 1, max = 4))]
     pub kinds: u32,
     /// Parallel strips per orientation in a patch (the number of polygons of the 2.5D
     /// representation, Sec. 2.1). Strips are what costs: a view across the 2.5D band crosses
     /// `strips / patch_size` semi-transparent layers per metre. On the meadow (medium preset,
     /// lavapipe, 640x360) 8 strips took 244 ms a frame and 4 took 139 ms for a picture hard to
     /// tell apart (each strip paints every blade of its slab, so coverage is the same).
+    #[schemars(range(min = 1, max = 64))]
     pub strips: u32,
     /// Polygons along one strip; their vertical edges carry the receivers (Fig. 3).
+    #[schemars(range(min = 1, max = 32))]
     pub strip_columns: u32,
     /// How far a strip reaches past the patch on each side, as a fraction of the patch, so
     /// blades leaning out of the patch are painted whole.
+    #[schemars(range(min = 0.0, max = 0.5))]
     pub strip_margin: f32,
     /// Strip texture width in texels (its height follows at the same texel size).
+    #[schemars(range(min = 16, max = 2048))]
     pub strip_texels: u32,
     /// 2D terrain texture side in texels (mipmapped).
+    #[schemars(range(min = 8, max = 2048))]
     pub flat_texels: u32,
     /// Patches a level's outer limit is extended by before a patch moving away leaves it
     /// (Sec. 4.1: different limits going back and forth).
+    #[schemars(range(min = 0, max = 8))]
     pub hysteresis: u32,
     /// Frames a transition lasts (Sec. 4.1: twenty); 0 switches levels at once.
+    #[schemars(range(min = 0, max = 600))]
     pub transition_steps: u32,
     /// Fraction at the end of a 3D ↔ 2.5D morph spent cross-fading the two (Sec. 4.2).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub fade: f32,
     /// Largest random tilt of one blade segment from its predecessor, radians (Sec. 2.2:
     /// "random numbers set the orientation of each blade segment").
+    #[schemars(range(min = 0.0, max = 0.6))]
     pub segment_jitter: f32,
     /// For winds other than primitives: the wind speed (m/s) that a posture index of 1 stands
     /// for, as in `PrimitiveSet`'s own velocity. At 8 m/s the meadow's 3.5 m/s breeze bends a
     /// blade's tip about 0.35 rad, as far as the reference's blades bend in it.
+    #[schemars(range(min = 0.1, max = 100.0))]
     pub wind_speed: f32,
     /// Fraction of back-side sunlight passing through a blade.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub translucency: f32,
 }
 
@@ -193,16 +211,7 @@ fn or_preset(value: u32, preset: u32) -> u32 {
 
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
-        if self.blades_per_patch != 0 {
-            check_int(
-                "perbet.blades_per_patch",
-                self.blades_per_patch,
-                1..=MAX_BLADES_PER_PATCH,
-            )?;
-        }
-        if self.segments != 0 {
-            check_int("perbet.segments", self.segments, 1..=MAX_SEGMENTS)?;
-        }
+        check_ranges("perbet", self)?;
         let [from, to] = self.strip_range;
         if self.strip_range != [0, 0] {
             check_int("perbet.strip_range[0]", from, 1..=MAX_DISTANCE)?;
@@ -215,14 +224,6 @@ impl TechniqueParams for Params {
                 ));
             }
         }
-        check("perbet.patch_size", self.patch_size, 0.25..=50.0)?;
-        check_int("perbet.variants", self.variants, 1..=16)?;
-        check_int("perbet.kinds", self.kinds, 1..=4)?;
-        check_int("perbet.strips", self.strips, 1..=64)?;
-        check_int("perbet.strip_columns", self.strip_columns, 1..=32)?;
-        check("perbet.strip_margin", self.strip_margin, 0.0..=0.5)?;
-        check_int("perbet.strip_texels", self.strip_texels, 16..=2048)?;
-        check_int("perbet.flat_texels", self.flat_texels, 8..=2048)?;
         if !self.flat_texels.is_power_of_two() {
             return Err(Error::param(
                 "perbet.flat_texels",
@@ -230,12 +231,7 @@ impl TechniqueParams for Params {
                 "a power of two (it is mipmapped), e.g. 128",
             ));
         }
-        check_int("perbet.hysteresis", self.hysteresis, 0..=8)?;
-        check_int("perbet.transition_steps", self.transition_steps, 0..=600)?;
-        check("perbet.fade", self.fade, 0.0..=1.0)?;
-        check("perbet.segment_jitter", self.segment_jitter, 0.0..=0.6)?;
-        check("perbet.wind_speed", self.wind_speed, 0.1..=100.0)?;
-        check("perbet.translucency", self.translucency, 0.0..=1.0)
+        Ok(())
     }
 }
 
@@ -289,5 +285,15 @@ mod tests {
             let message = p.validate().unwrap_err().to_string();
             assert!(message.contains(key), "{message}");
         }
+    }
+
+    /// Every key has a description, and `validate` accepts each end of the schema's ranges
+    /// and refuses the values just past them (the schema is where the ranges are written).
+    #[test]
+    fn the_schema_describes_every_key_and_validate_keeps_its_ranges() {
+        assert_eq!(
+            grassbench::params::schema_problems::<Params>("perbet", &[]),
+            Vec::<String>::new()
+        );
     }
 }

@@ -42,13 +42,14 @@
 
 use grassbench::glam::Vec3;
 use grassbench::gpu::GpuEstimate;
-use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::params::{TechniqueParams, check_ranges};
 use grassbench::technique::{Technique, TechniqueEntry, Variants};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
     Error, FrameEncoder, FrameInputs, GpuContext, GrassTechnique, InitContext, Result, Scene,
     TechniqueInfo, TechniqueStats, bytemuck, shaders, wgpu,
 };
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The blade shader (without the prelude).
@@ -58,20 +59,26 @@ pub const SHADER: &str = include_str!("../shaders/blade.wgsl");
 pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Reference>();
 
 /// Parameters (`[techniques.reference]` in scene files, `--param` on the command line).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// Segments per blade (triangles = 2·segments − 1).
+    #[schemars(range(min = 1, max = 15))]
     pub segments: u32,
     /// Bend per unit of wind speed for a blade of stiffness 1, radians per (m/s).
+    #[schemars(range(min = 0.0, max = 2.0))]
     pub wind_response: f32,
     /// Exponent of the tilt profile along the blade: 1 = circular arc, larger = stiffer base.
+    #[schemars(range(min = 0.25, max = 4.0))]
     pub bend_profile: f32,
     /// Largest bend at the tip, radians.
+    #[schemars(range(min = 0.0, max = 1.57))]
     pub max_bend: f32,
     /// Fraction of back-side sunlight passing through a blade.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub translucency: f32,
     /// Per-blade flutter amplitude, relative to the wind push.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub flutter: f32,
 }
 
@@ -90,12 +97,7 @@ impl Default for Params {
 
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
-        check_int("reference.segments", self.segments, 1..=15)?;
-        check("reference.wind_response", self.wind_response, 0.0..=2.0)?;
-        check("reference.bend_profile", self.bend_profile, 0.25..=4.0)?;
-        check("reference.max_bend", self.max_bend, 0.0..=1.57)?;
-        check("reference.translucency", self.translucency, 0.0..=1.0)?;
-        check("reference.flutter", self.flutter, 0.0..=1.0)
+        check_ranges("reference", self)
     }
 }
 
@@ -331,6 +333,15 @@ mod tests {
         assert_eq!(
             shaders::struct_size(SHADER, "Params").unwrap() as usize,
             std::mem::size_of::<ParamsUniform>()
+        );
+    }
+    /// Every key has a description, and `validate` accepts each end of the schema's ranges
+    /// and refuses the values just past them (the schema is where the ranges are written).
+    #[test]
+    fn the_schema_describes_every_key_and_validate_keeps_its_ranges() {
+        assert_eq!(
+            grassbench::params::schema_problems::<Params>("reference", &[]),
+            Vec::<String>::new()
         );
     }
 }

@@ -2,11 +2,12 @@
 //! line).
 
 use grassbench::Result;
-use grassbench::params::{TechniqueParams, check, check_int};
+use grassbench::params::{TechniqueParams, check_ranges};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// How translucent plants are composited (Sec. 5.4).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Sorting {
     /// The thesis: grids, billboards and single plants drawn far to near (quicksort and
@@ -18,7 +19,7 @@ pub enum Sorting {
 }
 
 /// Where the billboard wings are lit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum WingLighting {
     /// Ambient and sun per vertex (exact over a wing: only the ambient occlusion varies,
@@ -30,10 +31,11 @@ pub enum WingLighting {
 }
 
 /// Parameters of [`crate::Zhang`]. Defaults follow the thesis where it gives numbers.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
     /// Grass grids along the terrain's longer side (Sec. 5.1: 16 x 16).
+    #[schemars(range(min = 1, max = 256))]
     pub grids: u32,
     /// Lattice points per grass-grid side. 0 (the default): the scene's blade strata
     /// (`grassbench::grass::BladeField`), as many a side as it takes `grids` grids to cover
@@ -41,30 +43,41 @@ pub struct Params {
     /// Above 0: the thesis' fixed lattice of that many jittered candidates a side per grid
     /// (Sec. 3.1.2 and 5.1: 32 x 32), whatever the scene's `grass.density` (paper-like
     /// figures; see [`crate::prairie`]).
+    #[schemars(range(min = 0, max = 512))]
     pub blades_per_side: u32,
     /// On the thesis' lattice (`blades_per_side > 0`): random placement offset, as a fraction
     /// of the spacing (1 = anywhere in its cell). The scene's strata are jittered by the
     /// scene's blade field (anywhere in their cell).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub jitter: f32,
     /// Backbone points per blade, `n` of Eq. (5) (Fig. 5 uses 4; segments = n − 1).
+    #[schemars(range(min = 2, max = 16))]
     pub backbone_points: u32,
     /// Wind acceleration per m/s of wind, per metre of blade height, 1/s (Eq. 7's `a`).
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub wind_response: f32,
     /// Pull of each control point back to its rest position, 1/s² (see the essay: an
     /// addition, the thesis has no restoring force).
+    #[schemars(range(min = 0.0, max = 10_000.0))]
     pub spring: f32,
     /// Velocity damping of the Verlet step, 1/s (an addition, see the essay).
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub damping: f32,
     /// Mass of a flower's petal point relative to a blade control point (Sec. 3.4: heavier
     /// moves slower and less).
+    #[schemars(range(min = 0.01, max = 1000.0))]
     pub flower_mass: f32,
     /// Fraction of blade positions that also carry a flower (Sec. 3.3).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub flower_fraction: f32,
     /// Petal quad side, m.
+    #[schemars(range(min = 0.001, max = 10.0))]
     pub petal_size: f32,
     /// Fraction of back-side sunlight passing through a blade.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub translucency: f32,
     /// Alpha below which texels are discarded (alpha test).
+    #[schemars(range(min = 0.01, max = 0.99))]
     pub alpha_cutoff: f32,
     /// View-frustum culling of grass grids (Sec. 5.3); off draws every grid every frame.
     pub culling: bool,
@@ -75,6 +88,7 @@ pub struct Params {
     /// Extra sway of billboards per grid of offset beyond 2 (Sec. 4.2: far billboards move
     /// more so their motion stays visible): a billboard `g` grids away moves its top by
     /// `1 + billboard_sway·(g − 2)` times its plants' displacement. 0 = exactly the plants'.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub billboard_sway: f32,
     /// Far-to-near sorting with blending (`"sort"`, Sec. 5.4) or alpha to coverage without
     /// sorting (`"alpha_to_coverage"`).
@@ -82,6 +96,7 @@ pub struct Params {
     /// Radius of the transition sphere (Sec. 6.1) as a fraction of the grid size: within it
     /// of a grid border, grids that switch between billboards and single plants there are
     /// drawn both ways, fading. 0 switches at once (the `no_transitions` variant).
+    #[schemars(range(min = 0.0, max = 0.5))]
     pub fade_radius: f32,
     /// Draw each billboard wing cut down to the texels it can show (the same image where a
     /// wing is planar, a quarter less fill; [`crate::wing_trim`]); off draws whole
@@ -135,20 +150,7 @@ impl Params {
 
 impl TechniqueParams for Params {
     fn validate(&self) -> Result<()> {
-        check_int("zhang.grids", self.grids, 1..=256)?;
-        check_int("zhang.blades_per_side", self.blades_per_side, 0..=512)?;
-        check("zhang.jitter", self.jitter, 0.0..=1.0)?;
-        check_int("zhang.backbone_points", self.backbone_points, 2..=16)?;
-        check("zhang.wind_response", self.wind_response, 0.0..=1000.0)?;
-        check("zhang.spring", self.spring, 0.0..=10_000.0)?;
-        check("zhang.damping", self.damping, 0.0..=1000.0)?;
-        check("zhang.flower_mass", self.flower_mass, 0.01..=1000.0)?;
-        check("zhang.flower_fraction", self.flower_fraction, 0.0..=1.0)?;
-        check("zhang.petal_size", self.petal_size, 0.001..=10.0)?;
-        check("zhang.translucency", self.translucency, 0.0..=1.0)?;
-        check("zhang.alpha_cutoff", self.alpha_cutoff, 0.01..=0.99)?;
-        check("zhang.billboard_sway", self.billboard_sway, 0.0..=1.0)?;
-        check("zhang.fade_radius", self.fade_radius, 0.0..=0.5)
+        check_ranges("zhang", self)
     }
 }
 
@@ -189,5 +191,15 @@ mod tests {
         }
         bad(|p| p.billboard_sway = f32::INFINITY, "zhang.billboard_sway");
         bad(|p| p.fade_radius = 0.75, "zhang.fade_radius");
+    }
+
+    /// Every key has a description, and `validate` accepts each end of the schema's ranges
+    /// and refuses the values just past them (the schema is where the ranges are written).
+    #[test]
+    fn the_schema_describes_every_key_and_validate_keeps_its_ranges() {
+        assert_eq!(
+            grassbench::params::schema_problems::<Params>("zhang", &[]),
+            Vec::<String>::new()
+        );
     }
 }

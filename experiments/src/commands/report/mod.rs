@@ -2,6 +2,7 @@
 
 mod configs;
 mod html;
+mod parameters;
 mod plots;
 mod projection;
 mod raw_rate;
@@ -317,6 +318,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
+    parameters::section(&mut md, &configs);
     let _ = writeln!(md, "\n## CPU and GPU stages (ms)\n");
     let _ = writeln!(
         md,
