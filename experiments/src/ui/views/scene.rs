@@ -21,17 +21,17 @@ pub struct Setup {
     pub msaa: bool,
 }
 
-/// Draws the scene and layout settings `stage`.
-pub fn ui(ui: &mut egui::Ui, stage: &mut Setup, actions: &mut Vec<Action>) {
-    let count = stage.count;
+/// Draws the scene and layout settings `setup`.
+pub fn ui(ui: &mut egui::Ui, setup: &mut Setup, actions: &mut Vec<Action>) {
+    let count = setup.count;
     egui::ComboBox::from_label("scene")
-        .selected_text(&stage.scene_name)
+        .selected_text(&setup.scene_name)
         .show_ui(ui, |ui| {
             for name in scenes::names() {
                 if ui
-                    .selectable_label(stage.scene_name == name, name)
+                    .selectable_label(setup.scene_name == name, name)
                     .clicked()
-                    && stage.scene_name != name
+                    && setup.scene_name != name
                 {
                     actions.push(Action::LoadScene(name));
                 }
@@ -45,7 +45,7 @@ pub fn ui(ui: &mut egui::Ui, stage: &mut Setup, actions: &mut Vec<Action>) {
             }
         }
     });
-    let current = stage.size.to_string();
+    let current = setup.size.to_string();
     egui::ComboBox::from_label("pane size")
         .selected_text(&current)
         .show_ui(ui, |ui| {
@@ -54,12 +54,12 @@ pub fn ui(ui: &mut egui::Ui, stage: &mut Setup, actions: &mut Vec<Action>) {
                     && current != *s
                     && let Ok(size) = Size::parse(s)
                 {
-                    stage.size = size;
+                    setup.size = size;
                     actions.push(Action::Rebuild(count));
                 }
             }
         });
-    if ui.checkbox(&mut stage.msaa, "4x MSAA").changed() {
+    if ui.checkbox(&mut setup.msaa, "4x MSAA").changed() {
         actions.push(Action::Rebuild(count));
     }
 }
