@@ -200,7 +200,7 @@ impl SweepSpec {
             .params
             .values()
             .filter_map(configurations)
-            .map(|tables| tables.iter().map(|t| grid(t)).sum::<f64>())
+            .map(|tables| tables.iter().map(&grid).sum::<f64>())
             .fold(1.0, f64::max);
         self.scenes.len() as f64
             * grid(&self.scene_params)

@@ -146,3 +146,12 @@ pub fn check_snapshot_flip(
     }
     Ok(flip.mean)
 }
+
+/// Pixels of `a` and `b` (the same size) where any channel differs by more than `tolerance`
+/// of 255.
+pub fn pixels_differing(a: &image::RgbaImage, b: &image::RgbaImage, tolerance: u8) -> usize {
+    a.pixels()
+        .zip(b.pixels())
+        .filter(|(x, y)| x.0.iter().zip(y.0).any(|(p, q)| p.abs_diff(q) > tolerance))
+        .count()
+}

@@ -53,24 +53,18 @@ fn every_technique_draws_the_same_picture_on_vulkan_and_gl() -> anyhow::Result<(
         } else {
             toml::Table::new()
         };
-        let a = render(
-            &vulkan,
-            id,
-            scene("meadow", 0.25)?,
-            FRAME,
-            TEST_SIZE,
-            &overrides,
-        )
-        .with_context(|| format!("{id} on Vulkan"))?;
-        let b = render(
-            &gl,
-            id,
-            scene("meadow", 0.25)?,
-            FRAME,
-            TEST_SIZE,
-            &overrides,
-        )
-        .with_context(|| format!("{id} on GL"))?;
+        let on = |gpu: &GpuContext, name: &str| {
+            render(
+                gpu,
+                id,
+                scene("meadow", 0.25)?,
+                FRAME,
+                TEST_SIZE,
+                &overrides,
+            )
+            .with_context(|| format!("{id} on {name}"))
+        };
+        let (a, b) = (on(&vulkan, "Vulkan")?, on(&gl, "GL")?);
         let flip = metrics::flip(&a, &b)?;
         measured.push(format!("{id} {:.4}", flip.mean));
         if flip.mean > bound(id) {

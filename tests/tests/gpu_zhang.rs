@@ -9,7 +9,8 @@ use grassbench::target::Size;
 use grassbench::technique::NoGrass;
 use grassbench::wind::WindConfig;
 use grassbench_tests::{
-    TEST_SIZE, gpu, level_blades, render, render_record, render_with, repo_root, scene,
+    TEST_SIZE, gpu, level_blades, pixels_differing, render, render_record, render_with, repo_root,
+    scene,
 };
 
 /// The meadow in Stam fluid wind (the test scene that exercises `model = "fluid"`).
@@ -412,11 +413,7 @@ fn trimmed_wings_draw_what_whole_wings_draw() -> anyhow::Result<()> {
             wings > 1000.0 && drawn <= wings,
             "{drawn} of {wings} wings drawn"
         );
-        let differ = cut
-            .pixels()
-            .zip(full.pixels())
-            .filter(|(a, b)| a.0.iter().zip(b.0).any(|(x, y)| x.abs_diff(y) > 2))
-            .count();
+        let differ = pixels_differing(&cut, &full, 2);
         let mean = flip(&full, &cut)?.mean;
         let finest_params = entry
             .variant(grassbench::technique::FINEST)
@@ -539,13 +536,12 @@ fn wings_lit_per_vertex_draw_what_wings_lit_per_pixel_draw() -> anyhow::Result<(
     let mut pixel = harness.create(entry, &"wing_lighting = \"pixel\"".parse()?)?;
     let b = render_with(&mut harness, pixel.as_mut(), 30)?;
     assert!(counter(vertex.as_ref(), "wings") > 1000.0);
-    let differ = a
-        .pixels()
-        .zip(b.pixels())
-        .filter(|(x, y)| x.0.iter().zip(y.0).any(|(p, q)| p.abs_diff(q) > 2))
-        .count();
+    let differ = pixels_differing(&a, &b, 2);
     let mean = flip(&a, &b)?.mean;
     eprintln!("measured: {differ} pixels differ by more than 2, FLIP {mean:.6}");
-    assert!(differ < 250 && mean < 0.0015, "{differ} pixels, FLIP {mean}");
+    assert!(
+        differ < 250 && mean < 0.0015,
+        "{differ} pixels, FLIP {mean}"
+    );
     Ok(())
 }
