@@ -22,7 +22,7 @@ pub fn save(
         .map_or(0, |d| d.as_secs());
     let dir = root.join(format!("{}-f{frame:05}-{stamp}", stage.scene_name));
     stage.invalidate();
-    stage.render(frame, camera, true, |_, _| Some(false), |_, _| {});
+    stage.render(frame, camera, true, |_, _| Some(false), |_, _| {}, || None);
     let mut images = Vec::new();
     for (k, pane) in stage.panes.iter().enumerate() {
         let img = pane.last_image.clone().with_context(|| {

@@ -130,6 +130,8 @@ impl Stage {
     /// half resolution (`Some(true)`). Frames skipped since a pane last drew are simulated
     /// first, frame by frame with every pane in turn, then each pane draws and is handed to
     /// `done`. The world's wind thus advances once per frame, whatever the number of panes.
+    /// Before each pane but the first, `moved` may give a newer camera: the remaining panes
+    /// draw from it, and those already drawn are left marked to draw again.
     pub fn render(
         &mut self,
         frame: u64,
@@ -137,6 +139,7 @@ impl Stage {
         capture: bool,
         want: impl Fn(usize, &Pane) -> Option<bool>,
         mut done: impl FnMut(usize, &Pane),
+        mut moved: impl FnMut() -> Option<Option<(Vec3, Vec3)>>,
     ) {
         let world = &self.world;
         let mut plans: Vec<Option<u64>> = self
@@ -159,10 +162,26 @@ impl Stage {
                 }
             }
         }
-        for (k, (p, plan)) in self.panes.iter_mut().zip(plans).enumerate() {
-            if plan.is_some() && p.draw(&mut self.world, frame, capture) {
+        let mut drawn = false;
+        for (k, plan) in plans.into_iter().enumerate() {
+            if plan.is_none() {
+                continue;
+            }
+            if drawn && let Some(newer) = moved() {
+                // The camera moved meanwhile: the panes drawn so far are stale (drawn again next
+                // time), the others draw from where it is now.
+                for p in &mut self.panes {
+                    p.invalidate();
+                    p.view.camera_override = newer;
+                }
+            }
+            let Some(p) = self.panes.get_mut(k) else {
+                continue;
+            };
+            if p.draw(&mut self.world, frame, capture) {
                 done(k, p);
             }
+            drawn = true;
         }
     }
 
@@ -227,9 +246,9 @@ mod tests {
     /// Plays frames 0..=`to` as the window does at time scale `step`.
     fn play(stage: &mut Stage, to: u64, step: usize) {
         for f in (0..=to).step_by(step) {
-            stage.render(f, None, true, |_, _| Some(false), |_, _| {});
+            stage.render(f, None, true, |_, _| Some(false), |_, _| {}, || None);
         }
-        stage.render(to, None, true, |_, _| Some(false), |_, _| {});
+        stage.render(to, None, true, |_, _| Some(false), |_, _| {}, || None);
     }
 
     #[test]
@@ -257,10 +276,52 @@ mod tests {
         // A sun moved in the panel reaches every pane: both redraw, alike, and differently.
         let before = image(&two, 0);
         two.set_sun(crate::ui::sun_direction([-60.0, 25.0]));
-        two.render(9, None, true, |_, _| Some(false), |_, _| {});
+        two.render(9, None, true, |_, _| Some(false), |_, _| {}, || None);
         assert_eq!(two.world.wind_steps(), 10, "a redraw steps no wind");
         let (a, b) = (image(&two, 0), image(&two, 1));
         assert_eq!(a, b);
         assert_ne!(a, before, "the sun did not reach the panes");
+    }
+
+    #[test]
+    fn a_camera_moved_while_panes_draw_reaches_the_panes_still_to_draw() {
+        let gpu = gpu();
+        let mut stage = stage(gpu, 2);
+        let scene = stage.world.scene.clone();
+        let cam = scene.camera_at(3, SIZE);
+        let turned = Some((
+            cam.eye,
+            (cam.forward + Vec3::new(0.4, 0.0, 0.0)).normalize(),
+        ));
+        let mut order = Vec::new();
+        // The window turns the camera while pane 1 draws.
+        let mut asked = 0;
+        stage.render(
+            3,
+            None,
+            true,
+            |_, _| Some(false),
+            |k, _| order.push(k),
+            || {
+                asked += 1;
+                Some(turned)
+            },
+        );
+        assert_eq!((order, asked), (vec![0, 1], 1));
+        let image = |s: &Stage, k: usize| s.panes[k].last_image.clone().unwrap();
+        let (first, second) = (image(&stage, 0), image(&stage, 1));
+        assert_ne!(first, second, "pane 2 did not draw from the turned camera");
+        // Next time pane 1 draws again, from the turned camera; pane 2 is up to date.
+        let mut order = Vec::new();
+        stage.render(
+            3,
+            turned,
+            true,
+            |_, _| Some(false),
+            |k, _| order.push(k),
+            || None,
+        );
+        assert_eq!(order, [0]);
+        assert_eq!(image(&stage, 0), second);
     }
 }

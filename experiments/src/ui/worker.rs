@@ -295,6 +295,8 @@ struct State {
     epoch: u64,
     request: Option<Request>,
     camera: Option<Option<(Vec3, Vec3)>>,
+    /// Commands taken from the channel while drawing, to apply next.
+    waiting: Vec<Command>,
 }
 
 /// The worker thread: its device, then commands until the window goes.
@@ -320,16 +322,25 @@ fn run(start: Start, inbox: &Receiver<Command>, out: &Outbox) {
         epoch: 0,
         request: None,
         camera: None,
+        waiting: Vec::new(),
     };
     state.summarise(out);
     // Block for a command, apply every one waiting (less those a later one replaces), render
     // the latest request; again.
-    while let Ok(command) = inbox.recv() {
-        let waiting: Vec<Command> = std::iter::once(command).chain(inbox.try_iter()).collect();
+    loop {
+        let mut waiting = std::mem::take(&mut state.waiting);
+        if waiting.is_empty() {
+            match inbox.recv() {
+                Ok(command) => waiting.push(command),
+                // The window has gone.
+                Err(_) => return,
+            }
+        }
+        waiting.extend(inbox.try_iter());
         for command in coalesce(waiting) {
             state.apply(command, out);
         }
-        state.render(out);
+        state.render(out, inbox);
     }
 }
 
@@ -493,12 +504,17 @@ impl State {
     }
 
     /// Brings the panes the latest request wants to its frame, sending each finished frame.
-    fn render(&mut self, out: &Outbox) {
+    /// Between panes it looks at what the window sent meanwhile: a camera moved at the same
+    /// frame is drawn from by the panes still to draw (the window's pictures follow a drag
+    /// within one pane's frame, not all of theirs); the rest waits for the next round.
+    fn render(&mut self, out: &Outbox, inbox: &Receiver<Command>) {
         let Some(request) = &self.request else {
             return;
         };
         let epoch = self.epoch;
         let failed_before = self.failed();
+        let waiting = &mut self.waiting;
+        let mut camera = request.camera;
         self.stage.render(
             request.frame,
             request.camera,
@@ -522,7 +538,21 @@ impl State {
                     preview: pane.preview,
                 });
             },
+            || {
+                waiting.extend(inbox.try_iter());
+                let newest = waiting.iter().rev().find_map(|c| match c {
+                    Command::Render(r) => Some(r),
+                    _ => None,
+                })?;
+                let moved = newest.frame == request.frame && newest.camera != camera;
+                moved.then(|| {
+                    camera = newest.camera;
+                    camera
+                })
+            },
         );
+        // The panes stand at this camera now (those drawn before it moved are marked stale).
+        self.camera = Some(camera);
         if self.failed() != failed_before {
             self.summarise(out);
         }
