@@ -2,11 +2,24 @@
 //! model's keys are edited the same way, with no per-technique UI code.
 
 use eframe::egui;
+use grassbench::params::ParamDoc;
 
 /// Draws one widget per value of `table` (numbers as drag values, booleans as checkboxes,
 /// strings as text fields, number arrays as rows of drag values); returns whether anything
 /// changed. Keys listed in `skip` are left out.
 pub fn edit_table(ui: &mut egui::Ui, table: &mut toml::Table, skip: &[&str]) -> bool {
+    edit_described(ui, table, skip, &[])
+}
+
+/// [`edit_table`] where each key's name and widget show, on hover, what `docs` says of it (a
+/// technique's [`grassbench::technique::TechniqueEntry::describe`]): its description and its
+/// valid range or choices, with the unit.
+pub fn edit_described(
+    ui: &mut egui::Ui,
+    table: &mut toml::Table,
+    skip: &[&str],
+    docs: &[ParamDoc],
+) -> bool {
     let mut changed = false;
     egui::Grid::new(ui.next_auto_id())
         .num_columns(2)
@@ -16,8 +29,14 @@ pub fn edit_table(ui: &mut egui::Ui, table: &mut toml::Table, skip: &[&str]) -> 
                 if skip.contains(&key.as_str()) {
                     continue;
                 }
-                ui.label(key);
-                changed |= edit_value(ui, value);
+                let tip = docs.iter().find(|d| d.key == *key).map(ParamDoc::tooltip);
+                let label = ui.label(key);
+                let widget = ui.scope(|ui| edit_value(ui, value));
+                changed |= widget.inner;
+                if let Some(tip) = tip {
+                    label.on_hover_text(&tip);
+                    widget.response.on_hover_text(tip);
+                }
                 ui.end_row();
             }
         });

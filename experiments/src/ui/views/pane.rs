@@ -6,7 +6,7 @@ use eframe::egui;
 use super::Action;
 use crate::registry;
 use crate::ui::display::PaneDisplay;
-use crate::ui::editor::edit_table;
+use crate::ui::editor::edit_described;
 
 /// Draws the settings of pane `k`.
 pub fn ui(ui: &mut egui::Ui, k: usize, pane: &PaneDisplay, actions: &mut Vec<Action>) {
@@ -44,7 +44,11 @@ pub fn ui(ui: &mut egui::Ui, k: usize, pane: &PaneDisplay, actions: &mut Vec<Act
                 actions.push(Action::DebugView(k, view));
             }
             let mut params = pane.params.clone();
-            if edit_table(ui, &mut params, &[]) {
+            // Each parameter's description and valid values on hover.
+            let docs = registry::find(&pane.technique_id)
+                .map(|e| e.describe())
+                .unwrap_or_default();
+            if edit_described(ui, &mut params, &[], &docs) {
                 actions.push(Action::Recreate(k, params));
             }
         }
