@@ -25,6 +25,12 @@ pub struct AdapterSummary {
     /// columns of `frames.csv` and `runs.csv` stay empty. Files written before it read `false`.
     #[serde(default)]
     pub pipeline_statistics: bool,
+    /// Sample counts the adapter offers for the render target's colour and depth formats
+    /// together (1 always). The harness's `--msaa` renders 4, the count WebGPU guarantees;
+    /// this says where a paper asks for more (Boulanger Sec. 4.2: at least 6) what the adapter
+    /// could give. Files written before it read `[]`.
+    #[serde(default)]
+    pub msaa_sample_counts: Vec<u32>,
 }
 
 /// Instance, adapter, device and queue, plus the error sink. Created once and borrowed by
@@ -170,6 +176,7 @@ impl GpuContext {
             pipeline_statistics: device
                 .features()
                 .contains(wgpu::Features::PIPELINE_STATISTICS_QUERY),
+            msaa_sample_counts: sample_counts(&adapter),
         };
         Self {
             instance,
@@ -276,4 +283,17 @@ fn rank(adapter: &wgpu::Adapter) -> (u8, u8) {
         _ => 1,
     };
     (kind, api)
+}
+
+/// Sample counts `adapter` supports for both of the render target's formats.
+fn sample_counts(adapter: &wgpu::Adapter) -> Vec<u32> {
+    let flags = |format| adapter.get_texture_format_features(format).flags;
+    let (color, depth) = (
+        flags(crate::target::COLOR_FORMAT),
+        flags(crate::target::DEPTH_FORMAT),
+    );
+    [1, 2, 4, 8, 16]
+        .into_iter()
+        .filter(|&n| n == 1 || (color.sample_count_supported(n) && depth.sample_count_supported(n)))
+        .collect()
 }

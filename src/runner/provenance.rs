@@ -206,6 +206,7 @@ mod tests {
             timestamps: false,
             timestamp_period_ns: 1.0,
             pipeline_statistics: false,
+            msaa_sample_counts: vec![1, 4],
         };
         let p = Provenance {
             command: "grassbench sweep s.toml".into(),

@@ -43,6 +43,18 @@ fn context(choice: BackendChoice) -> anyhow::Result<GpuContext> {
 fn every_technique_draws_the_same_picture_on_vulkan_and_gl() -> anyhow::Result<()> {
     let vulkan = context(BackendChoice::Vulkan)?;
     let gl = context(BackendChoice::Gl)?;
+    // What `meta.toml` records of multisampling: 1 and the 4 WebGPU guarantees, at least.
+    for gpu in [&vulkan, &gl] {
+        let counts = &gpu.summary.msaa_sample_counts;
+        eprintln!(
+            "{} {}: sample counts {counts:?}",
+            gpu.summary.backend, gpu.summary.name
+        );
+        assert!(
+            counts.starts_with(&[1]) && counts.contains(&4),
+            "{counts:?}"
+        );
+    }
     let out = repo_root().join("target/test-output/backends");
     let mut failures = Vec::new();
     let mut measured = Vec::new();
