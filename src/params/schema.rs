@@ -520,6 +520,12 @@ mod tests {
         assert_eq!(side.summary(), "Side of a patch, m (the paper's 2.5 m).");
         assert_eq!(side.unit.as_deref(), Some("m"));
         assert_eq!(side.bounds_with_unit(), "[0.01, 0.99] m");
+        // What the window shows on hover.
+        assert_eq!(
+            side.tooltip(),
+            "Side of a patch, m (the paper's 2.5 m). Second sentence.\nvalid: [0.01, 0.99] m"
+        );
+        assert_eq!(gain.tooltip(), "Unchecked gain.");
         assert_eq!(at.range, Some((-10.0, 10.0)));
         assert_eq!(at.bounds_with_unit(), "each [-10, 10] m");
         assert_eq!(mode.choices, ["soft", "hard_edge"]);
