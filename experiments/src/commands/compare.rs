@@ -11,7 +11,7 @@ use grassbench::target::{Size, save_png};
 use grassbench::technique::{DEFAULT_VARIANT, NO_TRANSITIONS, NoGrass, TechniqueEntry, overlay};
 
 use super::GpuArgs;
-use super::out_dir::prepare_out_dir;
+use super::out_dir::Progress;
 use crate::{registry, scenes};
 
 /// Arguments of `compare`.
@@ -41,7 +41,8 @@ pub struct CompareArgs {
     /// Output folder.
     #[arg(long, short, default_value = "results/compare")]
     pub out: PathBuf,
-    /// Replace a non-empty output folder.
+    /// Replace a non-empty output folder (without it, the folder of an interrupted `compare`
+    /// with the same arguments is resumed: its finished scenes are kept).
     #[arg(long)]
     pub force: bool,
     /// GPU options.
@@ -94,7 +95,26 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
     let entries = registry::select(&args.technique)?;
     let scenes = scenes::select(&args.scene)?;
     let size = Size::parse(&args.size)?;
-    prepare_out_dir(&args.out, args.force)?;
+    let scene_names: Vec<String> = scenes.iter().map(|s| s.name().to_owned()).collect();
+    let arguments = std::collections::BTreeMap::from([
+        (
+            "--technique".to_owned(),
+            entries
+                .iter()
+                .map(|e| e.info.id)
+                .collect::<Vec<_>>()
+                .join(","),
+        ),
+        ("--scene".to_owned(), scene_names.join(",")),
+        ("--frame".to_owned(), args.frame.to_string()),
+        ("--size".to_owned(), size.to_string()),
+        ("--variant".to_owned(), args.variant.clone()),
+        ("--motion-frames".to_owned(), args.motion_frames.to_string()),
+        (
+            "--backend".to_owned(),
+            format!("{:?}", args.gpu.choice()?).to_lowercase(),
+        ),
+    ]);
     // Every technique (and the reference) with its defaults and the variants drawn below.
     let mut variants = Vec::new();
     for entry in entries
@@ -117,11 +137,13 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
             args.variant
         );
     }
-    let gpu = args.gpu.context_for(&super::needs(
+    let needs = super::needs(
         scenes
             .iter()
             .flat_map(|s| variants.iter().map(move |(e, o)| (*e, s, o))),
-    )?)?;
+    )?;
+    let mut progress = Progress::open(&args.out, args.force, "compare", arguments, &scene_names)?;
+    let gpu = args.gpu.context_for(&needs)?;
     write_atomic(&args.out.join("meta.toml"), |f| {
         std::io::Write::write_all(f, Provenance::collect(&gpu.summary).to_toml().as_bytes())
     })?;
@@ -129,6 +151,10 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
     for scene in &scenes {
         let name = scene.name().to_owned();
         let dir = args.out.join(&name);
+        if progress.done(&name).is_some() {
+            eprintln!("{name}: already done in {}", dir.display());
+            continue;
+        }
         eprintln!(
             "{name}: rendering frame {} of {} techniques",
             args.frame,
@@ -281,9 +307,11 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
             write_csv(&dir.join("temporal.csv"), &rows)?;
         }
         bar.finish_and_clear();
+        progress.scene_done(&name, Vec::new())?;
         eprintln!("{name}: wrote {}", dir.display());
     }
-    super::write_html(&args.out).context("writing report.html")
+    super::write_html(&args.out).context("writing report.html")?;
+    progress.finish()
 }
 
 /// The operating point `entry` is compared at for `--variant name`: the variant's name and

@@ -14,7 +14,7 @@ use grassbench::sweep::{REFERENCE, compare_with_reference};
 use grassbench::target::{Size, save_png};
 use grassbench::technique::NoGrass;
 
-use super::out_dir::prepare_out_dir;
+use super::out_dir::Progress;
 use super::{GpuArgs, fmt_opt, param_table};
 use crate::{registry, scenes};
 use grassbench::technique::label_params;
@@ -49,7 +49,8 @@ pub struct RunArgs {
     /// Technique parameter override KEY=VALUE, applied to every technique run (repeatable).
     #[arg(long = "param", short = 'p')]
     pub params: Vec<String>,
-    /// Replace an existing non-empty output folder.
+    /// Replace an existing non-empty output folder (without it, the folder of an interrupted
+    /// `run` with the same arguments is resumed: its finished scenes are kept).
     #[arg(long)]
     pub force: bool,
     /// Measure the techniques' frames in turn (frame 0 of each, then frame 1 of each, ...)
@@ -102,18 +103,73 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
-    prepare_out_dir(&args.out, args.force)?;
+    let capture = if args.capture.is_empty() {
+        vec![args.warmup, args.warmup + args.frames - 1]
+    } else {
+        args.capture.clone()
+    };
+    let scene_names: Vec<String> = scenes.iter().map(|s| s.name().to_owned()).collect();
+    let flag = |on: bool| on.to_string();
+    let arguments = std::collections::BTreeMap::from([
+        (
+            "--technique".to_owned(),
+            entries
+                .iter()
+                .map(|e| e.info.id)
+                .collect::<Vec<_>>()
+                .join(","),
+        ),
+        ("--scene".to_owned(), scene_names.join(",")),
+        ("--frames".to_owned(), args.frames.to_string()),
+        ("--warmup".to_owned(), args.warmup.to_string()),
+        (
+            "--capture".to_owned(),
+            capture
+                .iter()
+                .map(u64::to_string)
+                .collect::<Vec<_>>()
+                .join(","),
+        ),
+        (
+            "--size".to_owned(),
+            size.map_or("scene".to_owned(), |s| s.to_string()),
+        ),
+        ("--msaa".to_owned(), flag(args.msaa)),
+        (
+            "--param".to_owned(),
+            overrides
+                .iter()
+                .map(|(k, v)| format!("{k}={}", grassbench::params::format_value(v)))
+                .collect::<Vec<_>>()
+                .join(";"),
+        ),
+        ("--interleave".to_owned(), flag(args.interleave)),
+        ("--no-calibration".to_owned(), flag(args.no_calibration)),
+        (
+            "--backend".to_owned(),
+            format!("{:?}", args.gpu.choice()?).to_lowercase(),
+        ),
+    ]);
     let o = &overrides;
-    let gpu = args.gpu.context_for(&super::needs(
+    let needs = super::needs(
         scenes
             .iter()
             .flat_map(|s| entries.iter().map(move |e| (*e, s, o))),
-    )?)?;
+    )?;
+    let mut progress = Progress::open(&args.out, args.force, "run", arguments, &scene_names)?;
+    let gpu = args.gpu.context_for(&needs)?;
     let provenance = Provenance::collect(&gpu.summary);
     // The adapter's unit costs at every size rendered, so each run's time can be set against
     // the cost model's prediction from its measured work (issue 20 §3).
     let unit_costs: Vec<UnitCosts> = if args.no_calibration {
         Vec::new()
+    } else if let Some(costs) = progress
+        .resumed()
+        .then(|| earlier_unit_costs(&args.out))
+        .flatten()
+    {
+        // The finished scenes' model figures were computed with these: keep them.
+        costs
     } else {
         super::calibrate::unit_costs_at(
             &gpu,
@@ -139,11 +195,6 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(f, text.as_bytes())
     })?;
 
-    let capture = if args.capture.is_empty() {
-        vec![args.warmup, args.warmup + args.frames - 1]
-    } else {
-        args.capture.clone()
-    };
     let options = RunOptions {
         warmup: args.warmup,
         frames: args.frames,
@@ -155,6 +206,20 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     for scene in scenes {
         let name = scene.name().to_owned();
         let dir = args.out.join(&name);
+        if let Some(done) = progress.done(&name) {
+            // Finished before an interruption: its runs join the folder's, unmeasured again.
+            let runs: Vec<RunSummary> = grassbench::sweep::read_rows(&dir.join("runs.csv"))?;
+            eprintln!(
+                "{name}: already done in {} ({} runs)",
+                dir.display(),
+                runs.len()
+            );
+            failures.extend(done.failures.iter().cloned());
+            all_runs.extend(runs);
+            write_csv(&args.out.join("runs.csv"), &all_runs)?;
+            continue;
+        }
+        let failed_before = failures.len();
         let size = size.unwrap_or(scene.resolution());
         let mut harness = Harness::new(&gpu, scene, size, args.msaa)
             .with_context(|| format!("setting up scene `{name}`"))?;
@@ -242,11 +307,13 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         let runs = out.runs;
         all_runs.extend(runs);
         write_csv(&args.out.join("runs.csv"), &all_runs)?;
+        progress.scene_done(&name, failures[failed_before..].to_vec())?;
     }
     write_atomic(&args.out.join("README.md"), |f| {
         std::io::Write::write_all(f, report(&all_runs, &provenance, &capture).as_bytes())
     })?;
     super::write_html(&args.out).context("writing report.html")?;
+    progress.finish()?;
     if !failures.is_empty() {
         bail!(
             "{} run(s) failed:\n  {}",
@@ -255,6 +322,14 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// The unit costs the `meta.toml` of an earlier, interrupted run into `dir` recorded, if any.
+fn earlier_unit_costs(dir: &Path) -> Option<Vec<UnitCosts>> {
+    let text = std::fs::read_to_string(dir.join("meta.toml")).ok()?;
+    let table: toml::Table = toml::from_str(&text).ok()?;
+    let costs: Vec<UnitCosts> = table.get("unit_costs")?.clone().try_into().ok()?;
+    (!costs.is_empty()).then_some(costs)
 }
 
 /// One scene's output folder as runs come in: images, frames, runs and parameters, written
