@@ -34,6 +34,9 @@ pub struct FramePlan {
     pub sort_ms: f64,
     /// Scratch for [`frame::wings`].
     wing_scratch: WingScratch,
+    /// With `hidden_half_rate = false`: drawn and hidden blades (then anchors) merged, all
+    /// stepped in full every frame (the thesis's way).
+    full_steps: [Vec<std::ops::Range<u32>>; 2],
 }
 
 /// The frame's single plants far to near (Sec. 5.4) and their instance data in that order.
@@ -67,6 +70,7 @@ impl FramePlan {
             sorted: (params.sorting == Sorting::Sort).then(SortedPlants::default),
             sort_ms: 0.0,
             wing_scratch: WingScratch::default(),
+            full_steps: [Vec::new(), Vec::new()],
         }
     }
 
@@ -95,15 +99,37 @@ impl FramePlan {
         // Sec. 6.2: the scene's moving object is the interaction sphere.
         plants.blades.set_sphere(inputs.object());
         // Blades and anchors share one set of threads.
-        let blades = StepRanges {
-            drawn: &plan.animate_blades,
-            hidden: &plan.hidden_blades,
-            flowers: &plan.animate_flowers,
-        };
-        let anchors = StepRanges {
-            drawn: &plan.animate_anchors,
-            hidden: &plan.hidden_anchors,
-            flowers: &[],
+        // The thesis steps every animated blade every frame with the wind at each control
+        // point; ours steps the hidden ones every other frame ([`StepRanges::hidden`]).
+        let [full_blades, full_anchors] = &mut self.full_steps;
+        let (blades, anchors) = if p.hidden_half_rate {
+            (
+                StepRanges {
+                    drawn: &plan.animate_blades,
+                    hidden: &plan.hidden_blades,
+                    flowers: &plan.animate_flowers,
+                },
+                StepRanges {
+                    drawn: &plan.animate_anchors,
+                    hidden: &plan.hidden_anchors,
+                    flowers: &[],
+                },
+            )
+        } else {
+            merge_sorted(&plan.animate_blades, &plan.hidden_blades, full_blades);
+            merge_sorted(&plan.animate_anchors, &plan.hidden_anchors, full_anchors);
+            (
+                StepRanges {
+                    drawn: full_blades,
+                    hidden: &[],
+                    flowers: &plan.animate_flowers,
+                },
+                StepRanges {
+                    drawn: full_anchors,
+                    hidden: &[],
+                    flowers: &[],
+                },
+            )
         };
         animate::step_together(
             inputs.wind,
@@ -177,4 +203,15 @@ fn order_single_plants(
             .map(|&b| plants.blades.blade_out[b as usize]),
     );
     elapsed
+}
+
+/// `a` and `b` (each sorted, disjoint from the other) merged in order into `out`.
+fn merge_sorted(
+    a: &[std::ops::Range<u32>],
+    b: &[std::ops::Range<u32>],
+    out: &mut Vec<std::ops::Range<u32>>,
+) {
+    out.clear();
+    out.extend(a.iter().chain(b).cloned());
+    out.sort_unstable_by_key(|r| r.start);
 }

@@ -192,7 +192,8 @@
 //!   default spring, well inside Verlet's stability bound of 2), with one wind sample at
 //!   `P2`: they only have to be moving plausibly when they come into view, and their tips
 //!   stay within 2 % of the blade height of fully stepped ones (tested; what remains decays
-//!   with the damping once they are drawn).
+//!   with the damping once they are drawn). `hidden_half_rate = false` (the `paper`
+//!   variant) steps them in full every frame, as the thesis does.
 //!
 //! ## Cost model
 //! CPU per frame: animated are the blades of the (at most 5 x 5) grids up to two away, their

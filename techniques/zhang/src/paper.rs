@@ -23,6 +23,9 @@ pub const TRIM_WINGS: bool = false;
 /// Ch. 4 lights billboards as the plants they stand for: every light per pixel (lighting
 /// the wings per vertex is ours).
 pub const WING_LIGHTING: WingLighting = WingLighting::Pixel;
+/// Sec. 3.2 and 5.2: every animated blade stepped every frame with the wind at each control
+/// point (stepping the hidden ones every other frame is ours).
+pub const HIDDEN_HALF_RATE: bool = false;
 /// Sec. 5.4: far-to-near sorting with blending (Eq. 10).
 pub const SORTING: Sorting = Sorting::Sort;
 
@@ -34,6 +37,7 @@ spring = 0.0
 damping = 0.0
 trim_wings = false
 wing_lighting = "pixel"
+hidden_half_rate = false
 sorting = "sort""#;
 
 #[cfg(test)]
@@ -52,11 +56,12 @@ mod tests {
             damping: DAMPING,
             trim_wings: TRIM_WINGS,
             wing_lighting: WING_LIGHTING,
+            hidden_half_rate: HIDDEN_HALF_RATE,
             sorting: SORTING,
             ..Params::default()
         };
         assert_eq!(
-            variant_differences("zhang", VARIANT, &cited, 8),
+            variant_differences("zhang", VARIANT, &cited, 9),
             Vec::<String>::new()
         );
     }

@@ -105,6 +105,11 @@ pub struct Params {
     /// Billboard wing lighting: `"vertex"` (ambient and sun per vertex, the picture of per
     /// pixel for less fill work; ours) or `"pixel"` (every light per pixel, the thesis's).
     pub wing_lighting: WingLighting,
+    /// Animated blades that are not drawn this frame (culled grids, grids two away, anchors
+    /// beyond the drawn step's) take one step every other frame with one wind sample (ours,
+    /// about a third of the meadow's CPU animation); `false` steps every animated blade every
+    /// frame with the wind at each control point, as the thesis does (Sec. 3.2, 5.2).
+    pub hidden_half_rate: bool,
 }
 
 impl Default for Params {
@@ -129,6 +134,7 @@ impl Default for Params {
             fade_radius: 0.25,
             trim_wings: true,
             wing_lighting: WingLighting::Vertex,
+            hidden_half_rate: true,
         }
     }
 }
