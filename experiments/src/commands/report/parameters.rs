@@ -61,11 +61,13 @@ pub(super) fn section(md: &mut String, configs: &BTreeMap<String, Config>) {
             })
             .unwrap_or_default();
         for (key, values) in keys {
-            let values = values
-                .iter()
-                .map(|v| v.trim_matches('"'))
-                .collect::<Vec<_>>()
-                .join(", ");
+            let mut values: Vec<&str> = values.iter().map(|v| v.trim_matches('"')).collect();
+            // Numbers in numeric order (9 before 17), anything else as text.
+            values.sort_by(|a, b| match (a.parse::<f64>(), b.parse::<f64>()) {
+                (Ok(x), Ok(y)) => x.total_cmp(&y),
+                _ => a.cmp(b),
+            });
+            let values = values.join(", ");
             let row = match docs.get(key) {
                 Some(d) => format!(
                     "| {technique} | `{key}` | {values} | {} | {} | {} | {} |",
@@ -119,6 +121,8 @@ mod tests {
             ),
             config("reference", "segments=5"),
             config("reference", "segments=5"),
+            config("bakay", "shells=9"),
+            config("bakay", "shells=17"),
             config("perbet", "retired=1"),
             config("perbet", "retired=2"),
         ]
@@ -129,7 +133,7 @@ mod tests {
         let v = varying(&configs);
         assert_eq!(
             v.keys().collect::<Vec<_>>(),
-            ["perbet", "zhang"],
+            ["bakay", "perbet", "zhang"],
             "reference varies nothing"
         );
         assert_eq!(
@@ -152,6 +156,10 @@ mod tests {
         );
         assert!(
             md.contains("(not a parameter of this build's `perbet`)"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| bakay | `shells` | 9, 17 | 16 | [1, 128] |"),
             "{md}"
         );
         let mut none = String::new();
