@@ -90,7 +90,7 @@ impl Growing {
             return Err(Error::Technique {
                 technique: "perbet".into(),
                 message: format!(
-                    "this frame's {} need {bytes} bytes but this adapter binds at most {max}; \
+                    "this frame's {} need {bytes} bytes but the device binds at most {max}; \
                      lower blades_per_patch (or the scene's grass density) or draw fewer patches \
                      in 3D (a smaller strip_range[0])",
                     self.label
