@@ -105,24 +105,20 @@ fn boulanger_btfs_survive_the_disk_cache_on_gl() -> anyhow::Result<()> {
     let gl = context(BackendChoice::Gl)?;
     let dir = tempfile_dir("btf-cache-gl")?;
     let overrides: toml::Table = format!("btf_cache = {:?}", dir.display().to_string()).parse()?;
-    let baked = render(
-        &gl,
-        "boulanger",
-        scene("meadow", 0.25)?,
-        FRAME,
-        TEST_SIZE,
-        &overrides,
-    )?;
+    let draw = || {
+        render(
+            &gl,
+            "boulanger",
+            scene("meadow", 0.25)?,
+            FRAME,
+            TEST_SIZE,
+            &overrides,
+        )
+    };
+    let baked = draw()?;
     let files = std::fs::read_dir(&dir)?.count();
     assert!(files >= 2, "the bake wrote {files} cache files");
-    let loaded = render(
-        &gl,
-        "boulanger",
-        scene("meadow", 0.25)?,
-        FRAME,
-        TEST_SIZE,
-        &overrides,
-    )?;
+    let loaded = draw()?;
     assert_eq!(
         baked.as_raw(),
         loaded.as_raw(),

@@ -96,16 +96,8 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
     let scenes = scenes::select(&args.scene)?;
     let size = Size::parse(&args.size)?;
     let scene_names: Vec<String> = scenes.iter().map(|s| s.name().to_owned()).collect();
-    let arguments = std::collections::BTreeMap::from([
-        (
-            "--technique".to_owned(),
-            entries
-                .iter()
-                .map(|e| e.info.id)
-                .collect::<Vec<_>>()
-                .join(","),
-        ),
-        ("--scene".to_owned(), scene_names.join(",")),
+    let mut arguments = super::out_dir::selection_arguments(&entries, &scene_names);
+    arguments.extend([
         ("--frame".to_owned(), args.frame.to_string()),
         ("--size".to_owned(), size.to_string()),
         ("--variant".to_owned(), args.variant.clone()),

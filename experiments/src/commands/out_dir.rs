@@ -229,6 +229,25 @@ fn differences(old: &Manifest, new: &Manifest) -> Vec<String> {
         .collect()
 }
 
+/// The manifest arguments every command shares: its techniques and scenes by name, in the
+/// order it runs them (each command adds its own).
+pub fn selection_arguments(
+    entries: &[&grassbench::technique::TechniqueEntry],
+    scene_names: &[String],
+) -> std::collections::BTreeMap<String, String> {
+    std::collections::BTreeMap::from([
+        (
+            "--technique".to_owned(),
+            entries
+                .iter()
+                .map(|e| e.info.id)
+                .collect::<Vec<_>>()
+                .join(","),
+        ),
+        ("--scene".to_owned(), scene_names.join(",")),
+    ])
+}
+
 #[cfg(test)]
 mod tests {
     use std::collections::BTreeMap;

@@ -110,16 +110,8 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     };
     let scene_names: Vec<String> = scenes.iter().map(|s| s.name().to_owned()).collect();
     let flag = |on: bool| on.to_string();
-    let arguments = std::collections::BTreeMap::from([
-        (
-            "--technique".to_owned(),
-            entries
-                .iter()
-                .map(|e| e.info.id)
-                .collect::<Vec<_>>()
-                .join(","),
-        ),
-        ("--scene".to_owned(), scene_names.join(",")),
+    let mut arguments = super::out_dir::selection_arguments(&entries, &scene_names);
+    arguments.extend([
         ("--frames".to_owned(), args.frames.to_string()),
         ("--warmup".to_owned(), args.warmup.to_string()),
         (
