@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 
 use grassbench::gpu::GpuEstimate;
 use grassbench::technique::{
-    FrameEncoder, GrassTechnique, InitContext, NoParams, Technique, TechniqueInfo,
-    TechniqueStats, Variants,
+    FrameEncoder, GrassTechnique, InitContext, NoParams, Technique, TechniqueInfo, TechniqueStats,
+    Variants,
 };
 use grassbench::{FrameInputs, GpuContext, Scene};
 use grassbench_cli::commands::{GpuArgs, SweepArgs, sweep_with};

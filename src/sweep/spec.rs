@@ -420,7 +420,10 @@ k = [1, 2]
         // 1 + 2 configurations, in the file's order, not the product of every key.
         assert_eq!(runs.len(), 3, "{params:?}");
         assert!(!params[0].contains('k'), "{params:?}");
-        assert!(params[1].contains("k = 1") && params[2].contains("k = 2"), "{params:?}");
+        assert!(
+            params[1].contains("k = 1") && params[2].contains("k = 2"),
+            "{params:?}"
+        );
         assert!(runs.iter().all(|r| r.params.get("variant").is_some()));
         assert_eq!(spec.count(1), 3.0);
         // Distinct configurations, distinct ids.

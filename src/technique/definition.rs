@@ -498,7 +498,10 @@ mod tests {
         };
         assert!(variant_differences("toy", "shells = 64", &cited, 1).is_empty());
         // A value other than the cited one.
-        assert_eq!(variant_differences("toy", "shells = 63", &cited, 1).len(), 2);
+        assert_eq!(
+            variant_differences("toy", "shells = 63", &cited, 1).len(),
+            2
+        );
         // A key that merely repeats the default is still a key the paper does not state.
         let extra = variant_differences("toy", "shells = 64\nbend = 0.5", &cited, 1);
         assert_eq!(extra, ["2 keys for 1 cited constants"]);

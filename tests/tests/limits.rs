@@ -19,8 +19,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use grassbench::gpu::{BackendChoice, GpuEstimate};
 use grassbench::runner::Harness;
 use grassbench::technique::{
-    FrameEncoder, GrassTechnique, InitContext, NoParams, Technique, TechniqueInfo,
-    TechniqueStats, Variants,
+    FrameEncoder, GrassTechnique, InitContext, NoParams, Technique, TechniqueInfo, TechniqueStats,
+    Variants,
 };
 use grassbench::{GpuContext, Scene, wgpu};
 use grassbench_tests::{TEST_SIZE, gpu, scene};
@@ -127,7 +127,10 @@ fn a_technique_needing_more_than_the_adapter_offers_is_refused_before_its_gpu_wo
     let offered = gpu.adapter.limits().max_bind_groups;
     assert_eq!(gpu.device.limits().max_bind_groups, offered);
     let harness = Harness::new(&gpu, scene, TEST_SIZE, false)?;
-    let err = harness.create(&entry, &none).err().expect("must be refused");
+    let err = harness
+        .create(&entry, &none)
+        .err()
+        .expect("must be refused");
     let text = err.to_string();
     assert!(
         matches!(err, grassbench::Error::Unsupported { .. }),

@@ -428,7 +428,12 @@ mod tests {
         let labels: Vec<&str> = configs.values().map(|c| c.label.as_str()).collect();
         assert_eq!(
             labels,
-            ["", "variant=paper", "variant=paper mipmaps=custom", "shells=9"]
+            [
+                "",
+                "variant=paper",
+                "variant=paper mipmaps=custom",
+                "shells=9"
+            ]
         );
         let points: Vec<&str> = configs.values().map(Config::operating_point).collect();
         assert_eq!(points, ["default", "paper", "paper", "default"]);
