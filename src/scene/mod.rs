@@ -197,8 +197,6 @@ impl Scene {
     /// The parameter overrides technique `id` runs with on this scene: the scene file's
     /// `[techniques.<id>]`, overlaid with `overrides` (from a sweep grid or the command line).
     pub fn technique_params(&self, id: &str, overrides: &toml::Table) -> toml::Table {
-        let mut params = self.technique_overrides(id);
-        params.extend(overrides.iter().map(|(k, v)| (k.clone(), v.clone())));
-        params
+        crate::technique::overlay(&self.technique_overrides(id), overrides)
     }
 }

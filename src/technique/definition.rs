@@ -112,7 +112,7 @@ pub const FINEST: &str = "finest";
 /// Name of the variant that switches levels of detail without transitions.
 pub const NO_TRANSITIONS: &str = "no_transitions";
 /// Name of the variant that sets a technique to its paper's own operating point, as far as the
-/// paper states it (each value cited in the technique's `params.rs`).
+/// paper states it (each value cited in the technique's `src/paper.rs`).
 pub const PAPER: &str = "paper";
 /// The parameter key that names a variant in any override table (`--param variant=paper`, a
 /// scene's `[techniques.<id>]`, a sweep's `[params.<id>] variant = ["default", "paper"]`): the

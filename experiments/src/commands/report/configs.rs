@@ -276,16 +276,10 @@ fn set_speedup_intervals(configs: &mut BTreeMap<String, Config>) {
 /// Sets `label` of every configuration to the parameters that differ between configurations
 /// of the same technique.
 fn shorten_params(configs: &mut BTreeMap<String, Config>) {
-    let split = |p: &str| -> BTreeMap<String, String> {
-        p.split(';')
-            .filter_map(|kv| kv.split_once('='))
-            .map(|(k, v)| (k.to_owned(), v.to_owned()))
-            .collect()
-    };
     let mut values: BTreeMap<(String, String), std::collections::BTreeSet<String>> =
         BTreeMap::new();
     for c in configs.values() {
-        for (k, v) in split(&c.params) {
+        for (k, v) in split_params(&c.params) {
             values
                 .entry((c.technique.clone(), k))
                 .or_default()
@@ -293,12 +287,12 @@ fn shorten_params(configs: &mut BTreeMap<String, Config>) {
         }
     }
     for c in configs.values_mut() {
-        let params = split(&c.params);
+        let params = split_params(&c.params);
         let variant = params.get(VARIANT_KEY).cloned();
         // What the row's operating point sets by itself: a row at `variant=paper` is labelled
         // `variant=paper` and only the keys it changes beyond the paper's settings, not every
         // key the paper's settings change.
-        let baseline = operating_point(&c.technique, variant.as_deref());
+        let baseline = params_at(&c.technique, variant.as_deref());
         let changed = params.iter().filter(|(k, v)| {
             *k != VARIANT_KEY
                 && values
@@ -318,7 +312,7 @@ fn shorten_params(configs: &mut BTreeMap<String, Config>) {
 /// The parameter values (`key` → value as `runs.csv` writes it) of `technique` at `variant`
 /// (its defaults for none or `default`); empty for a technique or variant this build does not
 /// know (a results folder from another revision), which then labels every varying key.
-fn operating_point(technique: &str, variant: Option<&str>) -> BTreeMap<String, String> {
+fn params_at(technique: &str, variant: Option<&str>) -> BTreeMap<String, String> {
     let Ok(entry) = crate::registry::find(technique) else {
         return BTreeMap::new();
     };
@@ -340,15 +334,22 @@ fn operating_point(technique: &str, variant: Option<&str>) -> BTreeMap<String, S
 impl Config {
     /// The operating point the row was measured at: the `variant` its parameters name, or
     /// `default`.
-    pub(super) fn operating_point(&self) -> &str {
-        self.params
-            .split(';')
-            .filter_map(|kv| kv.split_once('='))
-            .find(|(k, _)| *k == VARIANT_KEY)
-            .map_or(grassbench::technique::DEFAULT_VARIANT, |(_, v)| {
-                v.trim_matches('"')
+    pub(super) fn operating_point(&self) -> String {
+        split_params(&self.params)
+            .remove(VARIANT_KEY)
+            .map_or(grassbench::technique::DEFAULT_VARIANT.to_owned(), |v| {
+                v.trim_matches('"').to_owned()
             })
     }
+}
+
+/// A `key=value;...` parameter string (runs.csv's `params`) as a map.
+fn split_params(params: &str) -> BTreeMap<String, String> {
+    params
+        .split(';')
+        .filter_map(|kv| kv.split_once('='))
+        .map(|(k, v)| (k.to_owned(), v.to_owned()))
+        .collect()
 }
 
 /// The configuration's name in plots: technique, varying parameters, scene variant.
@@ -435,7 +436,7 @@ mod tests {
                 "shells=9"
             ]
         );
-        let points: Vec<&str> = configs.values().map(Config::operating_point).collect();
+        let points: Vec<String> = configs.values().map(Config::operating_point).collect();
         assert_eq!(points, ["default", "paper", "paper", "default"]);
     }
 }

@@ -184,7 +184,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         .transpose()?;
     let mut configs = load(dir)?;
     if let Some(want) = &args.variant {
-        configs.retain(|_, c| c.technique == REFERENCE || c.operating_point() == want.as_str());
+        configs.retain(|_, c| c.technique == REFERENCE || c.operating_point() == *want);
         if configs.values().all(|c| c.technique == REFERENCE) {
             anyhow::bail!(
                 "--variant {want}: no run in {} is at that operating point (the rows' `variant=` parameter names it; `default` is rows without one)",
