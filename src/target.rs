@@ -1,6 +1,12 @@
 //! The offscreen render target: colour (optionally 4x multisampled, then resolved) plus depth,
 //! and the read-back of the resolved colour into an [`image::RgbaImage`].
 //!
+//! A frame is an opaque picture. The target's alpha channel is not part of it: blending and
+//! alpha to coverage leave there whatever their alpha factors compute (zhang's Eq. 10 blends
+//! alpha like colour; alpha to coverage writes each fragment's alpha to its samples), so the
+//! read-back sets alpha to 255 everywhere, as the window shows the frame. Every metric reads
+//! the colour channels only.
+//!
 //! One target type serves the runner, the tests, the sweeps and the UI, so what the UI shows
 //! is what the sweeps measure.
 
@@ -279,7 +285,7 @@ pub struct Readback {
 }
 
 impl Readback {
-    /// Waits for the copy and returns the image.
+    /// Waits for the copy and returns the image, opaque (alpha 255).
     pub fn finish(self, gpu: &GpuContext) -> Result<image::RgbaImage> {
         let slice = self.buffer.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
@@ -300,6 +306,10 @@ impl Readback {
         let mut pixels = Vec::with_capacity(row * self.size.height as usize);
         for chunk in data.chunks(padded) {
             pixels.extend_from_slice(&chunk[..row]);
+        }
+        // The picture is opaque (see the module's documentation).
+        for alpha in pixels.iter_mut().skip(3).step_by(4) {
+            *alpha = u8::MAX;
         }
         drop(data);
         self.buffer.unmap();
