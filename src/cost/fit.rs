@@ -133,7 +133,7 @@ pub fn fit(samples: &[Sample], size: &str, clock: &str) -> Result<UnitCosts> {
             at_zero: scaled[j] == 0.0,
         })
         .collect();
-    let per_unit: [UnitCost; 9] = per_unit
+    let per_unit: [UnitCost; Term::ALL.len()] = per_unit
         .try_into()
         .map_err(|_| fail("internal: one cost per term".into()))?;
     let mut costs = UnitCosts::from_ms_per_unit(
@@ -249,10 +249,12 @@ mod tests {
 
     /// Lavapipe-like costs in ms per unit, in the order of `Term::ALL`: fixed 0.5 ms,
     /// vertex 20 ns, primitive 100 ns, fragments 5 / 8 / 6 ns, draw 5 µs, compute 20 ns,
-    /// upload 2 ms per MB.
-    const TRUE_MS: [f64; 9] = [0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0];
+    /// upload 2 ms per MB, texel load 3 ns, texture sample 10 ns.
+    const TRUE_MS: [f64; Term::ALL.len()] = [
+        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 1e-5,
+    ];
 
-    fn time(costs: &[f64; 9], w: &Work) -> f64 {
+    fn time(costs: &[f64; Term::ALL.len()], w: &Work) -> f64 {
         Term::ALL
             .iter()
             .map(|&t| costs[t.index()] * w.amount(t))
@@ -261,7 +263,7 @@ mod tests {
 
     /// The calibration's samples (every family at every size, at 640x360) timed with `costs`,
     /// each time multiplied by `1 + noise · u`, `u` uniform in [−1, 1).
-    fn synthetic(costs: &[f64; 9], noise: f64, seed: u64) -> Vec<Sample> {
+    fn synthetic(costs: &[f64; Term::ALL.len()], noise: f64, seed: u64) -> Vec<Sample> {
         let mut rng = Rng::new(seed);
         families()
             .iter()
@@ -290,8 +292,8 @@ mod tests {
             assert!((got / want - 1.0).abs() < 1e-9, "{t}: {got} against {want}");
         }
         assert!(c.fit.relative_rms_residual < 1e-12, "{:?}", c.fit);
-        assert_eq!(c.fit.samples, 36);
-        assert_eq!(c.fit.workloads.len(), 9);
+        assert_eq!(c.fit.samples, 44);
+        assert_eq!(c.fit.workloads.len(), 11);
         assert_eq!(c.size, "640x360");
     }
 
@@ -304,21 +306,21 @@ mod tests {
             let c = fit(&samples, "640x360", "synthetic").unwrap();
             for (t, (got, want)) in Term::ALL.iter().zip(fitted_ms(&c).iter().zip(TRUE_MS)) {
                 let se = c.get(*t).standard_error * t.ms_per_stored_unit();
-                // Within 5 standard errors: the largest error over 200 seeds (1800 costs)
+                // Within 5 standard errors: the largest error over 200 seeds (2200 costs)
                 // was 4.5 SE.
                 assert!(
                     (got - want).abs() < 5.0 * se,
                     "seed {seed}, {t}: {got} against {want}, SE {se}"
                 );
                 // And each cost is back within 20%: the worst over 200 seeds was 11.0% (the
-                // primitive's), 7.4-9.2% for the others.
+                // primitive's), 7.4-9.3% for the others.
                 assert!(
                     (got / want - 1.0).abs() < 0.20,
                     "seed {seed}, {t}: {got} against {want}"
                 );
             }
             // The residual reports the noise: its RMS is 5.8%, of which the fit absorbs
-            // some (9 costs from 36 samples); over 200 seeds it read 3.4% to 6.1%.
+            // some (11 costs from 44 samples); over 200 seeds it read 3.4% to 6.0%.
             let r = c.fit.relative_rms_residual;
             assert!((0.02..0.08).contains(&r), "seed {seed}: residual {r}");
         }
@@ -327,7 +329,8 @@ mod tests {
     #[test]
     fn a_held_out_mix_is_predicted_from_noisy_costs() {
         // A grass-like frame: 100k blades of 11 vertices (9 triangles), 2 M fragments of
-        // each kind, 20 draws, 500k compute invocations, 2 MB uploaded.
+        // each kind, 20 draws, 500k compute invocations, 2 MB uploaded, 8 M texel loads and
+        // 6 M texture samples.
         let mix = Work {
             vertex_invocations: 1.1e6,
             primitives: 9e5,
@@ -337,12 +340,14 @@ mod tests {
             draw_calls: 20.0,
             compute_invocations: 5e5,
             upload_bytes: 2e6,
+            texture_loads: 8e6,
+            texture_samples: 6e6,
         };
         let truth = time(&TRUE_MS, &mix);
         for seed in 1..=20 {
             let c = fit(&synthetic(&TRUE_MS, 0.10, seed), "640x360", "synthetic").unwrap();
             let p = c.predict(&mix);
-            // Within 10%: the worst over 200 seeds was 5.8%, against ±10% noise on each
+            // Within 10%: the worst over 200 seeds was 5.1%, against ±10% noise on each
             // sample (the costs' errors partly cancel in a mix).
             assert!(
                 (p.total_ms / truth - 1.0).abs() < 0.10,

@@ -78,14 +78,17 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions).
-pub const COUNTED_TERMS: [Term; 6] = [
+/// construction: draws, uploads, submissions). Texture fetches are the counted invocations
+/// times the fetches of the shaders' entry points.
+pub const COUNTED_TERMS: [Term; 8] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
     Term::FragmentAlphaTested,
     Term::FragmentBlended,
     Term::Compute,
+    Term::TextureLoad,
+    Term::TextureSample,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

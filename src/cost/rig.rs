@@ -9,6 +9,7 @@ use wgpu::util::DeviceExt as _;
 use super::workloads::{self, Shape, Workload, dispatch_grid};
 use super::{FragmentKind, Work};
 use crate::frame::FrameGlobals;
+use crate::shaders::PipelineCost;
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT, Size};
 use crate::technique::{PassKind, WorkCounter};
 use crate::{Error, GpuContext, RenderTarget, Result, shaders};
@@ -17,6 +18,9 @@ use crate::{Error, GpuContext, RenderTarget, Result, shaders};
 const SPRING_COUNT: u64 = 1 << 20;
 /// Bytes of the upload workload's destination buffer (its largest size).
 const UPLOAD_CAPACITY: u64 = 64 << 20;
+/// Side of the texture the `texture_*` workloads fetch from (mip-mapped down to 1 texel), the
+/// size of a technique's slice or blade texture.
+const FETCH_TEXTURE_SIDE: u32 = 512;
 
 /// The GPU resources of the workloads.
 pub(super) struct Rig<'g> {
@@ -27,6 +31,8 @@ pub(super) struct Rig<'g> {
     offscreen: crate::shaders::RenderPipeline,
     subpixel: crate::shaders::RenderPipeline,
     layers: [crate::shaders::RenderPipeline; 3],
+    /// Opaque layers fetching texels: loads, then samples.
+    fetch_layers: [crate::shaders::RenderPipeline; 2],
     springs: wgpu::ComputePipeline,
     upload: wgpu::Buffer,
     upload_data: Vec<u8>,
@@ -79,6 +85,22 @@ impl<'g> Rig<'g> {
                         },
                         count: None,
                     },
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 2,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                        count: None,
+                    },
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 3,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                        count: None,
+                    },
                 ],
             });
             let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -126,6 +148,26 @@ impl<'g> Rig<'g> {
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: springs_buffer.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(
+                            &fetch_texture(gpu).create_view(&Default::default()),
+                        ),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::Sampler(&device.create_sampler(
+                            &wgpu::SamplerDescriptor {
+                                label: Some("unit costs trilinear"),
+                                address_mode_u: wgpu::AddressMode::Repeat,
+                                address_mode_v: wgpu::AddressMode::Repeat,
+                                mag_filter: wgpu::FilterMode::Linear,
+                                min_filter: wgpu::FilterMode::Linear,
+                                mipmap_filter: wgpu::MipmapFilterMode::Linear,
+                                ..Default::default()
+                            },
+                        )),
                     },
                 ],
             });
@@ -190,6 +232,10 @@ impl<'g> Rig<'g> {
                         false,
                         Some(wgpu::BlendState::ALPHA_BLENDING),
                     ),
+                ],
+                fetch_layers: [
+                    pipeline("unit costs: loads", "vs_layer", "fs_loads", true, None),
+                    pipeline("unit costs: samples", "vs_layer", "fs_samples", true, None),
                 ],
                 springs: device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some("unit costs: compute"),
@@ -266,8 +312,8 @@ impl<'g> Rig<'g> {
         let counted = records
             .iter()
             .zip(kinds)
-            .fold(Work::default(), |a, (r, kind)| {
-                a + Work::from_counters(&r.work, kind)
+            .fold(Work::default(), |a, (r, cost)| {
+                a + Work::from_counters(&r.work, cost)
             });
         Ok((
             ms,
@@ -282,14 +328,14 @@ impl<'g> Rig<'g> {
     /// One submission: a render pass clearing the target with the draws of the render
     /// workloads, then a compute pass with the dispatches of the compute ones. Layers of
     /// successive workloads continue each other's depth order (their instance indices run
-    /// on), so every layer passes the depth test. Returns the fragment kind of each
+    /// on), so every layer passes the depth test. Returns the pipeline cost of each
     /// statistics query begun, in order.
     fn record(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         mix: &[Workload],
         mut counter: Option<&mut WorkCounter>,
-    ) -> Vec<FragmentKind> {
+    ) -> Vec<PipelineCost> {
         let mut kinds = Vec::new();
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -304,42 +350,27 @@ impl<'g> Rig<'g> {
             pass.set_bind_group(1, &self.group1, &[]);
             let mut layer_base = 0u32;
             for w in mix {
-                if matches!(
-                    w.shape,
-                    Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. }
-                ) {
+                let Some(pipeline) = self.pipeline(w) else {
                     continue;
-                }
+                };
                 let query = counter.as_deref_mut().and_then(|c| {
-                    c.next(w.name.to_owned(), PassKind::Render, Some(w.fragment_kind()))
+                    c.next(w.name.to_owned(), PassKind::Render, Some(pipeline.cost()))
                 });
                 if let Some((set, index)) = &query {
                     pass.begin_pipeline_statistics_query(set, *index);
-                    kinds.push(w.fragment_kind());
+                    kinds.push(pipeline.cost());
                 }
+                pass.set_pipeline(pipeline);
                 match w.shape {
-                    Shape::OffscreenStrips { instances } => {
-                        pass.set_pipeline(&self.offscreen);
+                    Shape::OffscreenStrips { instances } | Shape::SubpixelStrips { instances } => {
                         pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
                     }
-                    Shape::SubpixelStrips { instances } => {
-                        pass.set_pipeline(&self.subpixel);
-                        pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
-                    }
-                    Shape::Layers { kind, layers } => {
-                        pass.set_pipeline(
-                            &self.layers[match kind {
-                                FragmentKind::Opaque => 0,
-                                FragmentKind::AlphaTested => 1,
-                                FragmentKind::Blended => 2,
-                            }],
-                        );
+                    Shape::Layers { layers, .. } | Shape::FetchLayers { layers, .. } => {
                         let end = layer_base.saturating_add(layers);
                         pass.draw(0..workloads::LAYER_VERTICES, layer_base..end);
                         layer_base = end;
                     }
                     Shape::Draws { draws } => {
-                        pass.set_pipeline(&self.subpixel);
                         for i in 0..draws {
                             pass.draw(0..workloads::DRAW_VERTICES, i..i + 1);
                         }
@@ -372,7 +403,7 @@ impl<'g> Rig<'g> {
                     .and_then(|c| c.next(w.name.to_owned(), PassKind::Compute, None));
                 if let Some((set, index)) = &query {
                     pass.begin_pipeline_statistics_query(set, *index);
-                    kinds.push(FragmentKind::Opaque);
+                    kinds.push(PipelineCost::default());
                 }
                 let (x, y) = dispatch_grid(groups);
                 pass.dispatch_workgroups(x, y, 1);
@@ -383,6 +414,68 @@ impl<'g> Rig<'g> {
         }
         kinds
     }
+
+    /// The render pipeline drawing render workload `w` (`None` for the others).
+    fn pipeline(&self, w: &Workload) -> Option<&crate::shaders::RenderPipeline> {
+        match w.shape {
+            Shape::OffscreenStrips { .. } => Some(&self.offscreen),
+            Shape::SubpixelStrips { .. } | Shape::Draws { .. } => Some(&self.subpixel),
+            Shape::Layers { kind, .. } => Some(
+                &self.layers[match kind {
+                    FragmentKind::Opaque => 0,
+                    FragmentKind::AlphaTested => 1,
+                    FragmentKind::Blended => 2,
+                }],
+            ),
+            Shape::FetchLayers { sample, .. } => Some(&self.fetch_layers[usize::from(sample)]),
+            Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => None,
+        }
+    }
+}
+
+/// The `texture_*` workloads' texture: [`FETCH_TEXTURE_SIDE`]² RGBA8 with every mip level,
+/// hashed texels (no level is uniform, so no fetch can be folded away).
+fn fetch_texture(gpu: &GpuContext) -> wgpu::Texture {
+    let levels = FETCH_TEXTURE_SIDE.ilog2() + 1;
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("unit costs fetches"),
+        size: wgpu::Extent3d {
+            width: FETCH_TEXTURE_SIDE,
+            height: FETCH_TEXTURE_SIDE,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let mut rng = crate::rng::Rng::new(0x7e7e);
+    for level in 0..levels {
+        let side = (FETCH_TEXTURE_SIDE >> level).max(1);
+        let data: Vec<u8> = (0..side * side * 4).map(|_| rng.next_u64() as u8).collect();
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: level,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &data,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(side * 4),
+                rows_per_image: None,
+            },
+            wgpu::Extent3d {
+                width: side,
+                height: side,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    texture
 }
 
 /// The frame globals the lit fragments read: a camera 1.7 m above the field looking along

@@ -21,6 +21,11 @@ impl Work {
             draw_calls: r.draw_calls as f64 + f(r.background_draw_calls)?,
             compute_invocations: f(r.compute_invocations)?,
             upload_bytes: f(r.upload_bytes)?,
+            // Older records have no fetch counts: none priced.
+            texture_loads: f(r.texture_loads).unwrap_or(0.0)
+                + f(r.background_texture_loads).unwrap_or(0.0),
+            texture_samples: f(r.texture_samples).unwrap_or(0.0)
+                + f(r.background_texture_samples).unwrap_or(0.0),
         })
     }
 
@@ -58,6 +63,8 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_draw_ms = p.map(|p| p.draw_ms);
     run.model_compute_ms = p.map(|p| p.compute_ms);
     run.model_upload_ms = p.map(|p| p.upload_ms);
+    run.model_texture_load_ms = p.map(|p| p.texture_load_ms);
+    run.model_texture_sample_ms = p.map(|p| p.texture_sample_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

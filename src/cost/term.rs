@@ -30,11 +30,18 @@ pub enum Term {
     /// A megabyte (10⁶ bytes) written to a buffer with `queue.write_buffer` before the
     /// submission.
     Upload,
+    /// A texel read with `textureLoad` by a vertex or fragment shader invocation (on top of the
+    /// invocation's own cost; counted from the shader, `crate::shaders::TextureFetches`).
+    TextureLoad,
+    /// A filtered texture sample (`textureSample*`) by a vertex or fragment shader invocation:
+    /// on a software rasteriser the filtering (mip level, bilinear or trilinear taps) is code
+    /// run per sample, several times a plain fragment's cost.
+    TextureSample,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; 11] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -44,6 +51,8 @@ impl Term {
         Self::Draw,
         Self::Compute,
         Self::Upload,
+        Self::TextureLoad,
+        Self::TextureSample,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -58,6 +67,8 @@ impl Term {
             Self::Draw => "draw",
             Self::Compute => "compute",
             Self::Upload => "upload",
+            Self::TextureLoad => "texture_load",
+            Self::TextureSample => "texture_sample",
         }
     }
 
@@ -73,6 +84,8 @@ impl Term {
             Self::Draw => "draw call",
             Self::Compute => "compute invocation",
             Self::Upload => "MB",
+            Self::TextureLoad => "texel load",
+            Self::TextureSample => "texture sample",
         }
     }
 

@@ -4,7 +4,7 @@
 use super::{FitSummary, Term, Work};
 
 /// One fitted unit cost.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct UnitCost {
     /// The cost, in the unit its field in [`UnitCosts`] names.
     pub value: f64,
@@ -50,6 +50,12 @@ pub struct UnitCosts {
     pub compute_invocation_ns: UnitCost,
     /// Per megabyte (10⁶ bytes) uploaded with `queue.write_buffer`, ms.
     pub upload_ms_per_mb: UnitCost,
+    /// Per texel read with `textureLoad`, ns (0 in calibrations made before the term).
+    #[serde(default)]
+    pub texture_load_ns: UnitCost,
+    /// Per filtered texture sample, ns (0 in calibrations made before the term).
+    #[serde(default)]
+    pub texture_sample_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -77,6 +83,12 @@ pub struct Prediction {
     pub compute_ms: f64,
     /// Uploads, ms.
     pub upload_ms: f64,
+    /// Texel loads, ms.
+    #[serde(default)]
+    pub texture_load_ms: f64,
+    /// Texture samples, ms.
+    #[serde(default)]
+    pub texture_sample_ms: f64,
 }
 
 impl UnitCosts {
@@ -85,7 +97,7 @@ impl UnitCosts {
     pub fn from_ms_per_unit(
         size: String,
         clock: String,
-        per_unit_ms: [UnitCost; 9],
+        per_unit_ms: [UnitCost; Term::ALL.len()],
         fit: FitSummary,
     ) -> Self {
         let stored = |t: Term| {
@@ -110,6 +122,8 @@ impl UnitCosts {
             draw_ns: stored(Term::Draw),
             compute_invocation_ns: stored(Term::Compute),
             upload_ms_per_mb: stored(Term::Upload),
+            texture_load_ns: stored(Term::TextureLoad),
+            texture_sample_ns: stored(Term::TextureSample),
             fit,
         }
     }
@@ -126,6 +140,8 @@ impl UnitCosts {
             Term::Draw => self.draw_ns,
             Term::Compute => self.compute_invocation_ns,
             Term::Upload => self.upload_ms_per_mb,
+            Term::TextureLoad => self.texture_load_ns,
+            Term::TextureSample => self.texture_sample_ns,
         }
     }
 
@@ -148,6 +164,8 @@ impl UnitCosts {
             draw_ms: ms(Term::Draw),
             compute_ms: ms(Term::Compute),
             upload_ms: ms(Term::Upload),
+            texture_load_ms: ms(Term::TextureLoad),
+            texture_sample_ms: ms(Term::TextureSample),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -217,6 +235,8 @@ impl Prediction {
             Term::Draw => self.draw_ms,
             Term::Compute => self.compute_ms,
             Term::Upload => self.upload_ms,
+            Term::TextureLoad => self.texture_load_ms,
+            Term::TextureSample => self.texture_sample_ms,
         }
     }
 
@@ -245,8 +265,11 @@ mod tests {
     #[test]
     fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
         // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
-        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB.
-        let per_unit = [1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5].map(cost);
+        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns, sample 6 ns.
+        let per_unit = [
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6,
+        ]
+        .map(cost);
         let costs = UnitCosts::from_ms_per_unit(
             "640x360".into(),
             "test".into(),
@@ -265,14 +288,16 @@ mod tests {
             draw_calls: 10.0,
             compute_invocations: 2e5,
             upload_bytes: 4e6,
+            texture_loads: 5e5,
+            texture_samples: 2e5,
         };
         let p = costs.predict(&work);
-        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 ms.
-        let expected = [1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0];
+        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1.2 ms.
+        let expected = [1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.2];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 8.41).abs() < 1e-9);
+        assert!((p.total_ms - 10.11).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -290,7 +315,10 @@ mod tests {
 
     #[test]
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
-        let per_unit = [1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5].map(cost);
+        let per_unit = [
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6,
+        ]
+        .map(cost);
         let mut costs = UnitCosts::from_ms_per_unit(
             "640x360".into(),
             "test".into(),
@@ -300,16 +328,25 @@ mod tests {
         costs.host_other_cores = Some(0.5);
         let text = toml::to_string_pretty(&costs).unwrap();
         assert_eq!(toml::from_str::<UnitCosts>(&text).unwrap(), costs);
-        // Without the fields that may be absent (the host's load, `at_zero`).
-        let older: String = text
-            .lines()
-            .filter(|l| !l.starts_with("host_other_cores") && !l.starts_with("at_zero"))
-            .map(|l| format!("{l}\n"))
-            .collect();
+        // Without the fields that may be absent (the host's load, `at_zero`, the texture
+        // terms of calibrations made before them).
+        let mut older = String::new();
+        let mut skipping = false;
+        for l in text.lines() {
+            if l.starts_with('[') {
+                skipping = l.starts_with("[texture_");
+            }
+            if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
+                older.push_str(l);
+                older.push('\n');
+            }
+        }
         let read = toml::from_str::<UnitCosts>(&older).unwrap();
         assert_eq!(
             (read.host_other_cores, read.vertex_ns.at_zero),
             (None, false)
         );
+        assert_eq!(read.texture_sample_ns, UnitCost::default());
+        assert!(!older.contains("texture_sample_ns"), "{older}");
     }
 }

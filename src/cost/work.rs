@@ -30,16 +30,26 @@ pub struct Work {
     /// Bytes written with `GpuContext::write_buffer` (or `write_texture`) before the
     /// submission.
     pub upload_bytes: f64,
+    /// Texels read with `textureLoad` (vertex and fragment stages).
+    #[serde(default)]
+    pub texture_loads: f64,
+    /// Filtered texture samples (vertex and fragment stages).
+    #[serde(default)]
+    pub texture_samples: f64,
 }
 
 pub use crate::shaders::FragmentKind;
+use crate::shaders::PipelineCost;
 
 impl Work {
-    /// The work the GPU's pipeline-statistics counters measured over some passes, their
-    /// fragments all of `fragments`' kind. Draw calls and uploads are not among the counters:
-    /// they are 0 here, for the caller to set from the harness's counts.
-    pub fn from_counters(counted: &PassWork, fragments: FragmentKind) -> Self {
+    /// The work the GPU's pipeline-statistics counters measured over some passes, all drawn
+    /// with pipelines of `pipeline`'s cost: fragments of its kind, texture fetches its shaders'
+    /// per invocation times the invocations counted. Draw calls and uploads are not among the
+    /// counters: they are 0 here, for the caller to set from the harness's counts.
+    pub fn from_counters(counted: &PassWork, pipeline: PipelineCost) -> Self {
         let f = counted.fragment_invocations as f64;
+        let fragments = pipeline.fragments;
+        let fetches = pipeline.fetches(counted);
         Self {
             vertex_invocations: counted.vertex_invocations as f64,
             primitives: counted.clipper_primitives_out as f64,
@@ -61,6 +71,8 @@ impl Work {
             draw_calls: 0.0,
             compute_invocations: counted.compute_invocations as f64,
             upload_bytes: 0.0,
+            texture_loads: fetches.loads as f64,
+            texture_samples: fetches.samples as f64,
         }
     }
 
@@ -77,6 +89,8 @@ impl Work {
             Term::Draw => self.draw_calls,
             Term::Compute => self.compute_invocations,
             Term::Upload => self.upload_bytes / BYTES_PER_MB,
+            Term::TextureLoad => self.texture_loads,
+            Term::TextureSample => self.texture_samples,
         }
     }
 
@@ -91,6 +105,8 @@ impl Work {
             draw_calls: self.draw_calls * k,
             compute_invocations: self.compute_invocations * k,
             upload_bytes: self.upload_bytes * k,
+            texture_loads: self.texture_loads * k,
+            texture_samples: self.texture_samples * k,
         }
     }
 
@@ -115,6 +131,8 @@ impl std::ops::Add for Work {
             draw_calls: self.draw_calls + o.draw_calls,
             compute_invocations: self.compute_invocations + o.compute_invocations,
             upload_bytes: self.upload_bytes + o.upload_bytes,
+            texture_loads: self.texture_loads + o.texture_loads,
+            texture_samples: self.texture_samples + o.texture_samples,
         }
     }
 }
@@ -134,9 +152,14 @@ mod tests {
             draw_calls: 4.0,
             compute_invocations: 5.0,
             upload_bytes: 2.5e6,
+            texture_loads: 6.0,
+            texture_samples: 7.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
-        assert_eq!(amounts, [1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5]);
+        assert_eq!(
+            amounts,
+            [1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 7.0]
+        );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
         // frame: predict frame by frame).
         assert_eq!((w + w).amount(Term::Vertex), 22.0);
@@ -159,7 +182,8 @@ mod tests {
     }
 
     #[test]
-    fn counters_fill_the_fragments_of_their_pipelines_kind() {
+    fn counters_fill_the_fragments_of_their_pipelines_kind_and_its_fetches() {
+        use crate::shaders::TextureFetches;
         let counted = PassWork {
             vertex_invocations: 11,
             clipper_invocations: 9,
@@ -167,24 +191,41 @@ mod tests {
             fragment_invocations: 100,
             compute_invocations: 64,
         };
-        let w = Work::from_counters(&counted, FragmentKind::AlphaTested);
+        let kind = |fragments| PipelineCost {
+            fragments,
+            ..PipelineCost::default()
+        };
+        // 11 vertices fetching 8 texels each (a bilinear height and wind), 100 fragments
+        // sampling 3 textures and loading 1 texel.
+        let fetching = PipelineCost {
+            fragments: FragmentKind::AlphaTested,
+            vertex_fetches: TextureFetches {
+                loads: 8,
+                samples: 0,
+            },
+            fragment_fetches: TextureFetches {
+                loads: 1,
+                samples: 3,
+            },
+        };
         assert_eq!(
-            w,
+            Work::from_counters(&counted, fetching),
             Work {
                 vertex_invocations: 11.0,
                 primitives: 7.0,
                 fragments_alpha_tested: 100.0,
                 compute_invocations: 64.0,
+                texture_loads: 88.0 + 100.0,
+                texture_samples: 300.0,
                 ..Work::default()
             }
         );
         assert_eq!(
-            Work::from_counters(&counted, FragmentKind::Blended).fragments_blended,
+            Work::from_counters(&counted, kind(FragmentKind::Blended)).fragments_blended,
             100.0
         );
-        assert_eq!(
-            Work::from_counters(&counted, FragmentKind::Opaque).fragments_opaque,
-            100.0
-        );
+        let opaque = Work::from_counters(&counted, kind(FragmentKind::Opaque));
+        assert_eq!(opaque.fragments_opaque, 100.0);
+        assert_eq!((opaque.texture_loads, opaque.texture_samples), (0.0, 0.0));
     }
 }

@@ -12,6 +12,7 @@
 //! | `vertices` | instanced 11-vertex strips (a 5-segment blade) entirely off screen: the clipper rejects every triangle | vertex |
 //! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
+//! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² texture per fragment | texel load, texture sample |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
@@ -38,6 +39,12 @@ pub const DRAW_VERTICES: u32 = 3;
 pub const WORKGROUP_SIZE: u32 = 64;
 /// Most workgroups along one dimension of a dispatch (wgpu's default limit).
 pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
+/// `textureLoad`s of one fragment of the `texture_loads` workload: a load costs about a
+/// tenth of a fragment on lavapipe (1 ns against 8 ns, quiet host), so it takes 32 of them to
+/// stand out of the fragment's own cost by more than the noise.
+pub const LOADS_PER_FRAGMENT: u32 = 32;
+/// `textureSample`s of one fragment of the `texture_samples` workload.
+pub const SAMPLES_PER_FRAGMENT: u32 = 8;
 /// Size ratios of a workload's samples.
 pub const SIZE_STEPS: [u32; 4] = [1, 2, 4, 8];
 
@@ -60,6 +67,14 @@ pub enum Shape {
     Layers {
         /// How they are shaded.
         kind: FragmentKind,
+        /// Layers.
+        layers: u32,
+    },
+    /// `layers` opaque full-screen triangles whose fragments each take
+    /// [`SAMPLES_PER_FRAGMENT`] filtered samples (`sample`) or [`LOADS_PER_FRAGMENT`] loads.
+    FetchLayers {
+        /// Filtered samples (`textureSample`) or plain loads (`textureLoad`).
+        sample: bool,
         /// Layers.
         layers: u32,
     },
@@ -140,6 +155,23 @@ impl Workload {
                     ..none
                 }
             }
+            Shape::FetchLayers { sample, layers } => {
+                let fragments = pixels * f64::from(layers);
+                let per = |n: u32| fragments * f64::from(n);
+                Work {
+                    vertex_invocations: f64::from(layers) * f64::from(LAYER_VERTICES),
+                    primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
+                    fragments_opaque: fragments,
+                    draw_calls: 1.0,
+                    texture_loads: if sample { 0.0 } else { per(LOADS_PER_FRAGMENT) },
+                    texture_samples: if sample {
+                        per(SAMPLES_PER_FRAGMENT)
+                    } else {
+                        0.0
+                    },
+                    ..none
+                }
+            }
             Shape::Draws { draws } => Work {
                 vertex_invocations: f64::from(draws) * f64::from(DRAW_VERTICES),
                 primitives: f64::from(draws),
@@ -157,14 +189,6 @@ impl Workload {
                 upload_bytes: bytes as f64,
                 ..none
             },
-        }
-    }
-
-    /// The fragment kind of its render pipeline (`Opaque` for workloads without fragments).
-    pub fn fragment_kind(&self) -> FragmentKind {
-        match self.shape {
-            Shape::Layers { kind, .. } => kind,
-            _ => FragmentKind::Opaque,
         }
     }
 
@@ -197,6 +221,10 @@ impl Workload {
             },
             Shape::Layers { kind, layers } => Shape::Layers {
                 kind,
+                layers: layers.saturating_mul(k),
+            },
+            Shape::FetchLayers { sample, layers } => Shape::FetchLayers {
+                sample,
                 layers: layers.saturating_mul(k),
             },
             Shape::Draws { draws } => Shape::Draws {
@@ -255,6 +283,22 @@ pub fn families() -> Vec<Workload> {
             Term::FragmentBlended,
             FragmentKind::Blended,
         ),
+        Workload {
+            name: "texture_loads",
+            term: Term::TextureLoad,
+            shape: Shape::FetchLayers {
+                sample: false,
+                layers: 1,
+            },
+        },
+        Workload {
+            name: "texture_samples",
+            term: Term::TextureSample,
+            shape: Shape::FetchLayers {
+                sample: true,
+                layers: 1,
+            },
+        },
         Workload {
             name: "draws",
             term: Term::Draw,
@@ -335,6 +379,32 @@ mod tests {
                 ..Work::default()
             }
         );
+    }
+
+    #[test]
+    fn the_fetch_shaders_fetch_what_the_workloads_count() {
+        // The cost model counts a pipeline's fetches from its shader (`shaders::fetches`):
+        // the calibration's own shaders must count to the work known in advance.
+        let wgsl = crate::shaders::compose(include_str!("../shaders/unit_costs.wgsl"));
+        let fetches = crate::shaders::entry_fetches(&wgsl);
+        let of = |entry: &str| fetches.iter().find(|(e, _)| e == entry).map(|(_, f)| *f);
+        let count = |loads: u32, samples: u32| {
+            Some(crate::shaders::TextureFetches {
+                loads: u64::from(loads),
+                samples: u64::from(samples),
+            })
+        };
+        assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0));
+        assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT));
+        for entry in [
+            "vs_layer",
+            "vs_subpixel",
+            "vs_offscreen",
+            "fs_opaque",
+            "fs_blended",
+        ] {
+            assert_eq!(of(entry), count(0, 0), "{entry}");
+        }
     }
 
     #[test]

@@ -273,11 +273,25 @@ impl<'g> World<'g> {
         let fragments_of = |kind: crate::shaders::FragmentKind| -> Option<u64> {
             work.as_ref().map(|w| {
                 w.iter()
-                    .filter(|p| !p.label.starts_with("core.") && p.fragments == Some(kind))
+                    .filter(|p| {
+                        !p.label.starts_with("core.")
+                            && p.pipeline.map(|c| c.fragments) == Some(kind)
+                    })
                     .map(|p| p.work.fragment_invocations)
                     .sum()
             })
         };
+        // Texture fetches of the technique's (or the core's) segments: invocations times what
+        // one invocation of the segment's pipeline fetches.
+        let fetches_of = |core: bool| -> Option<crate::shaders::TextureFetches> {
+            work.as_ref().map(|w| {
+                w.iter()
+                    .filter(|p| p.label.starts_with("core.") == core)
+                    .filter_map(|p| Some(p.pipeline?.fetches(&p.work)))
+                    .fold(Default::default(), |a, b| a + b)
+            })
+        };
+        let (fetches, background_fetches) = (fetches_of(false), fetches_of(true));
         let pixels = f64::from(view.target.size.width * view.target.size.height);
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
@@ -315,6 +329,10 @@ impl<'g> World<'g> {
             background_primitives: background.map(|w| w.clipper_primitives_out),
             background_fragment_invocations: background.map(|w| w.fragment_invocations),
             background_draw_calls: Some(core_draws),
+            texture_loads: fetches.map(|f| f.loads),
+            texture_samples: fetches.map(|f| f.samples),
+            background_texture_loads: background_fetches.map(|f| f.loads),
+            background_texture_samples: background_fetches.map(|f| f.samples),
             upload_bytes: Some(upload_bytes),
             overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
             grass_pixels: None,

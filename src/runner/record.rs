@@ -104,6 +104,21 @@ pub struct FrameRecord {
     /// Draw calls of the core's background pass.
     #[serde(default)]
     pub background_draw_calls: Option<u64>,
+    /// Texels the technique's shaders read with `textureLoad`: each counted segment's vertex
+    /// and fragment invocations times the loads of one invocation of its pipeline's entry
+    /// points ([`crate::shaders::PipelineCost`], a static count).
+    #[serde(default)]
+    pub texture_loads: Option<u64>,
+    /// Filtered texture samples (`textureSample*`) the technique's shaders took, counted the
+    /// same way.
+    #[serde(default)]
+    pub texture_samples: Option<u64>,
+    /// Texels the core's background shaders read with `textureLoad`.
+    #[serde(default)]
+    pub background_texture_loads: Option<u64>,
+    /// Filtered texture samples the core's background shaders took.
+    #[serde(default)]
+    pub background_texture_samples: Option<u64>,
     /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
     /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
     /// [`crate::GpuContext::write_texture`].
@@ -282,6 +297,12 @@ pub struct RunSummary {
     /// Median fragment invocations of the core's background pass.
     #[serde(default)]
     pub background_fragment_invocations: Option<u64>,
+    /// Median texels read with `textureLoad` by the technique's shaders.
+    #[serde(default)]
+    pub texture_loads: Option<u64>,
+    /// Median filtered texture samples of the technique's shaders.
+    #[serde(default)]
+    pub texture_samples: Option<u64>,
     /// Median overdraw: the technique's fragment invocations per target pixel.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -323,6 +344,12 @@ pub struct RunSummary {
     /// The model's time for uploads, ms.
     #[serde(default)]
     pub model_upload_ms: Option<f64>,
+    /// The model's time for texels read with `textureLoad`, ms.
+    #[serde(default)]
+    pub model_texture_load_ms: Option<f64>,
+    /// The model's time for filtered texture samples, ms.
+    #[serde(default)]
+    pub model_texture_sample_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -422,6 +449,8 @@ impl RunSummary {
             upload_bytes: median_u64(&|r| r.upload_bytes),
             compute_invocations: median_u64(&|r| r.compute_invocations),
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
+            texture_loads: median_u64(&|r| r.texture_loads),
+            texture_samples: median_u64(&|r| r.texture_samples),
             overdraw: median(&|r| r.overdraw),
             fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
@@ -441,6 +470,8 @@ impl RunSummary {
             model_draw_ms: None,
             model_compute_ms: None,
             model_upload_ms: None,
+            model_texture_load_ms: None,
+            model_texture_sample_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -637,6 +668,10 @@ mod tests {
             background_primitives: None,
             background_fragment_invocations: None,
             background_draw_calls: None,
+            texture_loads: None,
+            texture_samples: None,
+            background_texture_loads: None,
+            background_texture_samples: None,
             upload_bytes: None,
             overdraw: None,
             grass_pixels: None,

@@ -3,7 +3,7 @@
 //! come from the grass alone.
 
 use super::props::{PropVertex, PropsGpu};
-use crate::shaders::{self, FragmentKind, RenderPipeline};
+use crate::shaders::{self, FragmentKind, PipelineCost, RenderPipeline};
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT};
 use crate::terrain::{GroundVertex, TerrainGpu};
 
@@ -73,7 +73,7 @@ impl Background {
                 multiview_mask: None,
                 cache: None,
             });
-            RenderPipeline::from_raw(raw, kind)
+            RenderPipeline::from_raw(raw, PipelineCost::of(kind, &module, vs, fs))
         };
         let (list, strip) = (
             wgpu::PrimitiveTopology::TriangleList,

@@ -5,10 +5,11 @@
 //! by it for the cost model.
 
 /// How a pipeline's fragments reach the target.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FragmentKind {
     /// Written as they are (depth-tested or not): no discard, no blending.
+    #[default]
     Opaque,
     /// The fragment shader can discard, or alpha to coverage is on: the alpha test of cut-out
     /// blades, leaves and slices.
@@ -59,6 +60,7 @@ impl FragmentKind {
 pub struct Module {
     pub(super) raw: wgpu::ShaderModule,
     pub(super) discarding: Vec<String>,
+    pub(super) fetches: Vec<(String, super::TextureFetches)>,
 }
 
 impl std::ops::Deref for Module {
@@ -73,6 +75,16 @@ impl Module {
     /// Whether fragment entry point `entry` can discard.
     pub fn discards(&self, entry: &str) -> bool {
         self.discarding.iter().any(|e| e == entry)
+    }
+
+    /// The texture fetches of one invocation of entry point `entry` (none for an unknown
+    /// entry: the device reports it when the pipeline is created).
+    pub fn fetches(&self, entry: &str) -> super::TextureFetches {
+        self.fetches
+            .iter()
+            .find(|(e, _)| e == entry)
+            .map(|(_, f)| *f)
+            .unwrap_or_default()
     }
 }
 

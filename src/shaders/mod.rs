@@ -5,13 +5,17 @@
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
 
+mod fetches;
 mod kind;
 mod layout;
 pub mod pipeline;
 
+pub use fetches::{TextureFetches, entry_fetches};
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
-pub use pipeline::{PipelineSpec, RenderPipeline, depth_less, depth_test, render_pipeline};
+pub use pipeline::{
+    PipelineCost, PipelineSpec, RenderPipeline, depth_less, depth_test, render_pipeline,
+};
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,
 /// `terrain_covering`, `wind_at`, `shade`, `shade_leaf` (and its parts `facing_viewer`,
@@ -30,15 +34,17 @@ pub fn compose(source: &str) -> String {
 
 /// Creates a shader module from a technique's WGSL (composed with the prelude), noting which
 /// of its fragment entry points can `discard` (what makes a pipeline's fragments alpha-tested,
-/// [`FragmentKind`]).
+/// [`FragmentKind`]) and what each entry point fetches from textures ([`TextureFetches`]).
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
     let composed = compose(source);
     let discarding = discarding_fragment_entries(&composed);
+    let fetches = entry_fetches(&composed);
     Module {
         raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
             source: wgpu::ShaderSource::Wgsl(composed.into()),
         }),
         discarding,
+        fetches,
     }
 }

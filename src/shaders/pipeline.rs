@@ -3,7 +3,7 @@
 //! gives the common case (a triangle strip without culling, depth test `Less` with writes, the
 //! harness's colour target and sample count); techniques change the fields that differ.
 
-use super::FragmentKind;
+use super::{FragmentKind, TextureFetches};
 use crate::target;
 
 /// What differs between the technique's render pipelines.
@@ -30,24 +30,72 @@ pub struct PipelineSpec<'a> {
     pub targets: &'a [Option<wgpu::ColorTargetState>],
 }
 
-/// A render pipeline and the kind of its fragments: what the frame encoder's passes take, so
-/// the fragments of every draw are counted by kind ([`crate::technique::work`]).
+/// What one invocation of each stage of a render pipeline does beyond what the pipeline
+/// statistics count: how its fragments reach the target, and the texture fetches of its vertex
+/// and fragment entry points. Read off the pipeline and its shader, never declared by a
+/// technique; the work counters ([`crate::technique::work`]) keep a pipeline's invocations
+/// apart from those of pipelines that cost otherwise.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+pub struct PipelineCost {
+    /// How its fragments reach the target.
+    pub fragments: FragmentKind,
+    /// Texture fetches of one vertex shader invocation.
+    pub vertex_fetches: TextureFetches,
+    /// Texture fetches of one fragment shader invocation.
+    pub fragment_fetches: TextureFetches,
+}
+
+impl PipelineCost {
+    /// The cost of a pipeline whose fragments are of `fragments`' kind, with the fetches of
+    /// `module`'s entry points `vertex` and `fragment`.
+    pub fn of(
+        fragments: FragmentKind,
+        module: &super::Module,
+        vertex: &str,
+        fragment: &str,
+    ) -> Self {
+        Self {
+            fragments,
+            vertex_fetches: module.fetches(vertex),
+            fragment_fetches: module.fetches(fragment),
+        }
+    }
+
+    /// The texture fetches of `work` done with pipelines of this cost: each stage's
+    /// invocations times what one invocation fetches.
+    pub fn fetches(&self, work: &crate::technique::work::PassWork) -> TextureFetches {
+        let times = |f: TextureFetches, n: u64| TextureFetches {
+            loads: f.loads * n,
+            samples: f.samples * n,
+        };
+        times(self.vertex_fetches, work.vertex_invocations)
+            + times(self.fragment_fetches, work.fragment_invocations)
+    }
+}
+
+/// A render pipeline and what its invocations cost: what the frame encoder's passes take, so
+/// the work of every draw is counted by [`PipelineCost`] ([`crate::technique::work`]).
 #[derive(Debug)]
 pub struct RenderPipeline {
     raw: wgpu::RenderPipeline,
-    kind: FragmentKind,
+    cost: PipelineCost,
 }
 
 impl RenderPipeline {
-    /// A pipeline created elsewhere, with the kind of its fragments (the core's background and
-    /// calibration pipelines, whose descriptors are not [`PipelineSpec`]s).
-    pub fn from_raw(raw: wgpu::RenderPipeline, kind: FragmentKind) -> Self {
-        Self { raw, kind }
+    /// A pipeline created elsewhere, with its cost (the core's background pipelines, whose
+    /// descriptors are not [`PipelineSpec`]s).
+    pub fn from_raw(raw: wgpu::RenderPipeline, cost: PipelineCost) -> Self {
+        Self { raw, cost }
     }
 
     /// How its fragments reach the target.
     pub fn kind(&self) -> FragmentKind {
-        self.kind
+        self.cost.fragments
+    }
+
+    /// What its invocations cost.
+    pub fn cost(&self) -> PipelineCost {
+        self.cost
     }
 }
 
@@ -88,7 +136,10 @@ pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> Render
         multiview_mask: None,
         cache: None,
     });
-    RenderPipeline { raw, kind }
+    RenderPipeline {
+        raw,
+        cost: PipelineCost::of(kind, spec.module, spec.vertex, spec.fragment),
+    }
 }
 
 /// A depth test with `compare` against `format`, writing depth when `write`.

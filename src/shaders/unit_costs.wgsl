@@ -10,6 +10,9 @@ struct Params {
 
 @group(1) @binding(0) var<uniform> params: Params;
 @group(1) @binding(1) var<storage, read_write> springs: array<vec4<f32>>;
+// The texture workloads' mip-mapped 512x512 texture (hashed texels) and a trilinear sampler.
+@group(1) @binding(2) var fetched: texture_2d<f32>;
+@group(1) @binding(3) var trilinear: sampler;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -117,6 +120,41 @@ fn fs_alpha_tested(in: VsOut) -> @location(0) vec4<f32> {
 @fragment
 fn fs_blended(in: VsOut) -> @location(0) vec4<f32> {
     return vec4(lit(in), 0.5);
+}
+
+// Texel loads: 32 `textureLoad`s per fragment (LOADS_PER_FRAGMENT, each its own call site: the
+// cost model counts fetches per call site), at the pixel's texel and neighbours of level 0,
+// added to the lit colour so none is dead code.
+fn load_at(p: vec2<i32>, k: i32) -> vec4<f32> {
+    return textureLoad(fetched, (p + vec2(k * 3, k * 5)) & vec2(511), 0);
+}
+
+// 8 loads from `p`'s texel on.
+fn load8(p: vec2<i32>, k: i32) -> vec4<f32> {
+    return load_at(p, k) + load_at(p, k + 1) + load_at(p, k + 2) + load_at(p, k + 3)
+        + load_at(p, k + 4) + load_at(p, k + 5) + load_at(p, k + 6) + load_at(p, k + 7);
+}
+
+@fragment
+fn fs_loads(in: VsOut) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(in.position.xy);
+    let t = load8(p, 0) + load8(p, 8) + load8(p, 16) + load8(p, 24);
+    return vec4(lit(in) + 0.002 * t.rgb, 1.0);
+}
+
+// Filtered samples: 8 trilinear `textureSample`s per fragment (SAMPLES_PER_FRAGMENT), the texture minified 2.5:1 at
+// any target size (2.5 x 512 texels over the screen's width, the layer's world x spanning
+// 20 m: between mip levels 1 and 2, as far grass textures are), each at its own offset.
+fn sample_at(uv: vec2<f32>, k: f32) -> vec4<f32> {
+    return textureSample(fetched, trilinear, uv + vec2(k * 0.013, k * 0.029));
+}
+
+@fragment
+fn fs_samples(in: VsOut) -> @location(0) vec4<f32> {
+    let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
+    let t = sample_at(uv, 0.0) + sample_at(uv, 1.0) + sample_at(uv, 2.0) + sample_at(uv, 3.0)
+        + sample_at(uv, 4.0) + sample_at(uv, 5.0) + sample_at(uv, 6.0) + sample_at(uv, 7.0);
+    return vec4(lit(in) + 0.01 * t.rgb, 1.0);
 }
 
 // Compute: one spring step per invocation towards a hashed rest state, read-modify-write of

@@ -56,19 +56,19 @@ impl<'p> RenderPass<'p> {
 
     /// See [`wgpu::RenderPass::set_pipeline`]. Only pipelines made by
     /// [`crate::shaders::render_pipeline`] (or classified with
-    /// [`RenderPipeline::from_raw`]) can be set: where their fragment kind differs from the
-    /// running segment's, the statistics query is ended and the next begun, so fragment work
-    /// is counted by kind.
+    /// [`RenderPipeline::from_raw`]) can be set: where their cost differs from the running
+    /// segment's (another fragment kind, other texture fetches), the statistics query is ended
+    /// and the next begun, so work is counted by [`crate::shaders::PipelineCost`].
     pub fn set_pipeline(&mut self, pipeline: &RenderPipeline) {
         self.pass.set_pipeline(pipeline);
-        let kind = pipeline.kind();
+        let cost = pipeline.cost();
         if let Some((work, label)) = self.work.as_mut() {
-            match work.current_fragments() {
-                None => work.set_current_fragments(kind),
-                Some(current) if current == kind || !work.has_room() => {}
+            match work.current_pipeline() {
+                None => work.set_current_pipeline(cost),
+                Some(current) if current == cost || !work.has_room() => {}
                 Some(_) => {
                     if let Some((queries, index)) =
-                        work.next(label.clone(), super::PassKind::Render, Some(kind))
+                        work.next(label.clone(), super::PassKind::Render, Some(cost))
                     {
                         self.pass.end_pipeline_statistics_query();
                         self.pass.begin_pipeline_statistics_query(&queries, index);

@@ -4,19 +4,20 @@
 //! nor report them about itself: the pass wrappers begin the query when the pass opens and end
 //! it when the pass is dropped.
 //!
-//! Within a render pass, the counting follows the pipelines: whenever a pipeline whose fragments
-//! are of another [`FragmentKind`] (opaque, alpha-tested, blended) is set, the wrapper ends the
-//! running query and begins the next, so each query — a *segment* — holds one kind's work and
-//! fragment invocations are split by kind for the cost model. (Past [`MAX_COUNTED_PASSES`]
-//! segments in a frame, the last segment goes on counting whatever is drawn, under its own
-//! kind.)
+//! Within a render pass, the counting follows the pipelines: whenever a pipeline of another
+//! [`PipelineCost`] is set (its fragments of another [`crate::shaders::FragmentKind`]:
+//! opaque, alpha-tested, blended; or its shaders fetching other numbers of texels), the wrapper
+//! ends the running query and begins the next, so each query — a *segment* — holds the work of
+//! pipelines that cost alike, and the cost model can price fragments by kind and texture
+//! fetches by invocation. (Past [`MAX_COUNTED_PASSES`] segments in a frame, the last segment
+//! goes on counting whatever is drawn, under its own cost.)
 //!
 //! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
 //! recorded and the figures are `None`, never zeros.
 
 use super::PassKind;
 use crate::GpuContext;
-use crate::shaders::FragmentKind;
+use crate::shaders::PipelineCost;
 
 /// What the statistics queries count, in the order their results are laid out (wgpu writes
 /// one u64 per set flag, lowest bit first).
@@ -79,16 +80,16 @@ impl std::iter::Sum for PassWork {
 }
 
 /// The work of one segment of a pass of the last frame (a whole pass, or the part of a
-/// render pass drawn with pipelines of one fragment kind).
+/// render pass drawn with pipelines of one [`PipelineCost`]).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PassWorkRecord {
     /// Pass label (prefixed, like [`super::PassTime::label`]).
     pub label: String,
     /// Render or compute.
     pub kind: PassKind,
-    /// The fragment kind of the pipelines drawn in the segment (`None` for compute passes and
-    /// for a render pass that set no pipeline).
-    pub fragments: Option<FragmentKind>,
+    /// The cost of the pipelines drawn in the segment (`None` for compute passes and for a
+    /// render pass that set no pipeline).
+    pub pipeline: Option<PipelineCost>,
     /// What it did.
     pub work: PassWork,
 }
@@ -101,8 +102,8 @@ pub struct WorkCounter {
     pub(super) passes: Vec<Segment>,
 }
 
-/// A query of the frame: its pass label, pass kind and fragment kind.
-pub(super) type Segment = (String, PassKind, Option<FragmentKind>);
+/// A query of the frame: its pass label, pass kind and pipeline cost.
+pub(super) type Segment = (String, PassKind, Option<PipelineCost>);
 
 impl WorkCounter {
     /// A counter, or `None` when the device has no pipeline-statistics queries.
@@ -143,13 +144,13 @@ impl WorkCounter {
         &mut self,
         label: String,
         kind: PassKind,
-        fragments: Option<FragmentKind>,
+        pipeline: Option<PipelineCost>,
     ) -> Option<(wgpu::QuerySet, u32)> {
         let index = self.passes.len() as u32;
         if index >= MAX_COUNTED_PASSES {
             return None;
         }
-        self.passes.push((label, kind, fragments));
+        self.passes.push((label, kind, pipeline));
         Some((self.queries.clone(), index))
     }
 
@@ -158,15 +159,15 @@ impl WorkCounter {
         (self.passes.len() as u32) < MAX_COUNTED_PASSES
     }
 
-    /// The fragment kind of the segment being counted (`None` before its first pipeline).
-    pub(super) fn current_fragments(&self) -> Option<FragmentKind> {
+    /// The pipeline cost of the segment being counted (`None` before its first pipeline).
+    pub(super) fn current_pipeline(&self) -> Option<PipelineCost> {
         self.passes.last().and_then(|s| s.2)
     }
 
-    /// Gives the segment being counted its fragment kind (its first pipeline's).
-    pub(super) fn set_current_fragments(&mut self, kind: FragmentKind) {
+    /// Gives the segment being counted its pipeline cost (its first pipeline's).
+    pub(super) fn set_current_pipeline(&mut self, cost: PipelineCost) {
         if let Some(s) = self.passes.last_mut() {
-            s.2 = Some(kind);
+            s.2 = Some(cost);
         }
     }
 
@@ -205,10 +206,10 @@ impl WorkCounter {
             self.passes
                 .iter()
                 .zip(counters.chunks_exact(COUNTERS as usize))
-                .map(|((label, kind, fragments), c)| PassWorkRecord {
+                .map(|((label, kind, pipeline), c)| PassWorkRecord {
                     label: label.clone(),
                     kind: *kind,
-                    fragments: *fragments,
+                    pipeline: *pipeline,
                     work: PassWork::from_counters(c),
                 })
                 .collect()

@@ -118,7 +118,12 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             // seams between the clipped pieces shade twice: 1.25% more than the pixels at
             // 640x360 (2 columns of blocks per layer). No fragment from the sub-pixel or
             // off-screen triangles.
-            Term::FragmentOpaque | Term::FragmentAlphaTested | Term::FragmentBlended => {
+            // Texture fetches are the fragments times the shader's fetches: the same.
+            Term::FragmentOpaque
+            | Term::FragmentAlphaTested
+            | Term::FragmentBlended
+            | Term::TextureLoad
+            | Term::TextureSample => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
             }
             // Vertex and compute invocations exactly.
@@ -128,7 +133,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 }
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
-/// fragment kind, 300 draws, 1M compute invocations, 8 MiB uploaded.
+/// fragment kind, a layer loading 32 texels a fragment and one sampling 8 times, 300 draws, 1M
+/// compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
     let w = |name, term, shape| Workload { name, term, shape };
     let layers = |kind| Shape::Layers { kind, layers: 3 };
@@ -153,6 +159,22 @@ fn held_out_mix() -> Vec<Workload> {
             "blended",
             Term::FragmentBlended,
             layers(FragmentKind::Blended),
+        ),
+        w(
+            "loads",
+            Term::TextureLoad,
+            Shape::FetchLayers {
+                sample: false,
+                layers: 1,
+            },
+        ),
+        w(
+            "samples",
+            Term::TextureSample,
+            Shape::FetchLayers {
+                sample: true,
+                layers: 1,
+            },
         ),
         w("draws", Term::Draw, Shape::Draws { draws: 300 }),
         w("compute", Term::Compute, Shape::Compute { groups: 16_384 }),

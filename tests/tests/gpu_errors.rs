@@ -66,7 +66,7 @@ impl Technique for BadDraw {
         Ok(BadDraw {
             pipeline: Some(grassbench::shaders::RenderPipeline::from_raw(
                 pipeline,
-                grassbench::shaders::FragmentKind::Opaque,
+                grassbench::shaders::PipelineCost::default(),
             )),
         })
     }

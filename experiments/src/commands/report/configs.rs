@@ -65,7 +65,7 @@ pub(super) struct Config {
     pub(super) work: Option<grassbench::cost::Work>,
     /// The cost model's prediction of the last finished repetition, ms per term in the order
     /// of [`grassbench::cost::Term::ALL`] (empty without unit costs or counted work).
-    pub(super) model_terms: Option<[f64; 9]>,
+    pub(super) model_terms: Option<[f64; grassbench::cost::Term::ALL.len()]>,
     /// Measured over predicted GPU time, per repetition.
     pub(super) model_ratio: Vec<f64>,
     /// The last frame of repetition 0, relative to the results folder.
@@ -159,6 +159,9 @@ impl Config {
                 r.model_draw_ms?,
                 r.model_compute_ms?,
                 r.model_upload_ms?,
+                // Runs modelled before the fetch terms priced none.
+                r.model_texture_load_ms.unwrap_or(0.0),
+                r.model_texture_sample_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

@@ -342,9 +342,12 @@ pub(super) fn scaling_plot(
     Ok(())
 }
 
+/// Segments of a frame's split: the three CPU stages and the cost model's terms.
+pub(super) const SPLIT_LEN: usize = 3 + grassbench::cost::Term::ALL.len();
+
 /// Names of the stacked segments of [`time_split_plot`]: the CPU stages, then the cost
 /// model's terms in the order of [`grassbench::cost::Term::ALL`].
-pub(super) const SPLIT_SEGMENTS: [&str; 12] = [
+pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "CPU update",
     "CPU upload",
     "CPU encode",
@@ -357,13 +360,15 @@ pub(super) const SPLIT_SEGMENTS: [&str; 12] = [
     "GPU draws",
     "GPU compute",
     "GPU uploads",
+    "GPU texel loads",
+    "GPU texture samples",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
 /// cost model's GPU terms (`None` without a model).
-pub(super) fn time_split(c: &Config) -> Option<[f64; 12]> {
+pub(super) fn time_split(c: &Config) -> Option<[f64; SPLIT_LEN]> {
     let terms = c.model_terms?;
-    let mut out = [0.0; 12];
+    let mut out = [0.0; SPLIT_LEN];
     out[0] = median(&c.update).unwrap_or(0.0);
     out[1] = median(&c.upload).unwrap_or(0.0);
     out[2] = median(&c.encode).unwrap_or(0.0);
@@ -377,7 +382,7 @@ pub(super) struct SplitRow<'a> {
     /// The configuration.
     pub(super) config: &'a Config,
     /// Its CPU stages and the model's GPU terms, ms ([`time_split`]).
-    pub(super) split: [f64; 12],
+    pub(super) split: [f64; SPLIT_LEN],
     /// The model's predicted GPU time, ms.
     pub(super) model_ms: f64,
 }
@@ -419,14 +424,14 @@ pub(super) fn split_rows<'a>(configs: &[&'a Config]) -> Vec<SplitRow<'a>> {
 /// measured frame time (CPU stages + measured GPU wall time): the gap between the bar's top
 /// and the tick is what the model does not explain.
 pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Result<()> {
-    let rows: Vec<(&Config, [f64; 12])> = configs
+    let rows: Vec<(&Config, [f64; SPLIT_LEN])> = configs
         .iter()
         .filter_map(|c| Some((*c, time_split(c)?)))
         .collect();
     let width = (220 + 70 * rows.len() as u32).max(700);
     let root = SVGBackend::new(path, (width, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
-    let measured = |c: &Config, split: &[f64; 12]| {
+    let measured = |c: &Config, split: &[f64; SPLIT_LEN]| {
         split[..3].iter().sum::<f64>() + median(&c.gpu_wall).unwrap_or(0.0)
     };
     let max = rows
@@ -453,11 +458,13 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
         .draw()
         .map_err(plot_err)?;
     let palette = |k: usize| -> RGBColor {
-        const EXTRA: [RGBColor; 4] = [
+        const EXTRA: [RGBColor; 6] = [
             RGBColor(188, 189, 34),
             RGBColor(23, 190, 207),
             RGBColor(90, 90, 90),
             RGBColor(200, 200, 200),
+            RGBColor(255, 187, 120),
+            RGBColor(152, 223, 138),
         ];
         if k < COLORS.len() {
             COLORS[k]
