@@ -26,8 +26,14 @@ pub struct Entry {
     pub morph: f32,
     /// Strips: 1 standing, 0 sunk into the ground.
     pub grow: f32,
-    /// 3D blades in a morph: index of the same patch's strips entry.
+    /// 3D blades in a morph: index of the same patch's strips entry. 2D: the patches the
+    /// surface spans, along x (low 16 bits) and z (high 16 bits) ([`extent`]).
     pub link: u32,
+}
+
+/// [`Entry::link`] of a 2D entry spanning `x` by `z` patches (each below 65 536).
+pub fn extent(x: u32, z: u32) -> u32 {
+    (x & 0xffff) | (z << 16)
 }
 
 /// How a patch is drawn this frame.
@@ -137,7 +143,11 @@ impl Lists {
             });
         }
         if let Some(opacity) = r.flat {
-            self.flat.push(Entry { opacity, ..base });
+            self.flat.push(Entry {
+                opacity,
+                link: extent(1, 1),
+                ..base
+            });
         }
     }
 

@@ -103,6 +103,7 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod blocks;
 pub mod frame;
 pub mod gpu;
 pub mod lod;
@@ -127,6 +128,7 @@ use grassbench::{
 pub use gpu::SHADER;
 pub use params::{Density, Params, Quality};
 
+use blocks::{Block, Blocks, Cover};
 use frame::{Entry, FLAG_ORIENTATION, FLAG_REVERSED, Lists};
 use gpu::{Draws, Gpu, ParamsUniform, Statics};
 use lod::{LodGrid, Ranges};
@@ -151,6 +153,14 @@ pub struct Perbet {
     /// Visible patches by distance, far first (reused every frame).
     order: Vec<(f32, usize)>,
     lists: Lists,
+    /// The quadtree merging settled 2D patches into blocks ([`blocks`]).
+    blocks: Blocks,
+    /// What each patch needs from the 2D surface this frame (reused every frame).
+    cover: Vec<Cover>,
+    /// This frame's 2D blocks (reused every frame).
+    block_list: Vec<Block>,
+    /// Patches drawn at the 2D level this frame (in blocks or in a transition).
+    patches_flat: u64,
     entries: Vec<Entry>,
     blade_receivers: Vec<[f32; 4]>,
     edge_receivers: Vec<[f32; 4]>,
@@ -220,18 +230,6 @@ impl Technique for Perbet {
             ..
         } = precompute;
         let sizes = Sizes::new(scene, &params, layout.strip_height);
-        let gpu = Gpu::new(
-            ctx,
-            &Statics {
-                blades: &arrays.blades,
-                tilts: &arrays.tilts,
-                painted: &arrays.painted,
-                postures: &arrays.postures,
-                strip_layers: &strip_layers,
-                flat_layers: &flat_layers,
-            },
-            sizes.capacity,
-        );
         let reach =
             params.strip_margin * params.patch_size + grass.height[1] * grass.lean.sin().abs();
         let tiling = Tiling::new(
@@ -241,6 +239,21 @@ impl Technique for Perbet {
             scene.config.seed,
             reach,
             layout.strip_height,
+        );
+        let mut uniform = uniform;
+        uniform.tiling = [tiling.cols, tiling.rows, 0, 0];
+        let gpu = Gpu::new(
+            ctx,
+            &Statics {
+                blades: &arrays.blades,
+                tilts: &arrays.tilts,
+                painted: &arrays.painted,
+                postures: &arrays.postures,
+                strip_layers: &strip_layers,
+                flat_layers: &flat_layers,
+                variants: &tiling.variants,
+            },
+            sizes.capacity,
         );
         let [from, to] = params.strips_from_to();
         let lod = LodGrid::new(
@@ -254,6 +267,7 @@ impl Technique for Perbet {
             params.transition_steps,
         );
         let n_patches = tiling.len();
+        let blocks = Blocks::new(tiling.cols, tiling.rows);
         let growing = population::growing(&tiling, &patches, &scene.terrain);
         Ok(Self {
             draws: Draws {
@@ -274,6 +288,10 @@ impl Technique for Perbet {
             visible: vec![false; n_patches],
             order: Vec::new(),
             lists: Lists::default(),
+            blocks,
+            cover: vec![Cover::Empty; n_patches],
+            block_list: Vec::new(),
+            patches_flat: 0,
             entries: Vec::new(),
             blade_receivers: Vec::new(),
             edge_receivers: Vec::new(),
@@ -349,9 +367,9 @@ impl GrassTechnique for Perbet {
             *v = frustum.intersects_aabb(b);
         }
         let visible = &self.visible;
-        self.lod.update(self.tiling.patch_of(eye), |i| {
-            visible.get(i).copied().unwrap_or(false)
-        });
+        let camera_patch = self.tiling.patch_of(eye);
+        self.lod
+            .update(camera_patch, |i| visible.get(i).copied().unwrap_or(false));
 
         // Far to near (Sec. 2.2); the list's memory is kept from frame to frame.
         let mut order = std::mem::take(&mut self.order);
@@ -366,6 +384,8 @@ impl GrassTechnique for Perbet {
         self.transitions = 0;
         self.lists.clear();
         self.blades = FrameBlades::default();
+        self.cover.fill(Cover::Empty);
+        self.patches_flat = 0;
         for &(_, i) in &order {
             let growing = u64::from(self.growing.get(i).copied().unwrap_or(0));
             if growing == 0 {
@@ -378,6 +398,7 @@ impl GrassTechnique for Perbet {
             let representation =
                 frame::representation(state, self.params.transition_steps, self.params.fade);
             self.blades.count(&representation, growing);
+            self.patches_flat += u64::from(representation.flat.is_some());
             let o = self.orient(i, eye);
             let centre = self.tiling.centre(i);
             // Strips are numbered along their normal; far to near is descending when the eye
@@ -397,9 +418,53 @@ impl GrassTechnique for Perbet {
                 flags,
                 ..Default::default()
             };
+            let settled_flat = representation
+                == frame::Representation {
+                    flat: Some(1.0),
+                    ..Default::default()
+                };
+            if let Some(c) = self.cover.get_mut(i) {
+                *c = if settled_flat {
+                    Cover::Flat
+                } else {
+                    Cover::Other
+                };
+            }
+            if settled_flat {
+                // Drawn by its block below.
+                continue;
+            }
             self.lists.push(base, representation);
         }
         self.order = order;
+
+        // The settled 2D patches, merged into blocks growing with distance; sorted far to near
+        // with the 2D entries of the patches in a transition.
+        self.block_list.clear();
+        self.blocks.plan(
+            &self.cover,
+            camera_patch,
+            self.params.flat_block_distance,
+            &mut self.block_list,
+        );
+        for b in &self.block_list {
+            let i = (b.first.1 * self.tiling.cols + b.first.0) as usize;
+            self.lists.flat.push(Entry {
+                origin: self.tiling.corner(i).to_array(),
+                variant: self.tiling.variants.get(i).copied().unwrap_or(0),
+                opacity: 1.0,
+                link: frame::extent(b.extent.0, b.extent.1),
+                ..Default::default()
+            });
+        }
+        let size = self.tiling.size;
+        let distance = |e: &Entry| {
+            let extent = Vec2::new((e.link & 0xffff) as f32, (e.link >> 16) as f32);
+            (Vec2::from(e.origin) + 0.5 * size * extent).distance_squared(eye)
+        };
+        self.lists
+            .flat
+            .sort_by(|a, b| distance(b).total_cmp(&distance(a)));
         let [strips_base, flat_base] = self.lists.concatenate(&mut self.entries);
         self.uniform.bases = [strips_base, flat_base, 0, 0];
         self.draws.geometry = self.lists.geometry.len() as u32;
@@ -486,7 +551,8 @@ impl GrassTechnique for Perbet {
         vec![
             ("patches_3d", f64::from(self.draws.geometry)),
             ("patches_2_5d", f64::from(self.draws.strips)),
-            ("patches_2d", f64::from(self.draws.flat)),
+            ("patches_2d", self.patches_flat as f64),
+            ("draws_2d", f64::from(self.draws.flat)),
             ("patches_in_transition", self.transitions as f64),
             ("patches_culled", self.culled as f64),
             (
