@@ -77,10 +77,11 @@ impl Blocks {
         let Some(leaves) = self.levels.first_mut() else {
             return;
         };
-        for (node, c) in leaves.iter_mut().zip(cover) {
+        for (i, node) in leaves.iter_mut().enumerate() {
+            let c = cover.get(i).copied().unwrap_or(Cover::Empty);
             *node = Node {
-                flat: *c == Cover::Flat,
-                other: *c == Cover::Other,
+                flat: c == Cover::Flat,
+                other: c == Cover::Other,
             };
         }
         for l in 1..self.levels.len() {

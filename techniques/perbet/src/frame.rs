@@ -16,7 +16,7 @@ pub const FLAG_REVERSED: u32 = 2;
 pub struct Entry {
     /// World xz of the patch's corner.
     pub origin: [f32; 2],
-    /// Which pre-computed patch.
+    /// Which pre-computed patch (2D: its first patch's; its fragments look up their own).
     pub variant: u32,
     /// [`FLAG_ORIENTATION`], [`FLAG_REVERSED`].
     pub flags: u32,
