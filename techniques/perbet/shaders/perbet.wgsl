@@ -19,6 +19,8 @@ struct Params {
     bases: vec4<u32>,
     // xyz: elevations (radians) the three 2D textures of a variant were rendered from
     flat_elevations: vec4<f32>,
+    // x, y: patches of the tiling along x and z (its corner is the terrain's, `globals.terrain.xy`)
+    tiling: vec4<u32>,
 }
 
 // One drawn patch in one representation (`Entry` in `src/frame.rs`).
@@ -29,7 +31,7 @@ struct Entry {
     opacity: f32,
     morph: f32,         // 3D blades: 0 at their own shape, 1 at their painted target (Sec. 4.2)
     grow: f32,          // strips: 1 standing, 0 sunk into the ground (Sec. 4.3)
-    link: u32,          // 3D blades in a morph: the entry of the same patch's strips
+    link: u32,          // 3D blades in a morph: the entry of the same patch's strips; 2D: patches spanned along x (low 16 bits) and z (high 16 bits)
 }
 
 struct Blade {
@@ -52,6 +54,8 @@ struct Blade {
 @group(1) @binding(11) var flat_aux: texture_2d_array<f32>;
 @group(1) @binding(12) var clamp_sampler: sampler;
 @group(1) @binding(13) var repeat_sampler: sampler;
+// The pre-computed patch each patch of the tiling shows, row-major (2D fragments look theirs up).
+@group(1) @binding(14) var<storage, read> variants: array<u32>;
 
 const UP: vec3<f32> = vec3(0.0, 1.0, 0.0);
 const HIDDEN: vec4<f32> = vec4(0.0, 0.0, 2.0, 1.0);
@@ -210,6 +214,9 @@ fn fs_strip(in: VsOut) -> @location(0) vec4<f32> {
 
 // --- 2D (Sec. 2.1, 4.3) ----------------------------------------------------------------------
 
+// A 2D entry is a block of patches (one patch near the camera, up to 8 x 8 far away,
+// `src/blocks.rs`): one terrain-following grid over the block, whose fragments find their own
+// patch, its variant and its texture coordinates, so a block draws what its patches would.
 @vertex
 fn vs_flat(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> VsOut {
     var out: VsOut;
@@ -222,16 +229,15 @@ fn vs_flat(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let q = vertex / 6u;
     let corner = QUAD[vertex % 6u];
     let cell = vec2(q % g + corner.x, q / g + corner.y);
-    let uv = vec2<f32>(cell) / f32(g);
-    let xz = e.origin + uv * params.sizes.x;
+    let extent = vec2(f32(e.link & 0xffffu), f32(e.link >> 16u));
+    let xz = e.origin + vec2<f32>(cell) / f32(g) * extent * params.sizes.x;
     // The texture lies on an offset of the terrain at mid-blade height (Sec. 4.3).
     let world = vec3(xz.x, terrain_height(xz) + params.sizes.w, xz.y);
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;
-    out.uv = uv;
+    // In patches from the tiling's corner: the integer part is the patch, the texture repeats.
+    out.uv = (xz - globals.terrain.xy) / params.sizes.x;
     out.opacity = e.opacity;
-    out.layer = e.variant;
-    out.density = grass_density(xz);
     out.albedo = lod_tint(vec3(1.0), vec3(0.0, 0.0, 1.0));
     return out;
 }
@@ -254,13 +260,16 @@ fn flat_layers(variant: u32, world: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_flat(in: VsOut) -> @location(0) vec4<f32> {
-    let layers = flat_layers(in.layer, in.world);
+    let tile = clamp(vec2<i32>(floor(in.uv)), vec2(0), vec2<i32>(params.tiling.xy) - 1);
+    let variant = variants[u32(tile.y) * params.tiling.x + u32(tile.x)];
+    let layers = flat_layers(variant, in.world);
     let a = u32(layers.x);
     let b = u32(layers.y);
     let c = mix(textureSample(flat_color, repeat_sampler, in.uv, a), textureSample(flat_color, repeat_sampler, in.uv, b), layers.z);
     let aux = mix(textureSample(flat_aux, repeat_sampler, in.uv, a), textureSample(flat_aux, repeat_sampler, in.uv, b), layers.z);
     let alpha = c.a * in.opacity;
-    if (alpha < 0.004 || aux.x >= in.density) {
+    // The density per fragment: a block's vertices are too far apart to carry it.
+    if (alpha < 0.004 || aux.x >= grass_density(in.world.xz)) {
         discard;
     }
     let albedo = select(c.rgb, in.albedo, globals.frame.z == 1u);

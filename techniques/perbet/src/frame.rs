@@ -16,7 +16,7 @@ pub const FLAG_REVERSED: u32 = 2;
 pub struct Entry {
     /// World xz of the patch's corner.
     pub origin: [f32; 2],
-    /// Which pre-computed patch.
+    /// Which pre-computed patch (2D: its first patch's; its fragments look up their own).
     pub variant: u32,
     /// [`FLAG_ORIENTATION`], [`FLAG_REVERSED`].
     pub flags: u32,
@@ -26,8 +26,14 @@ pub struct Entry {
     pub morph: f32,
     /// Strips: 1 standing, 0 sunk into the ground.
     pub grow: f32,
-    /// 3D blades in a morph: index of the same patch's strips entry.
+    /// 3D blades in a morph: index of the same patch's strips entry. 2D: the patches the
+    /// surface spans, along x (low 16 bits) and z (high 16 bits) ([`extent`]).
     pub link: u32,
+}
+
+/// [`Entry::link`] of a 2D entry spanning `x` by `z` patches (each below 65 536).
+pub fn extent(x: u32, z: u32) -> u32 {
+    (x & 0xffff) | (z << 16)
 }
 
 /// How a patch is drawn this frame.
@@ -137,7 +143,11 @@ impl Lists {
             });
         }
         if let Some(opacity) = r.flat {
-            self.flat.push(Entry { opacity, ..base });
+            self.flat.push(Entry {
+                opacity,
+                link: extent(1, 1),
+                ..base
+            });
         }
     }
 

@@ -45,6 +45,8 @@ pub struct ParamsUniform {
     pub bases: [u32; 4],
     /// Elevations of the 2D textures, radians (`paint::FLAT_ELEVATIONS`).
     pub flat_elevations: [f32; 4],
+    /// Patches of the tiling along x and z; unused, unused.
+    pub tiling: [u32; 4],
 }
 
 /// The static data the GPU needs, made on the CPU.
@@ -61,6 +63,8 @@ pub struct Statics<'a> {
     pub strip_layers: &'a [Vec<Image>],
     /// 2D textures: one mip chain per variant and elevation.
     pub flat_layers: &'a [Vec<Image>],
+    /// The variant each patch of the tiling shows, row-major.
+    pub variants: &'a [u32],
 }
 
 /// A storage buffer that grows to what a frame needs.
@@ -123,6 +127,7 @@ pub struct Gpu {
     tilts: wgpu::Buffer,
     painted: wgpu::Buffer,
     postures: wgpu::Buffer,
+    variants: wgpu::Buffer,
     strip_color: wgpu::TextureView,
     strip_aux: wgpu::TextureView,
     flat_color: wgpu::TextureView,
@@ -176,6 +181,7 @@ impl Gpu {
         let tilts = init("perbet tilts", bytemuck::cast_slice(statics.tilts));
         let painted = init("perbet painted", bytemuck::cast_slice(statics.painted));
         let postures = init("perbet postures", bytemuck::cast_slice(statics.postures));
+        let variants = init("perbet variants", bytemuck::cast_slice(statics.variants));
         let (strip_color, a) = upload_array(ctx, "perbet strips", statics.strip_layers, true);
         let (strip_aux, b) = upload_array(ctx, "perbet strips aux", statics.strip_layers, false);
         let (flat_color, c) = upload_array(ctx, "perbet 2D", statics.flat_layers, true);
@@ -239,7 +245,7 @@ impl Gpu {
             ("vs_flat", "fs_flat"),
             wgpu::PrimitiveTopology::TriangleList,
         );
-        let static_bytes = [&blades, &tilts, &painted, &postures, &params]
+        let static_bytes = [&blades, &tilts, &painted, &postures, &variants, &params]
             .iter()
             .map(|b| b.size())
             .sum::<u64>()
@@ -262,6 +268,7 @@ impl Gpu {
             ],
             [&strip_color, &strip_aux, &flat_color, &flat_aux],
             [&clamp_sampler, &repeat_sampler],
+            &variants,
         );
         Self {
             bind_group,
@@ -274,6 +281,7 @@ impl Gpu {
             tilts,
             painted,
             postures,
+            variants,
             strip_color,
             strip_aux,
             flat_color,
@@ -308,6 +316,7 @@ impl Gpu {
                 &self.flat_aux,
             ],
             [&self.clamp_sampler, &self.repeat_sampler],
+            &self.variants,
         );
     }
 
@@ -380,16 +389,17 @@ impl Gpu {
     }
 }
 
-/// Group 1: buffers at bindings 0-7, texture arrays at 8-11, samplers at 12-13 (the shader's
-/// order).
+/// Group 1: buffers at bindings 0-7, texture arrays at 8-11, samplers at 12-13, the patches'
+/// variants (read by 2D fragments) at 14 (the shader's order).
 fn bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     buffers: [&wgpu::Buffer; 8],
     views: [&wgpu::TextureView; 4],
     samplers: [&wgpu::Sampler; 2],
+    variants: &wgpu::Buffer,
 ) -> wgpu::BindGroup {
-    let mut entries: Vec<wgpu::BindGroupEntry<'_>> = Vec::with_capacity(14);
+    let mut entries: Vec<wgpu::BindGroupEntry<'_>> = Vec::with_capacity(15);
     for (i, b) in buffers.into_iter().enumerate() {
         entries.push(wgpu::BindGroupEntry {
             binding: i as u32,
@@ -408,6 +418,10 @@ fn bind_group(
             resource: wgpu::BindingResource::Sampler(s),
         });
     }
+    entries.push(wgpu::BindGroupEntry {
+        binding: 14,
+        resource: variants.as_entire_binding(),
+    });
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("perbet (group 1)"),
         layout,
@@ -469,6 +483,11 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             texture(11),
             sampler(12),
             sampler(13),
+            wgpu::BindGroupLayoutEntry {
+                binding: 14,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ..storage(14)
+            },
         ],
     })
 }

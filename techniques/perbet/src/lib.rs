@@ -43,11 +43,23 @@
 //!   vertex shader adds each segment's posture angle towards the direction to its rest tilt.
 //!   Strip edges bend the same way (as the middle kind), carrying the texture with them.
 //! - **Drawing** (Sec. 2.2, `shaders/perbet.wgsl`). One render pass, three instanced draws:
-//!   2D patches (a terrain-following grid at half the strip height above the ground, Sec.
-//!   4.3), then strips (each patch's strips in the orientation the view is least parallel to,
+//!   2D surfaces (a terrain-following grid at half the strip height above the ground, Sec.
+//!   4.3, one per block of patches below), then strips (each patch's strips in the orientation the view is least parallel to,
 //!   chosen per patch with a little hysteresis), then 3D blades. Patches are listed far to
 //!   near and each patch's strips are drawn far to near, so alpha blending needs no polygon
 //!   sorting ("we just need to process the prairie in the right order").
+//! - **2D blocks** ([`blocks`]; ours, not the paper's). The 2D level is a texture on the
+//!   ground, so the patches settled at it (in view, not in a transition) need not be drawn one
+//!   by one: a quadtree over the tiling merges them into squares of `s x s` patches, one 2D
+//!   surface each, once a square is at least `flat_block_distance · s` patches (default 4)
+//!   from the camera's patch and holds no patch at another level; `s` doubles with distance
+//!   up to 8. A block's fragments find their own patch, its variant (a per-patch buffer) and
+//!   its texture coordinates, and read the density map themselves, so a block draws what its
+//!   patches drew. Patches in a 2.5D ↔ 2D transition keep their own surface. Every settled 2D
+//!   patch lies in exactly one block, and every block holds one in view (no block lies
+//!   wholly out of view). From 32 patches away every block is 8 x 8 (clipped at the terrain's edges), one
+//!   draw for 64 patches: the 2D level still grows with the area in view (which the far
+//!   plane bounds), 64 times slower.
 //! - **Transitions** (Sec. 4, [`frame`]). A transition lasts `transition_steps` frames (the
 //!   paper's twenty). 3D ↔ 2.5D: both levels animate; each 3D blade is drawn at a linear blend
 //!   between its own animated shape and the point its painted copy has on the animated strip
@@ -82,11 +94,20 @@
 //! patch. GPU: 3D patches `B · (2n − 1)` triangles each (at most `(2·(from + hysteresis) +
 //! 1)²` such patches whatever the view, as the paper bounds it); strips `2 · S · C · n`
 //! triangles a patch but much fill (semi-transparent, overlapping: on lavapipe the blended
-//! strip layers, not triangles, set the frame time); 2D `2 · 4²` triangles a patch. Memory:
+//! strip layers, not triangles, set the frame time); 2D `2 · 4²` triangles a block. Memory:
 //! the variants' blades and textures (about 7 MB, mostly the 32 strip layers and twelve 2D
 //! layers with their mip chains) plus per-frame entries and receivers: 8 MB on the meadow
 //! (`results/perbet_quality/`). Measured on the meadow with the medium preset: 54 ms a frame
 //! against the reference's 672 ms (12.4x), 0.7 ms of it CPU; pre-computation 136 ms.
+//!
+//! The 2D level drawn patch by patch grew with the terrain where the view was already full
+//! (`results/scaling/`: 34 → 91 ms from 80 m to 400 m, 42 k → 249 k triangles). With the
+//! blocks, on the meadow at 20 blades/m² (480x270, lavapipe, frame 6): at 80 m 377 2D patches
+//! in 82 draws, 32.5 k triangles (42.0 k patch by patch), 85.6 k vertex invocations (113.9 k);
+//! at 400 m 6 816 2D patches in 224 draws, 37.7 k triangles (248.6 k), 99.6 k vertex
+//! invocations (732.4 k), 29.7 k primitives out of the clipper (237.7 k); fragments hardly
+//! change (1.26 M / 1.24 M). So from 80 m to 400 m the triangles now grow 1.16x instead of
+//! 5.9x. The CPU's level update still visits every patch (`O(patches)`).
 //!
 //! ## Deviations and known artifacts
 //! - Blades are drawn as tapering quads of their width along the chain, not as GL lines (wgpu
@@ -100,9 +121,17 @@
 //!   morphing, so a blade seen edge-on narrows only when the fade replaces it.
 //! - The 2D level is not animated (as in the paper) and its texture tiles per variant, which
 //!   shows as a faint pattern in far fields seen from above.
+//! - Far 2D patches are drawn by blocks, not one by one (the paper draws every patch). A
+//!   block's grid is coarser than a patch's (cells of up to 5 m instead of 0.625 m), so its
+//!   surface follows the ground less closely: on the 400 m meadow a 5 m grid lies at most
+//!   0.21 m below the ground it follows, less than the surface's offset (half the strips'
+//!   height), so it never sinks into the ground there. The picture against patch by patch:
+//!   FLIP 0.0004 at 80 m (354 of 129 600 pixels differ) and 0.0012 at 400 m (1.3 k pixels),
+//!   480x270. `flat_block_distance = 0` draws every 2D patch on its own.
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod blocks;
 pub mod frame;
 pub mod gpu;
 pub mod lod;
@@ -127,6 +156,7 @@ use grassbench::{
 pub use gpu::SHADER;
 pub use params::{Density, Params, Quality};
 
+use blocks::{Block, Blocks, Cover};
 use frame::{Entry, FLAG_ORIENTATION, FLAG_REVERSED, Lists};
 use gpu::{Draws, Gpu, ParamsUniform, Statics};
 use lod::{LodGrid, Ranges};
@@ -151,6 +181,14 @@ pub struct Perbet {
     /// Visible patches by distance, far first (reused every frame).
     order: Vec<(f32, usize)>,
     lists: Lists,
+    /// The quadtree merging settled 2D patches into blocks ([`blocks`]).
+    blocks: Blocks,
+    /// What each patch needs from the 2D surface this frame (reused every frame).
+    cover: Vec<Cover>,
+    /// This frame's 2D blocks (reused every frame).
+    block_list: Vec<Block>,
+    /// Patches drawn at the 2D level this frame (in blocks or in a transition).
+    patches_flat: u64,
     entries: Vec<Entry>,
     blade_receivers: Vec<[f32; 4]>,
     edge_receivers: Vec<[f32; 4]>,
@@ -220,18 +258,6 @@ impl Technique for Perbet {
             ..
         } = precompute;
         let sizes = Sizes::new(scene, &params, layout.strip_height);
-        let gpu = Gpu::new(
-            ctx,
-            &Statics {
-                blades: &arrays.blades,
-                tilts: &arrays.tilts,
-                painted: &arrays.painted,
-                postures: &arrays.postures,
-                strip_layers: &strip_layers,
-                flat_layers: &flat_layers,
-            },
-            sizes.capacity,
-        );
         let reach =
             params.strip_margin * params.patch_size + grass.height[1] * grass.lean.sin().abs();
         let tiling = Tiling::new(
@@ -241,6 +267,21 @@ impl Technique for Perbet {
             scene.config.seed,
             reach,
             layout.strip_height,
+        );
+        let mut uniform = uniform;
+        uniform.tiling = [tiling.cols, tiling.rows, 0, 0];
+        let gpu = Gpu::new(
+            ctx,
+            &Statics {
+                blades: &arrays.blades,
+                tilts: &arrays.tilts,
+                painted: &arrays.painted,
+                postures: &arrays.postures,
+                strip_layers: &strip_layers,
+                flat_layers: &flat_layers,
+                variants: &tiling.variants,
+            },
+            sizes.capacity,
         );
         let [from, to] = params.strips_from_to();
         let lod = LodGrid::new(
@@ -254,6 +295,7 @@ impl Technique for Perbet {
             params.transition_steps,
         );
         let n_patches = tiling.len();
+        let blocks = Blocks::new(tiling.cols, tiling.rows);
         let growing = population::growing(&tiling, &patches, &scene.terrain);
         Ok(Self {
             draws: Draws {
@@ -274,6 +316,10 @@ impl Technique for Perbet {
             visible: vec![false; n_patches],
             order: Vec::new(),
             lists: Lists::default(),
+            blocks,
+            cover: vec![Cover::Empty; n_patches],
+            block_list: Vec::new(),
+            patches_flat: 0,
             entries: Vec::new(),
             blade_receivers: Vec::new(),
             edge_receivers: Vec::new(),
@@ -349,9 +395,9 @@ impl GrassTechnique for Perbet {
             *v = frustum.intersects_aabb(b);
         }
         let visible = &self.visible;
-        self.lod.update(self.tiling.patch_of(eye), |i| {
-            visible.get(i).copied().unwrap_or(false)
-        });
+        let camera_patch = self.tiling.patch_of(eye);
+        self.lod
+            .update(camera_patch, |i| visible.get(i).copied().unwrap_or(false));
 
         // Far to near (Sec. 2.2); the list's memory is kept from frame to frame.
         let mut order = std::mem::take(&mut self.order);
@@ -366,6 +412,8 @@ impl GrassTechnique for Perbet {
         self.transitions = 0;
         self.lists.clear();
         self.blades = FrameBlades::default();
+        self.cover.fill(Cover::Empty);
+        self.patches_flat = 0;
         for &(_, i) in &order {
             let growing = u64::from(self.growing.get(i).copied().unwrap_or(0));
             if growing == 0 {
@@ -378,6 +426,7 @@ impl GrassTechnique for Perbet {
             let representation =
                 frame::representation(state, self.params.transition_steps, self.params.fade);
             self.blades.count(&representation, growing);
+            self.patches_flat += u64::from(representation.flat.is_some());
             let o = self.orient(i, eye);
             let centre = self.tiling.centre(i);
             // Strips are numbered along their normal; far to near is descending when the eye
@@ -397,9 +446,53 @@ impl GrassTechnique for Perbet {
                 flags,
                 ..Default::default()
             };
+            let settled_flat = representation
+                == frame::Representation {
+                    flat: Some(1.0),
+                    ..Default::default()
+                };
+            if let Some(c) = self.cover.get_mut(i) {
+                *c = if settled_flat {
+                    Cover::Flat
+                } else {
+                    Cover::Other
+                };
+            }
+            if settled_flat {
+                // Drawn by its block below.
+                continue;
+            }
             self.lists.push(base, representation);
         }
         self.order = order;
+
+        // The settled 2D patches, merged into blocks growing with distance; sorted far to near
+        // with the 2D entries of the patches in a transition.
+        self.block_list.clear();
+        self.blocks.plan(
+            &self.cover,
+            camera_patch,
+            self.params.flat_block_distance,
+            &mut self.block_list,
+        );
+        for b in &self.block_list {
+            let i = (b.first.1 * self.tiling.cols + b.first.0) as usize;
+            self.lists.flat.push(Entry {
+                origin: self.tiling.corner(i).to_array(),
+                variant: self.tiling.variants.get(i).copied().unwrap_or(0),
+                opacity: 1.0,
+                link: frame::extent(b.extent.0, b.extent.1),
+                ..Default::default()
+            });
+        }
+        let size = self.tiling.size;
+        let distance = |e: &Entry| {
+            let extent = Vec2::new((e.link & 0xffff) as f32, (e.link >> 16) as f32);
+            (Vec2::from(e.origin) + 0.5 * size * extent).distance_squared(eye)
+        };
+        self.lists
+            .flat
+            .sort_by(|a, b| distance(b).total_cmp(&distance(a)));
         let [strips_base, flat_base] = self.lists.concatenate(&mut self.entries);
         self.uniform.bases = [strips_base, flat_base, 0, 0];
         self.draws.geometry = self.lists.geometry.len() as u32;
@@ -486,7 +579,8 @@ impl GrassTechnique for Perbet {
         vec![
             ("patches_3d", f64::from(self.draws.geometry)),
             ("patches_2_5d", f64::from(self.draws.strips)),
-            ("patches_2d", f64::from(self.draws.flat)),
+            ("patches_2d", self.patches_flat as f64),
+            ("draws_2d", f64::from(self.draws.flat)),
             ("patches_in_transition", self.transitions as f64),
             ("patches_culled", self.culled as f64),
             (

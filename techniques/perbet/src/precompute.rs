@@ -25,6 +25,8 @@ pub struct Sizes {
     strip_texels: (u32, u32),
     flat_texels: u32,
     variants: u64,
+    /// Patches of the tiling (one variant each on the GPU).
+    patches: u64,
     /// Entries, blade receivers and edge receivers of the busiest frame.
     pub capacity: [u64; 3],
 }
@@ -52,6 +54,7 @@ impl Sizes {
             strip_texels: paint::strip_size(&layout, params.strip_texels),
             flat_texels: params.flat_texels,
             variants: u64::from(params.variants),
+            patches,
             capacity: [
                 2 * patches,
                 geometry * blades,
@@ -92,6 +95,7 @@ impl Sizes {
             .plus(GpuEstimate::buffer(
                 std::mem::size_of::<ParamsUniform>() as u64 + 64 * 64,
             ))
+            .plus(GpuEstimate::buffer(4 * self.patches))
             .plus(GpuEstimate::textures(textures))
     }
 }
@@ -230,7 +234,7 @@ impl Precomputed {
     }
 
     /// The shader's `Params` for `params` and the scene's `grass` (`bases` zero: each frame
-    /// sets where its strips and 2D entries start).
+    /// sets where its strips and 2D entries start; `tiling` zero: the technique sets it).
     pub fn uniform(&self, params: &Params, grass: &GrassConfig) -> ParamsUniform {
         let layout = &self.layout;
         let blades_per_patch = params.blades(grass.density);
@@ -268,6 +272,7 @@ impl Precomputed {
                 paint::FLAT_ELEVATIONS[2],
                 0.0,
             ],
+            tiling: [0; 4],
         }
     }
 }
