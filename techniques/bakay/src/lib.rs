@@ -129,6 +129,7 @@
 pub mod bend;
 pub mod chunks;
 mod gpu;
+pub mod lod;
 pub mod paper;
 pub mod params;
 pub mod texture;
@@ -155,8 +156,10 @@ pub struct Bakay {
     gpu: gpu::ShellGpu,
     /// The ground mesh in chunks with their bounds.
     chunks: chunks::Chunks,
-    /// This frame's visible chunks (index ranges), from `update`.
-    visible: Vec<std::ops::Range<u32>>,
+    /// This frame's draws (the chunks in view, each at its level of detail), from `update`.
+    visible: Vec<chunks::Draw>,
+    /// Shells per chunk by distance.
+    lod: lod::ShellLod,
     /// Blades the tiled texture puts on grass-covered terrain under the density map.
     blades: u64,
     /// Blades in one tile of the texture.
@@ -174,11 +177,12 @@ impl Technique for Bakay {
         debug_views: &[],
     };
 
-    // Shells are drawn everywhere alike; the approximations are the number of shells (the
-    // volume's vertical sampling, Sec. 3) and the texture's mip chain (Sec. 5), so the finest
-    // representation is many shells sampling the base level at every distance.
+    // The approximations are the number of shells (the volume's vertical sampling, Sec. 3),
+    // their thinning with distance (`shell_lod_pixels`, ours) and the texture's mip chain
+    // (Sec. 5), so the finest representation is many shells, all of them everywhere, sampling
+    // the base level at every distance.
     const VARIANTS: Variants = Variants {
-        finest: "shells = 64\nmipmaps = \"none\"",
+        finest: "shells = 64\nshell_lod_pixels = 0.0\nmipmaps = \"none\"",
         others: &[Variant {
             name: grassbench::technique::PAPER,
             params: paper::VARIANT,
@@ -208,6 +212,11 @@ impl Technique for Bakay {
             blades: count_blades(&texture, params.tile_size, &scene.terrain),
             texture_blades: texture.blades.len(),
             visible: Vec::with_capacity(chunks.len()),
+            lod: lod::ShellLod {
+                shells: params.shells,
+                height: scene.config.grass.height[1],
+                pixels: params.shell_lod_pixels,
+            },
             chunks,
             params,
             gpu,
@@ -327,8 +336,12 @@ impl GrassTechnique for Bakay {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         // The chunks in view; wind vectors, intensities and offsets are computed on the GPU
         // from the time in the frame globals.
-        self.chunks
-            .visible_into(&inputs.camera.frustum(), &mut self.visible);
+        self.chunks.plan_into(
+            &inputs.camera,
+            inputs.size.height,
+            &self.lod,
+            &mut self.visible,
+        );
         Ok(())
     }
 
@@ -339,22 +352,27 @@ impl GrassTechnique for Bakay {
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         // A texture without blades (`grass.density = 0`) would only discard: no shells.
         if self.drawn() {
-            self.gpu.encode(encoder, self.params.shells, &self.visible);
+            self.gpu.encode(encoder, &self.lod, &self.visible);
         }
     }
 
     fn stats(&self) -> TechniqueStats {
-        let shells = if self.drawn() { self.params.shells } else { 0 };
+        let lod = &self.lod;
         TechniqueStats {
             // Every blade is in the shells' texture, none is geometry.
             blades_drawn: 0,
             blades_represented: self.blades,
-            triangles: self
-                .visible
-                .iter()
-                .map(|r| u64::from(r.end - r.start) / 3)
-                .sum::<u64>()
-                * u64::from(shells),
+            triangles: if self.drawn() {
+                self.visible
+                    .iter()
+                    .map(|d| {
+                        u64::from(d.indices.end - d.indices.start) / 3
+                            * u64::from(lod.shells_at(d.level))
+                    })
+                    .sum::<u64>()
+            } else {
+                0
+            },
             gpu_bytes: self.gpu.bytes,
         }
     }
