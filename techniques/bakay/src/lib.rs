@@ -106,23 +106,27 @@
 //! 100 k; fragment invocations 3.46 M → 4.07 M against 3.24 M → 2.86 M; vertex invocations
 //! 89 k → 1 416 k against 66 k → 298 k (lavapipe shades about 2 vertices a triangle on the
 //! 400 m terrain's mesh and 0.6 on the 80 m one, with or without the level of detail; 29 draws
-//! at 400 m against 10). GPU wall time, four interleaved repetitions with other processes
-//! taking 1.1-1.4 of the 2 cores (so every time is several times the quiet sweep's 101 and
-//! 209 ms with every shell): medians 603 → 1 591 ms (2.6x) with every shell, 439 → 575 ms
-//! (1.31x) with the level of detail, whose 400 m runs took 0.36x the time of every shell's;
-//! the core's background pass, the same for every technique, grows 25 → 68 ms of it
-//! (timestamps). The picture: mean FLIP 0.0001-0.0003 between the two (frames 2 and 6, 80 and
-//! 400 m), against 0.0153 between every shell and no shell at 400 m.
+//! at 400 m against 10). GPU wall time, seven interleaved repetitions with other processes
+//! taking 0.9-1.4 of the 2 cores (so every time is several times the quiet sweep's 101 and
+//! 209 ms with every shell): medians 466 → 1 277 ms (2.7x) with every shell, 437 → 555 ms
+//! (1.27x; 0.95-1.70x within a repetition, median 1.11x) with the level of detail, whose
+//! 400 m runs took 0.43x the time of every shell's. By the timestamps (medians over the
+//! frames) the technique's render pass (the shells) goes 360 → 421 ms (1.17x) with the level
+//! of detail and 467 → 1 117 ms without, while the core's background pass, the same for every
+//! technique, grows 25 → 64 ms. The picture: mean FLIP 0.0001-0.0003 between the two (frames
+//! 2 and 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
+//! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
+//! 147 k → 123 k triangles.
 //!
 //! Measured (lavapipe, `results/bakay_table2/`, before issue 19 and the level of detail, with
 //! every shell everywhere and the texture 9 times the scene's density, `density_scale = 9`;
 //! not re-measured since): 8.0 ms of CPU rasteriser work per shell per frame at 640x480 and
 //! 17.3 ms at 1024x768 on average from 1 to 65 shells (the paper: 2.2 and 4.6 ms on a
-//! GeForce3); cost grows with the shells but not in equal
-//! steps (12.0, 9.8, 5.0 and 8.1 ms per added shell between 1, 9, 17, 33 and 65 shells at
-//! 640x480), and a little less than in proportion to pixels, as Sec. 4 found; at 1280x720 with
-//! 16 shells 1.7x faster than `reference`, far from the hoped-for 10x, because a software
-//! rasteriser has no cheap fill rate. With the scene's density most shell fragments fail the
+//! GeForce3); cost grows with the shells but not in equal steps (12.0, 9.8, 5.0 and 8.1 ms per
+//! added shell between 1, 9, 17, 33 and 65 shells at 640x480), and a little less than in
+//! proportion to pixels, as Sec. 4 found; at 1280x720 with 16 shells 1.7x faster than
+//! `reference`, far from the hoped-for 10x, because a software rasteriser has no cheap fill
+//! rate. With the scene's density most shell fragments fail the
 //! alpha test before the second lookup and the shading, so these figures are likely upper
 //! bounds now. 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not
 //! depend on its blades).
