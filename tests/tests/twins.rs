@@ -381,6 +381,57 @@ fn bakay_tilt_and_segment_are_bend_tilt_and_segment() -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Bakay's level of detail: the shader's `level_shell` (an instance index to the shell drawn
+/// and the lowest shell it stands for) is `lod::ShellLod::shell`, at every level and instance
+/// of several shell counts, and the instance stride is `lod::LEVEL_INSTANCES`.
+#[test]
+fn bakay_level_shell_is_shell_lod_shell() -> anyhow::Result<()> {
+    use grassbench_bakay::lod::{LEVEL_INSTANCES, ShellLod};
+    let gpu = gpu()?;
+    let meadow = scene("meadow", 0.05)?;
+    let shader = compose(grassbench_bakay::SHADER);
+    let mut wrong = Vec::new();
+    for shells in [1, 5, 16, 17, 64, 128] {
+        let params = grassbench_bakay::Params {
+            shells,
+            ..Default::default()
+        };
+        let uniform = grassbench_bakay::uniform(&params, &meadow, (1, 1));
+        let lod = ShellLod {
+            shells,
+            height: 1.0,
+            pixels: 1.0,
+        };
+        let mut inputs = Vec::new();
+        for level in 0..8 {
+            for i in 0..lod.shells_at(level) {
+                inputs.push([[(level * LEVEL_INSTANCES + i) as f32, 0.0, 0.0, 0.0]]);
+            }
+        }
+        let body = "    let s = level_shell(u32(x.v[0].x));
+    y.v[0] = vec4(f32(s.x), f32(s.y), 0.0, 0.0);";
+        let out: Vec<[[f32; 4]; 1]> = twin::map(
+            &gpu,
+            &shader,
+            body,
+            Bindings::new().uniform(1, 0, &uniform),
+            &inputs,
+        )?;
+        for (x, o) in inputs.iter().zip(&out) {
+            let instance = x[0][0] as u32;
+            let cpu = lod.shell(instance / LEVEL_INSTANCES, instance % LEVEL_INSTANCES);
+            let gpu = (o[0][0] as u32, o[0][1] as u32);
+            if gpu != cpu {
+                wrong.push(format!(
+                    "N {shells} instance {instance}: GPU {gpu:?} CPU {cpu:?}"
+                ));
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:?}");
+    Ok(())
+}
+
 /// Bakay's bend pass itself over generated ground vertices: each vertex's wind vector and
 /// intensity are `wind::point_source` / `wind::scene` (the paper's point source at several
 /// times, periods and biases; the scene's wind), its shell offsets `bend::offsets`, and every

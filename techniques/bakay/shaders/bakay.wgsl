@@ -3,9 +3,11 @@
 // - `cs_bend` (compute) gives every ground vertex its wind vector V_w and intensity I and keeps
 //   the running sums (n_k, w_k) of every shell k (Sec. 3, Fig. 6; mirrored on the CPU by
 //   src/wind.rs and src/bend.rs);
-// - `vs_shell` / `fs_shell` draw the ground mesh once per shell (instance k, bottom to top),
-//   displaced by N·n_k + V_w·w_k and alpha-tested against the shell's height (k/N, the paper's
-//   255/N steps).
+// - `vs_shell` / `fs_shell` draw the ground mesh once per shell (bottom to top), displaced by
+//   N·n_k + V_w·w_k and alpha-tested against the shell's height (k/N, the paper's 255/N steps).
+//   A far chunk's draw is at a level of detail L (src/lod.rs, a departure): its instances
+//   L·LEVEL_INSTANCES + i draw every 2^L-th shell down from the top one, each alpha-tested
+//   against the lowest shell it stands for.
 
 struct Params {
     // x: shells N; y: ground vertices; z: wind mode (0 = scene, 1 = point source);
@@ -22,6 +24,9 @@ struct Params {
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
+
+// Instance indices per level of detail (`lod::LEVEL_INSTANCES`).
+const LEVEL_INSTANCES: u32 = 128u;
 // Compute pass only: the shared ground mesh (GroundVertex = position xyz, normal xyz) and the
 // per-vertex results.
 @group(1) @binding(1) var<storage, read> ground: array<f32>;
@@ -108,16 +113,31 @@ struct ShellOut {
     @location(2) tangent: vec3<f32>,
     // x: density map; y: 1 where the covering map says grass
     @location(3) grows: vec2<f32>,
-    @location(4) @interpolate(flat) shell: u32,
+    // x: the shell k drawn; y: the lowest shell it stands for (its alpha test)
+    @location(4) @interpolate(flat) shell: vec2<u32>,
+}
+
+// The shell drawn by `instance` (level L = instance / LEVEL_INSTANCES, i-th from the bottom)
+// and the lowest shell it stands for: every 2^L-th shell down from the top one, each standing
+// for the 2^L - 1 below it too (twin of `lod::ShellLod::shell`).
+fn level_shell(instance: u32) -> vec2<u32> {
+    let n = params.counts.x;
+    let m = 1u << (instance / LEVEL_INSTANCES);
+    let i = instance % LEVEL_INSTANCES;
+    let drawn = (n - 1u) / m + 1u;
+    let k = (n - 1u) - (drawn - 1u - i) * m;
+    return vec2(k, select(0u, k + 1u - m, k + 1u >= m));
 }
 
 @vertex
 fn vs_shell(
     @builtin(vertex_index) v: u32,
-    @builtin(instance_index) k: u32,
+    @builtin(instance_index) instance: u32,
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
 ) -> ShellOut {
+    let shell = level_shell(instance);
+    let k = shell.x;
     let wind = vertex_wind[v];
     let nw = offsets[k * params.counts.y + v];
     let world = position + normal * nw.x + wind.xyz * nw.y;
@@ -130,7 +150,7 @@ fn vs_shell(
     out.uv = position.xz * params.steps.w;
     out.tangent = normal * cos(a) + wind.xyz * sin(a);
     out.grows = vec2(terrain_density(position.xz), f32(terrain_covering(position.xz) == COVER_GRASS));
-    out.shell = k;
+    out.shell = shell;
     return out;
 }
 
@@ -153,12 +173,14 @@ fn fs_shell(in: ShellOut) -> @location(0) vec4<f32> {
     } else {
         texel = textureSampleGrad(color_height, grass_sampler, in.uv, dx, dy);
     }
-    // The alpha test: shell k keeps the texels whose blade reaches its height k/N. Shell 0 is
-    // the ground, which the core draws: here it keeps the blades' roots only (alpha > 0).
-    // Grass grows only where the covering map says so. Tested first: most fragments of a
-    // shell end here, before the second lookup and the shading.
-    let height = f32(in.shell) / f32(params.counts.x);
-    if (texel.a < max(height, 1.0 / 255.0) || in.grows.y < 0.5) {
+    // The alpha test: shell k keeps the texels whose blade reaches its height k/N (a far
+    // chunk's shell: the lowest shell it stands for). Shell 0 is the ground, which the core
+    // draws: here it keeps the blades' roots only (alpha > 0). Grass grows only where the
+    // covering map says so. Tested first: most fragments of a shell end here, before the
+    // second lookup and the shading.
+    let height = f32(in.shell.x) / f32(params.counts.x);
+    let lowest = f32(in.shell.y) / f32(params.counts.x);
+    if (texel.a < max(lowest, 1.0 / 255.0) || in.grows.y < 0.5) {
         discard;
     }
     var attrs: vec4<f32>;

@@ -10,16 +10,29 @@
 //! keeps every segment's length, [`crate::bend`]), and every frame the chunks whose box meets
 //! the view frustum are drawn, neighbours merged into one draw. A chunk outside the frustum
 //! puts no fragment on screen, so the picture is the one the whole mesh gives (tested: the
-//! snapshots did not move).
+//! snapshots did not move). Each chunk in view then gets its level of detail from its nearest
+//! depth ([`crate::lod`]): fewer shells far away, none where the whole stack is a pixel tall,
+//! and neighbours at one level are merged into one draw.
 
 use std::ops::Range;
 
-use grassbench::camera::{Aabb, Frustum};
+use grassbench::camera::{Aabb, Camera, Frustum};
 use grassbench::glam::Vec3;
 use grassbench::terrain::{Terrain, TerrainGpu};
 
+use crate::lod::{ShellLod, nearest_depth};
+
 /// Cells a side of a chunk.
 pub const CHUNK: u32 = 16;
+
+/// One draw of the shells: neighbouring chunks in view at one level of detail.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Draw {
+    /// Index range in [`Chunks::indices`].
+    pub indices: Range<u32>,
+    /// Level of detail ([`ShellLod::level`]): every `2^level`-th shell is drawn.
+    pub level: u32,
+}
 
 /// The ground mesh's triangles chunk by chunk, with each chunk's bounds.
 pub struct Chunks {
@@ -86,6 +99,32 @@ impl Chunks {
             match out.last_mut() {
                 Some(last) if last.end == range.start => last.end = range.end,
                 _ => out.push(range.clone()),
+            }
+        }
+    }
+
+    /// The draws of one frame into `out` (cleared first): the chunks whose box meets the
+    /// frustum of `camera`, each at the level `lod` gives its nearest depth on a target
+    /// `height` pixels tall, chunks without shells left out, neighbours at one level merged.
+    pub fn plan_into(&self, camera: &Camera, height: u32, lod: &ShellLod, out: &mut Vec<Draw>) {
+        out.clear();
+        let frustum = camera.frustum();
+        let focal = crate::lod::focal_pixels(camera, height);
+        for (range, b) in self.ranges.iter().zip(&self.bounds) {
+            if !frustum.intersects_aabb(b) {
+                continue;
+            }
+            let Some(level) = lod.level(nearest_depth(camera, b), focal) else {
+                continue;
+            };
+            match out.last_mut() {
+                Some(last) if last.indices.end == range.start && last.level == level => {
+                    last.indices.end = range.end;
+                }
+                _ => out.push(Draw {
+                    indices: range.clone(),
+                    level,
+                }),
             }
         }
     }
@@ -211,6 +250,74 @@ mod tests {
         assert!(
             seen.iter()
                 .any(|r| r.start <= hit.start && hit.end <= r.end)
+        );
+    }
+
+    /// The meadow's walker at 480x270 on terrains of growing size: the shells drawn per frame
+    /// (triangles x shells) as a function of the terrain's side, with the level of detail on
+    /// (`pixels = 1`) or off.
+    fn walker_shell_triangles(size: f32, pixels: f32) -> (u64, Vec<Draw>, Chunks, Camera) {
+        let t = terrain(size);
+        let side = TerrainGpu::ground_side_for(&t);
+        let chunks = Chunks::new(&t, side, 0.7);
+        let eye = t.point_at(grassbench::glam::Vec2::new(-25.0, 10.0)) + Vec3::Y * 1.6;
+        let ahead = eye + Vec3::new(25.0, -6.5, -15.0);
+        let cam = Camera::look_at(eye, ahead, 55f32.to_radians(), 0.05, 400.0, 16.0 / 9.0);
+        let lod = ShellLod {
+            shells: 16,
+            height: 0.7,
+            pixels,
+        };
+        let mut draws = Vec::new();
+        chunks.plan_into(&cam, 270, &lod, &mut draws);
+        let shells: u64 = draws
+            .iter()
+            .map(|d| {
+                u64::from(d.indices.end - d.indices.start) / 3 * u64::from(lod.shells_at(d.level))
+            })
+            .sum();
+        (shells, draws, chunks, cam)
+    }
+
+    #[test]
+    fn far_chunks_get_fewer_shells_and_the_work_stays_bounded() {
+        let (near, ..) = walker_shell_triangles(80.0, 1.0);
+        let (far, draws, chunks, cam) = walker_shell_triangles(400.0, 1.0);
+        let (all, ..) = walker_shell_triangles(400.0, 0.0);
+        // Measured: 111 k shell triangles at 80 m, 147 k at 400 m, 705 k at 400 m without the
+        // level of detail (the growth this guards against: every chunk in view with all 16).
+        assert!(all > 3 * near, "{all} vs {near}");
+        assert!(far * 10 < all * 3, "{far} of {all}");
+        assert!(far * 2 < near * 3, "{far} at 400 m vs {near} at 80 m");
+        // Levels rise with the chunks' depth, every drawn chunk is in the frustum, and chunks
+        // far enough away draw nothing.
+        let frustum = cam.frustum();
+        let mut by_depth: Vec<(f32, u32)> = Vec::new();
+        for d in &draws {
+            for (range, b) in chunks.ranges.iter().zip(&chunks.bounds) {
+                if d.indices.start <= range.start && range.end <= d.indices.end {
+                    assert!(frustum.intersects_aabb(b));
+                    by_depth.push((nearest_depth(&cam, b), d.level));
+                }
+            }
+        }
+        by_depth.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert!(by_depth.windows(2).all(|w| w[0].1 <= w[1].1));
+        assert_eq!(by_depth.first().map(|d| d.1), Some(0));
+        assert!(by_depth.last().is_some_and(|d| d.1 >= 3), "{by_depth:?}");
+        let deepest = by_depth.last().map_or(0.0, |d| d.0);
+        assert!(deepest < 200.0, "a chunk {deepest} m away still has shells");
+        let in_view = chunks
+            .bounds
+            .iter()
+            .filter(|b| frustum.intersects_aabb(b))
+            .count();
+        assert!(by_depth.len() < in_view, "{} of {in_view}", by_depth.len());
+        // Neighbours at one level are one draw.
+        assert!(
+            draws
+                .windows(2)
+                .all(|w| w[0].indices.end != w[1].indices.start || w[0].level != w[1].level)
         );
     }
 }

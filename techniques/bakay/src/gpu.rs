@@ -5,6 +5,8 @@ use grassbench::terrain::GroundVertex;
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{Error, InitContext, Result, bytemuck, shaders, target, wgpu};
 
+use crate::chunks::Draw;
+use crate::lod::{LEVEL_INSTANCES, ShellLod};
 use crate::params::Mipmaps;
 use crate::texture::{GrassTexture, Level};
 
@@ -235,13 +237,13 @@ impl ShellGpu {
         })
     }
 
-    /// Records the bend pass (per-vertex wind, running sums) and the shells over the chunks in
-    /// `visible` (index ranges), each chunk's shells bottom to top.
+    /// Records the bend pass (per-vertex wind, running sums) and the shells of `draws` (each a
+    /// run of chunks at one level of detail), each draw's shells bottom to top.
     pub fn encode(
         &self,
         encoder: &mut grassbench::FrameEncoder<'_>,
-        shells: u32,
-        visible: &[std::ops::Range<u32>],
+        lod: &ShellLod,
+        draws: &[Draw],
     ) {
         {
             let mut pass = encoder.compute_pass("bend");
@@ -249,7 +251,7 @@ impl ShellGpu {
             pass.set_bind_group(1, &self.bend_group, &[]);
             pass.dispatch_workgroups(self.vertex_count.div_ceil(WORKGROUP), 1, 1);
         }
-        if visible.is_empty() {
+        if draws.is_empty() {
             return;
         }
         let vertices = encoder.scene.terrain.ground_vertices.slice(..);
@@ -258,9 +260,15 @@ impl ShellGpu {
         pass.set_bind_group(1, &self.shell_group, &[]);
         pass.set_vertex_buffer(0, vertices);
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        // Instance k is shell k: instances are drawn in order, so shells go bottom to top.
-        for range in visible {
-            pass.draw_indexed(range.clone(), 0, 0..shells);
+        // Instance `level · LEVEL_INSTANCES + i` is the level's `i`-th shell from the bottom:
+        // instances are drawn in order, so shells go bottom to top.
+        for draw in draws {
+            let first = draw.level * LEVEL_INSTANCES;
+            pass.draw_indexed(
+                draw.indices.clone(),
+                0,
+                first..first + lod.shells_at(draw.level),
+            );
         }
     }
 }

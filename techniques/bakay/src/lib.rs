@@ -21,6 +21,21 @@
 //!   shell 0 is the whole texture including bare ground (alpha ≥ 0); here the core already drew
 //!   that ground, identically for every technique, so shell 0 keeps only the blades' roots
 //!   (alpha > 0) and lets the shared ground show between them.
+//! - **Fewer shells far away (ours; Sec. 5 names it future work; [`lod`]).** The paper draws
+//!   all `N` shells everywhere; "in a multiple level of detail setup, it would be advantageous
+//!   to reduce the number of shells for far off portions of the landscape, however doing so
+//!   also reduces the density of the grass" (Sec. 5). Here every ground chunk in view
+//!   ([`chunks`]) gets a level `L` from its nearest depth `z`: it draws every `2^L`-th shell
+//!   down from the top one, `L` the coarsest level whose drawn shells stay at most
+//!   `shell_lod_pixels` (default 1) apart on screen, `2^L · S · f / z ≤ pixels` (`f` the focal
+//!   length in pixels), so the grass keeps its height. Against the paper's loss of density each
+//!   drawn shell alpha-tests at the lowest of the `2^L` shells it stands for, the widest of
+//!   their sections. A chunk whose whole stack is that many pixels tall or less,
+//!   `H · f / z ≤ pixels`, draws no shell: its grass is the core's ground. On the meadow's
+//!   walker at 480x270 (`H` = 0.7 m, `f` = 259 px) the levels change at nearest depths of 23,
+//!   45 and 91 m, and chunks from 181 m on draw no shell; at 640x360 a third farther.
+//!   `shell_lod_pixels = 0` draws every shell everywhere, as the paper (the `paper` variant
+//!   sets it).
 //! - **Texture (Sec. 3, Fig. 3; [`texture`]).** One seeded, tileable texture: colour in RGB,
 //!   height in alpha, 0 on the ground; blades from the scene's population: a tile of
 //!   `tile_size` holds `round(grass.density · tile_size²)` blades (so the tiled texture has the
@@ -75,21 +90,43 @@
 //! ## Cost model
 //! Geometry: `N` x the ground mesh in view (meadow: 12 800 triangles a shell for the whole
 //! mesh; the shells are drawn only over the 16 x 16-cell chunks whose box meets the view
-//! frustum, [`chunks`]), vertex work `O(V·N)` in the bend pass (every vertex) and the shells
-//! (the chunks in view). Fill: every shell covers the terrain's screen area, so
-//! fragment work is `N x covered pixels` (two texture samples each), whatever the number of
-//! blades: the method is fill-rate bound (Sec. 4), and blade density is free. GPU memory: the
-//! texture (`6 bytes · size² · 4/3` with mips: 2 MiB at 512²) plus `16·V + 8·V·N` bytes of
-//! per-vertex wind and offsets.
+//! frustum, [`chunks`]), fewer with distance ([`lod`]): a chunk's shells halve each time its
+//! depth doubles past the first level's, and end where the stack is a pixel tall, so the
+//! shells in view are bounded by that distance, not by the terrain. Vertex work `O(V·N)` in the
+//! bend pass (every vertex of the terrain) and the shells (the chunks in view). Fill: every
+//! shell covers the terrain's screen area, so fragment work is `N x covered pixels` near the
+//! camera (two texture samples each), whatever the number of blades: the method is fill-rate
+//! bound (Sec. 4), and blade density is free. GPU memory: the texture (`6 bytes · size² · 4/3`
+//! with mips: 2 MiB at 512²) plus `16·V + 8·V·N` bytes of per-vertex wind and offsets.
 //!
-//! Measured (lavapipe, `results/bakay_table2/`, before issue 19, with the texture 9 times the
-//! scene's density, `density_scale = 9`; not re-measured since): 8.0 ms of CPU rasteriser
-//! work per shell per frame at 640x480 and 17.3 ms at 1024x768 on average from 1 to 65 shells
-//! (the paper: 2.2 and 4.6 ms on a GeForce3); cost grows with the shells but not in equal
-//! steps (12.0, 9.8, 5.0 and 8.1 ms per added shell between 1, 9, 17, 33 and 65 shells at
-//! 640x480), and a little less than in proportion to pixels, as Sec. 4 found; at 1280x720 with
-//! 16 shells 1.7x faster than `reference`, far from the hoped-for 10x, because a software
-//! rasteriser has no cheap fill rate. With the scene's density most shell fragments fail the
+//! The level of detail on the scaling sweep's points (the meadow at 20 blades/m², terrain 80
+//! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core host while another build
+//! ran; per-frame counts, the same in every run): triangles 147 k → 696 k with every shell,
+//! 111 k → 146 k with the level of detail; clipped primitives 110 k → 605 k against 73 k →
+//! 100 k; fragment invocations 3.46 M → 4.07 M against 3.24 M → 2.86 M; vertex invocations
+//! 89 k → 1 416 k against 66 k → 298 k (lavapipe shades about 2 vertices a triangle on the
+//! 400 m terrain's mesh and 0.6 on the 80 m one, with or without the level of detail; 29 draws
+//! at 400 m against 10). GPU wall time, seven interleaved repetitions with other processes
+//! taking 0.9-1.4 of the 2 cores (so every time is several times the quiet sweep's 101 and
+//! 209 ms with every shell): medians 466 → 1 277 ms (2.7x) with every shell, 437 → 555 ms
+//! (1.27x; 0.95-1.70x within a repetition, median 1.11x) with the level of detail, whose
+//! 400 m runs took 0.43x the time of every shell's. By the timestamps (medians over the
+//! frames) the technique's render pass (the shells) goes 360 → 421 ms (1.17x) with the level
+//! of detail and 467 → 1 117 ms without, while the core's background pass, the same for every
+//! technique, grows 25 → 64 ms. The picture: mean FLIP 0.0001-0.0003 between the two (frames
+//! 2 and 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
+//! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
+//! 147 k → 123 k triangles.
+//!
+//! Measured (lavapipe, `results/bakay_table2/`, before issue 19 and the level of detail, with
+//! every shell everywhere and the texture 9 times the scene's density, `density_scale = 9`;
+//! not re-measured since): 8.0 ms of CPU rasteriser work per shell per frame at 640x480 and
+//! 17.3 ms at 1024x768 on average from 1 to 65 shells (the paper: 2.2 and 4.6 ms on a
+//! GeForce3); cost grows with the shells but not in equal steps (12.0, 9.8, 5.0 and 8.1 ms per
+//! added shell between 1, 9, 17, 33 and 65 shells at 640x480), and a little less than in
+//! proportion to pixels, as Sec. 4 found; at 1280x720 with 16 shells 1.7x faster than
+//! `reference`, far from the hoped-for 10x, because a software rasteriser has no cheap fill
+//! rate. With the scene's density most shell fragments fail the
 //! alpha test before the second lookup and the shading, so these figures are likely upper
 //! bounds now. 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not
 //! depend on its blades).
@@ -98,7 +135,12 @@
 //! - Shells seen edge-on at grazing angles (the walker's horizon) show as separate layers with
 //!   gaps between them, and blades lose their silhouette there (Sec. 5 proposes vertical
 //!   slices for such views); more shells close the gaps at proportional cost.
-//! - Blades are quantised to `S`: a blade ends at the last shell below its tip.
+//! - Blades are quantised to `S`: a blade ends at the last shell below its tip. Far away
+//!   (level `L`) a drawn shell shows every blade reaching the lowest shell it stands for, so a
+//!   blade can stand up to `(2^L − 1)·S` taller than it is, by construction at most
+//!   `shell_lod_pixels` on screen; where neighbouring chunks sit at different levels their
+//!   shells differ by as much, and beyond the last level the sparse grass the shells showed
+//!   there (tips a pixel tall) is gone.
 //! - The texture repeats every `tile_size` metres; the wind moves whole shells, so neighbouring
 //!   blades of one vertex neighbourhood sway together.
 //! - At a distance blades alias with `mipmaps = "none"`, turn into short felt with `box`;
@@ -129,6 +171,7 @@
 pub mod bend;
 pub mod chunks;
 mod gpu;
+pub mod lod;
 pub mod paper;
 pub mod params;
 pub mod texture;
@@ -155,8 +198,10 @@ pub struct Bakay {
     gpu: gpu::ShellGpu,
     /// The ground mesh in chunks with their bounds.
     chunks: chunks::Chunks,
-    /// This frame's visible chunks (index ranges), from `update`.
-    visible: Vec<std::ops::Range<u32>>,
+    /// This frame's draws (the chunks in view, each at its level of detail), from `update`.
+    visible: Vec<chunks::Draw>,
+    /// Shells per chunk by distance.
+    lod: lod::ShellLod,
     /// Blades the tiled texture puts on grass-covered terrain under the density map.
     blades: u64,
     /// Blades in one tile of the texture.
@@ -174,11 +219,12 @@ impl Technique for Bakay {
         debug_views: &[],
     };
 
-    // Shells are drawn everywhere alike; the approximations are the number of shells (the
-    // volume's vertical sampling, Sec. 3) and the texture's mip chain (Sec. 5), so the finest
-    // representation is many shells sampling the base level at every distance.
+    // The approximations are the number of shells (the volume's vertical sampling, Sec. 3),
+    // their thinning with distance (`shell_lod_pixels`, ours) and the texture's mip chain
+    // (Sec. 5), so the finest representation is many shells, all of them everywhere, sampling
+    // the base level at every distance.
     const VARIANTS: Variants = Variants {
-        finest: "shells = 64\nmipmaps = \"none\"",
+        finest: "shells = 64\nshell_lod_pixels = 0.0\nmipmaps = \"none\"",
         others: &[Variant {
             name: grassbench::technique::PAPER,
             params: paper::VARIANT,
@@ -208,6 +254,11 @@ impl Technique for Bakay {
             blades: count_blades(&texture, params.tile_size, &scene.terrain),
             texture_blades: texture.blades.len(),
             visible: Vec::with_capacity(chunks.len()),
+            lod: lod::ShellLod {
+                shells: params.shells,
+                height: scene.config.grass.height[1],
+                pixels: params.shell_lod_pixels,
+            },
             chunks,
             params,
             gpu,
@@ -327,8 +378,12 @@ impl GrassTechnique for Bakay {
     fn update(&mut self, inputs: &FrameInputs<'_>) -> Result<()> {
         // The chunks in view; wind vectors, intensities and offsets are computed on the GPU
         // from the time in the frame globals.
-        self.chunks
-            .visible_into(&inputs.camera.frustum(), &mut self.visible);
+        self.chunks.plan_into(
+            &inputs.camera,
+            inputs.size.height,
+            &self.lod,
+            &mut self.visible,
+        );
         Ok(())
     }
 
@@ -339,22 +394,27 @@ impl GrassTechnique for Bakay {
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         // A texture without blades (`grass.density = 0`) would only discard: no shells.
         if self.drawn() {
-            self.gpu.encode(encoder, self.params.shells, &self.visible);
+            self.gpu.encode(encoder, &self.lod, &self.visible);
         }
     }
 
     fn stats(&self) -> TechniqueStats {
-        let shells = if self.drawn() { self.params.shells } else { 0 };
+        let lod = &self.lod;
         TechniqueStats {
             // Every blade is in the shells' texture, none is geometry.
             blades_drawn: 0,
             blades_represented: self.blades,
-            triangles: self
-                .visible
-                .iter()
-                .map(|r| u64::from(r.end - r.start) / 3)
-                .sum::<u64>()
-                * u64::from(shells),
+            triangles: if self.drawn() {
+                self.visible
+                    .iter()
+                    .map(|d| {
+                        u64::from(d.indices.end - d.indices.start) / 3
+                            * u64::from(lod.shells_at(d.level))
+                    })
+                    .sum::<u64>()
+            } else {
+                0
+            },
             gpu_bytes: self.gpu.bytes,
         }
     }

@@ -53,6 +53,13 @@ pub struct Params {
     /// Number of shells `N`, the ground shell included (Bakay Table 2 counts it too).
     #[schemars(range(min = 1, max = 128))]
     pub shells: u32,
+    /// Level of detail (a departure: the paper names it future work, Sec. 5): the most pixels
+    /// between neighbouring drawn shells at a chunk's nearest depth. Far chunks draw every
+    /// second, fourth, … shell down from the top one (each keeping the texels of the shells it
+    /// stands for), and none where the whole stack is this many pixels tall or less (the
+    /// ground alone). 0 = every shell everywhere (the paper).
+    #[schemars(range(min = 0.0, max = 64.0))]
+    pub shell_lod_pixels: f32,
     /// Texels along each side of the grass texture (a power of two).
     #[schemars(range(min = 16, max = 4096))]
     pub texture_size: u32,
@@ -121,6 +128,7 @@ impl Default for Params {
         let source = PointSourceConfig::default();
         Self {
             shells: 16,
+            shell_lod_pixels: 1.0,
             texture_size: 512,
             tile_size: 2.0,
             density_scale: 1.0,
