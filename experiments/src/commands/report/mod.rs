@@ -128,7 +128,7 @@ fn where_the_time_goes(
     let _ = writeln!(md, "\n## Where the time goes\n");
     let _ = writeln!(
         md,
-        "The cost model prices each run's measured work (pipeline statistics: vertices, primitives, fragments by kind; the harness's draws and uploads) with the adapter's unit costs from the calibration above. *Measured / model* is the measured median GPU wall time over the prediction: near 1 where the counted work explains the time. Shares are of the CPU stages plus the predicted GPU time. Predicted, not measured: each GPU term is unit cost × work.\n"
+        "The cost model prices each run's measured work (pipeline statistics: vertices, primitives, fragments by kind, and the texel loads and texture samples of the shaders that ran them; the harness's draws and uploads) with the adapter's unit costs from the calibration above. *Measured / model* is the measured median GPU wall time over the prediction: near 1 where the counted work explains the time. Shares are of the CPU stages plus the predicted GPU time. Predicted, not measured: each GPU term is unit cost × work.\n"
     );
     let mut header = String::from(
         "| scene | size | technique | params | measured GPU ms | model ms | measured / model |",
