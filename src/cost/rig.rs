@@ -261,7 +261,7 @@ impl<'g> Rig<'g> {
 
     /// Records, submits and times one submission doing all of `mix`; with `counter`, also
     /// counts its work with the GPU's pipeline statistics (one query per workload, so the
-    /// fragments split by kind; draw calls and uploads as known). Returns the
+    /// fragments split by kind and the fetches by shader; draw calls and uploads as known). Returns the
     /// submit-to-idle wall time in ms.
     pub(super) fn run(
         &self,
@@ -274,13 +274,13 @@ impl<'g> Rig<'g> {
         if let Some(c) = counter.as_deref_mut() {
             c.begin_frame();
         }
-        let (commands, kinds) = gpu.scoped(&label, || {
+        let (commands, costs) = gpu.scoped(&label, || {
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            let kinds = self.record(&mut encoder, mix, counter.as_deref_mut());
+            let costs = self.record(&mut encoder, mix, counter.as_deref_mut());
             if let Some(c) = counter.as_deref() {
                 c.resolve(&mut encoder);
             }
-            (encoder.finish(), kinds)
+            (encoder.finish(), costs)
         })?;
         for w in mix {
             if let Shape::Upload { bytes } = w.shape {
@@ -311,7 +311,7 @@ impl<'g> Rig<'g> {
             .fold(Work::default(), |a, w| a + w.work(self.target.size));
         let counted = records
             .iter()
-            .zip(kinds)
+            .zip(costs)
             .fold(Work::default(), |a, (r, cost)| {
                 a + Work::from_counters(&r.work, cost)
             });
@@ -336,7 +336,7 @@ impl<'g> Rig<'g> {
         mix: &[Workload],
         mut counter: Option<&mut WorkCounter>,
     ) -> Vec<PipelineCost> {
-        let mut kinds = Vec::new();
+        let mut costs = Vec::new();
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("unit costs"),
@@ -358,7 +358,7 @@ impl<'g> Rig<'g> {
                 });
                 if let Some((set, index)) = &query {
                     pass.begin_pipeline_statistics_query(set, *index);
-                    kinds.push(pipeline.cost());
+                    costs.push(pipeline.cost());
                 }
                 pass.set_pipeline(pipeline);
                 match w.shape {
@@ -403,7 +403,7 @@ impl<'g> Rig<'g> {
                     .and_then(|c| c.next(w.name.to_owned(), PassKind::Compute, None));
                 if let Some((set, index)) = &query {
                     pass.begin_pipeline_statistics_query(set, *index);
-                    kinds.push(PipelineCost::default());
+                    costs.push(PipelineCost::default());
                 }
                 let (x, y) = dispatch_grid(groups);
                 pass.dispatch_workgroups(x, y, 1);
@@ -412,7 +412,7 @@ impl<'g> Rig<'g> {
                 }
             }
         }
-        kinds
+        costs
     }
 
     /// The render pipeline drawing render workload `w` (`None` for the others).

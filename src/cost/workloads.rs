@@ -156,20 +156,24 @@ impl Workload {
                 }
             }
             Shape::FetchLayers { sample, layers } => {
-                let fragments = pixels * f64::from(layers);
-                let per = |n: u32| fragments * f64::from(n);
+                // The opaque layers' work, plus each fragment's fetches.
+                let base = Workload {
+                    shape: Shape::Layers {
+                        kind: FragmentKind::Opaque,
+                        layers,
+                    },
+                    ..*self
+                }
+                .work(size);
+                let per = |n: u32| base.fragments_opaque * f64::from(n);
                 Work {
-                    vertex_invocations: f64::from(layers) * f64::from(LAYER_VERTICES),
-                    primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
-                    fragments_opaque: fragments,
-                    draw_calls: 1.0,
                     texture_loads: if sample { 0.0 } else { per(LOADS_PER_FRAGMENT) },
                     texture_samples: if sample {
                         per(SAMPLES_PER_FRAGMENT)
                     } else {
                         0.0
                     },
-                    ..none
+                    ..base
                 }
             }
             Shape::Draws { draws } => Work {
@@ -386,7 +390,7 @@ mod tests {
         // The cost model counts a pipeline's fetches from its shader (`shaders::fetches`):
         // the calibration's own shaders must count to the work known in advance.
         let wgsl = crate::shaders::compose(include_str!("../shaders/unit_costs.wgsl"));
-        let fetches = crate::shaders::entry_fetches(&wgsl);
+        let fetches = crate::shaders::entry_fetches(&naga::front::wgsl::parse_str(&wgsl).unwrap());
         let of = |entry: &str| fetches.iter().find(|(e, _)| e == entry).map(|(_, f)| *f);
         let count = |loads: u32, samples: u32| {
             Some(crate::shaders::TextureFetches {

@@ -88,18 +88,14 @@ impl Module {
     }
 }
 
-/// The fragment entry points of `wgsl` (a composed shader) that can reach a `discard`,
-/// directly or through the functions they call. A source naga cannot parse has none: the
-/// device reports its errors when the module is created.
-pub fn discarding_fragment_entries(wgsl: &str) -> Vec<String> {
-    let Ok(module) = naga::front::wgsl::parse_str(wgsl) else {
-        return Vec::new();
-    };
+/// The fragment entry points of `module` (a parsed, composed shader) that can reach a
+/// `discard`, directly or through the functions they call.
+pub fn discarding_fragment_entries(module: &naga::Module) -> Vec<String> {
     module
         .entry_points
         .iter()
         .filter(|e| e.stage == naga::ShaderStage::Fragment)
-        .filter(|e| block_discards(&module, &e.function.body, &mut Vec::new()))
+        .filter(|e| block_discards(module, &e.function.body, &mut Vec::new()))
         .map(|e| e.name.clone())
         .collect()
 }
@@ -154,7 +150,7 @@ mod tests {
 
     #[test]
     fn discards_are_found_directly_and_through_calls() {
-        let mut found = discarding_fragment_entries(SOURCE);
+        let mut found = discarding_fragment_entries(&naga::front::wgsl::parse_str(SOURCE).unwrap());
         found.sort();
         assert_eq!(found, ["direct", "through_a_call"]);
     }

@@ -37,8 +37,7 @@ pub fn compose(source: &str) -> String {
 /// [`FragmentKind`]) and what each entry point fetches from textures ([`TextureFetches`]).
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
     let composed = compose(source);
-    let discarding = discarding_fragment_entries(&composed);
-    let fetches = entry_fetches(&composed);
+    let (discarding, fetches) = analyse(&composed);
     Module {
         raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
@@ -46,5 +45,43 @@ pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
         }),
         discarding,
         fetches,
+    }
+}
+
+/// What [`module`] reads off a composed shader, naga parsing it once: the fragment entry points
+/// that can discard and every entry point's texture fetches. A source naga cannot parse has
+/// neither: the device reports its errors when the module is created.
+fn analyse(wgsl: &str) -> (Vec<String>, Vec<(String, TextureFetches)>) {
+    match naga::front::wgsl::parse_str(wgsl) {
+        Ok(parsed) => (discarding_fragment_entries(&parsed), entry_fetches(&parsed)),
+        Err(_) => (Vec::new(), Vec::new()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shader_is_read_once_for_discards_and_fetches() {
+        let (discarding, fetches) = analyse(&compose(
+            "@group(1) @binding(0) var t: texture_2d<f32>;
+             @fragment fn cut(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+                 let c = textureLoad(t, vec2<i32>(p.xy), 0);
+                 if (c.a < 0.5) { discard; }
+                 return c;
+             }",
+        ));
+        assert_eq!(discarding, ["cut"]);
+        let cut = fetches.iter().find(|(e, _)| e == "cut").map(|(_, f)| *f);
+        assert_eq!(
+            cut,
+            Some(TextureFetches {
+                loads: 1,
+                samples: 0
+            })
+        );
+        // An unparsable source has neither.
+        assert_eq!(analyse("fn broken("), (Vec::new(), Vec::new()));
     }
 }

@@ -44,10 +44,11 @@
 //!   Strip edges bend the same way (as the middle kind), carrying the texture with them.
 //! - **Drawing** (Sec. 2.2, `shaders/perbet.wgsl`). One render pass, three instanced draws:
 //!   2D surfaces (a terrain-following grid at half the strip height above the ground, Sec.
-//!   4.3, one per block of patches below), then strips (each patch's strips in the orientation the view is least parallel to,
-//!   chosen per patch with a little hysteresis), then 3D blades. Patches are listed far to
-//!   near and each patch's strips are drawn far to near, so alpha blending needs no polygon
-//!   sorting ("we just need to process the prairie in the right order").
+//!   4.3, one per block of patches below), then strips (each patch's strips in the
+//!   orientation the view is least parallel to, chosen per patch with a little hysteresis),
+//!   then 3D blades. Patches are listed far to near and each patch's strips are drawn far to
+//!   near, so alpha blending needs no polygon sorting ("we just need to process the prairie
+//!   in the right order").
 //! - **2D blocks** ([`blocks`]; ours, not the paper's). The 2D level is a texture on the
 //!   ground, so the patches settled at it (in view, not in a transition) need not be drawn one
 //!   by one: a quadtree over the tiling merges them into squares of `s x s` patches, one 2D
@@ -57,9 +58,9 @@
 //!   its texture coordinates, and read the density map themselves, so a block draws what its
 //!   patches drew. Patches in a 2.5D ↔ 2D transition keep their own surface. Every settled 2D
 //!   patch lies in exactly one block, and every block holds one in view (no block lies
-//!   wholly out of view). From 32 patches away every block is 8 x 8 (clipped at the terrain's edges), one
-//!   draw for 64 patches: the 2D level still grows with the area in view (which the far
-//!   plane bounds), 64 times slower.
+//!   wholly out of view). From 32 patches away every block is 8 x 8 (clipped at the
+//!   terrain's edges), one draw for 64 patches: the 2D level still grows with the area in
+//!   view (which the far plane bounds), 64 times slower.
 //! - **Transitions** (Sec. 4, [`frame`]). A transition lasts `transition_steps` frames (the
 //!   paper's twenty). 3D ↔ 2.5D: both levels animate; each 3D blade is drawn at a linear blend
 //!   between its own animated shape and the point its painted copy has on the animated strip
