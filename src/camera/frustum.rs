@@ -130,4 +130,78 @@ mod tests {
         assert!(f.intersects_sphere(Vec3::new(0.0, 0.0, 1.0), 2.0));
         assert!(!f.intersects_sphere(Vec3::new(0.0, 0.0, 5.0), 2.0));
     }
+
+    #[test]
+    fn nearest_depth_is_the_nearest_corner_and_focal_sizes_objects() {
+        let cam = Camera::look_at(Vec3::ZERO, Vec3::X, 1.0, 0.1, 100.0, 1.0);
+        let b = Aabb {
+            min: Vec3::new(10.0, -1.0, -5.0),
+            max: Vec3::new(26.0, 1.0, 5.0),
+        };
+        assert!((cam.nearest_depth(&b) - 10.0).abs() < 1e-5);
+        // A box behind the eye has a negative depth.
+        let behind = Aabb {
+            min: Vec3::new(-6.0, -1.0, -1.0),
+            max: Vec3::new(-4.0, 1.0, 1.0),
+        };
+        assert!((cam.nearest_depth(&behind) + 6.0).abs() < 1e-5);
+        // An object as tall as the view volume's half height at depth d, tan(fov/2)·d, spans
+        // half of a 180-pixel screen.
+        let focal = cam.focal_pixels(180);
+        let d = 7.0;
+        let half_height = (0.5f32).tan() * d;
+        assert!((half_height * focal / d - 90.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn nearest_visible_depth_bounds_every_visible_point() {
+        let mut rng = crate::rng::Rng::new(17);
+        let mut beside = 0;
+        for _ in 0..300 {
+            let eye = Vec3::new(
+                rng.range(-5.0, 5.0),
+                rng.range(0.5, 5.0),
+                rng.range(-5.0, 5.0),
+            );
+            let look = Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-0.6, 0.2),
+                rng.range(-1.0, 1.0),
+            );
+            let cam = Camera::look_at(
+                eye,
+                eye + look,
+                rng.range(0.5, 1.5),
+                0.1,
+                200.0,
+                rng.range(1.0, 2.0),
+            );
+            let frustum = cam.frustum();
+            let lo = Vec3::new(
+                rng.range(-12.0, 8.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-12.0, 8.0),
+            );
+            let b = Aabb {
+                min: lo,
+                max: lo + Vec3::new(rng.range(0.5, 6.0), 1.0, rng.range(0.5, 6.0)),
+            };
+            let bound = cam.nearest_visible_depth(&b);
+            assert!(bound >= cam.nearest_depth(&b));
+            beside += usize::from(cam.nearest_depth(&b) < bound);
+            for _ in 0..200 {
+                let p = b.min
+                    + (b.max - b.min) * Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+                if frustum.contains_point(p) {
+                    let depth = (p - cam.eye).dot(cam.forward);
+                    assert!(
+                        depth >= bound - 1e-4,
+                        "visible point at depth {depth} < bound {bound}"
+                    );
+                }
+            }
+        }
+        // The bound is tighter than the nearest corner's depth for many boxes.
+        assert!(beside > 30, "{beside}");
+    }
 }

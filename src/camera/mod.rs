@@ -71,4 +71,40 @@ impl Camera {
     pub fn frustum(&self) -> Frustum {
         Frustum::from_matrix(self.view_projection())
     }
+
+    /// Focal length in pixels on a target `height` pixels tall: an object `s` metres across at
+    /// depth `d` covers about `s · focal / d` pixels.
+    pub fn focal_pixels(&self, height: u32) -> f32 {
+        height as f32 / (2.0 * (self.fov_y * 0.5).tan())
+    }
+
+    /// Depth along the view direction of the nearest corner of `b` (negative when a corner is
+    /// behind the eye): the depth at which a level of detail for `b` must be chosen so that
+    /// none of `b` is drawn coarser than its nearest point allows.
+    pub fn nearest_depth(&self, b: &Aabb) -> f32 {
+        let mut depth = f32::INFINITY;
+        for c in 0..8 {
+            let corner = Vec3::new(
+                if c & 1 == 0 { b.min.x } else { b.max.x },
+                if c & 2 == 0 { b.min.y } else { b.max.y },
+                if c & 4 == 0 { b.min.z } else { b.max.z },
+            );
+            depth = depth.min((corner - self.eye).dot(self.forward));
+        }
+        depth
+    }
+
+    /// A lower bound on the depth of every point of `b` that the camera can see: the
+    /// [nearest depth](Self::nearest_depth) of the box, or, where a corner lies behind or
+    /// beside the eye, the box's distance from the eye times the cosine of the angle between
+    /// the view direction and the view volume's corner rays (no visible point is nearer in
+    /// depth than that). A level of detail chosen at this depth is conservative for what is
+    /// seen of `b`, and not needlessly fine for boxes beside the eye.
+    pub fn nearest_visible_depth(&self, b: &Aabb) -> f32 {
+        let tan_y = (self.fov_y * 0.5).tan();
+        let tan_x = tan_y * self.aspect;
+        let corner_cos = 1.0 / (1.0 + tan_x * tan_x + tan_y * tan_y).sqrt();
+        let distance = (self.eye.clamp(b.min, b.max) - self.eye).length();
+        self.nearest_depth(b).max(distance * corner_cos)
+    }
 }

@@ -2,10 +2,11 @@
 //! object, drawn the same way before every technique's grass, so differences between images
 //! come from the grass alone.
 
+use super::ground::{GroundDraws, GroundGpu};
 use super::props::{PropVertex, PropsGpu};
 use crate::shaders::{self, FragmentKind, PipelineCost, RenderPipeline};
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT};
-use crate::terrain::{GroundVertex, TerrainGpu};
+use crate::terrain::chunks::{ChunkInstance, Pattern};
 
 /// Sky, ground, prop and object pipelines.
 pub struct Background {
@@ -17,19 +18,27 @@ pub struct Background {
 }
 
 impl Background {
-    /// Builds the pipelines for `sample_count`.
+    /// Builds the pipelines for `sample_count`; the ground's reads the mesh through
+    /// `ground_layout` (group 1).
     pub fn new(
         device: &wgpu::Device,
         scene_layout: &wgpu::BindGroupLayout,
+        ground_layout: &wgpu::BindGroupLayout,
         sample_count: u32,
     ) -> Self {
         let module = shaders::module(device, "background", shaders::BACKGROUND);
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let scene_only = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("background"),
             bind_group_layouts: &[Some(scene_layout)],
             immediate_size: 0,
         });
+        let with_ground = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("ground"),
+            bind_group_layouts: &[Some(scene_layout), Some(ground_layout)],
+            immediate_size: 0,
+        });
         let pipeline = |label,
+                        layout: &wgpu::PipelineLayout,
                         vs,
                         fs,
                         buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
@@ -44,7 +53,7 @@ impl Background {
             let kind = FragmentKind::of(&targets, &multisample, module.discards(fs));
             let raw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
-                layout: Some(&layout),
+                layout: Some(layout),
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some(vs),
@@ -82,6 +91,7 @@ impl Background {
         Self {
             sky: pipeline(
                 "sky",
+                &scene_only,
                 "vs_sky",
                 "fs_sky",
                 &[],
@@ -91,6 +101,7 @@ impl Background {
             ),
             apron: pipeline(
                 "apron",
+                &scene_only,
                 "vs_apron",
                 "fs_apron",
                 &[],
@@ -100,15 +111,17 @@ impl Background {
             ),
             ground: pipeline(
                 "ground",
+                &with_ground,
                 "vs_ground",
                 "fs_ground",
-                &[Some(GroundVertex::LAYOUT)],
+                &[Some(Pattern::LAYOUT), Some(ChunkInstance::LAYOUT)],
                 true,
                 wgpu::CompareFunction::Less,
                 list,
             ),
             props: pipeline(
                 "trees and stones",
+                &scene_only,
                 "vs_prop",
                 "fs_prop",
                 &[Some(PropVertex::LAYOUT)],
@@ -118,6 +131,7 @@ impl Background {
             ),
             object: pipeline(
                 "object",
+                &scene_only,
                 "vs_object",
                 "fs_object",
                 &[],
@@ -128,14 +142,16 @@ impl Background {
         }
     }
 
-    /// Draws the sky, the apron beyond the terrain, the ground, the scene's trees and stones
+    /// Draws the sky, the apron beyond the terrain, the ground (the chunks `ground_draws`
+    /// names, [`GroundGpu::upload`]), the scene's trees and stones
     /// (Zhang Sec. 5.5.2: opaque and depth-tested, for every technique; none when the covering
     /// map has none), then the scene's moving object (a sphere ray-cast on a camera-facing
     /// quad; nothing when it has none). Bind group 0 must be set.
     pub fn draw(
         &self,
         pass: &mut crate::technique::RenderPass<'_>,
-        terrain: &TerrainGpu,
+        ground: &GroundGpu,
+        ground_draws: &GroundDraws,
         props: &PropsGpu,
     ) {
         pass.set_pipeline(&self.sky);
@@ -143,9 +159,7 @@ impl Background {
         pass.set_pipeline(&self.apron);
         pass.draw(0..4, 0..1);
         pass.set_pipeline(&self.ground);
-        pass.set_vertex_buffer(0, terrain.ground_vertices.slice(..));
-        pass.set_index_buffer(terrain.ground_indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..terrain.ground_index_count, 0, 0..1);
+        ground.draw(pass, ground_draws);
         if let Some(vertices) = &props.vertices {
             pass.set_pipeline(&self.props);
             pass.set_vertex_buffer(0, vertices.slice(..));

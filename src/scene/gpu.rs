@@ -5,9 +5,11 @@
 use wgpu::util::DeviceExt as _;
 
 use super::Background;
+use super::ground::{GroundDraws, GroundGpu};
 use super::props::PropsGpu;
 use crate::frame::{FrameGlobals, FrameInputs};
 use crate::terrain::TerrainGpu;
+use crate::terrain::chunks::GroundLod;
 use crate::wind::{WindField, WindTexture};
 use crate::{GpuContext, Result, Scene};
 
@@ -21,6 +23,11 @@ pub struct SceneGpu {
     pub globals: wgpu::Buffer,
     /// Terrain maps and ground mesh.
     pub terrain: TerrainGpu,
+    /// The ground's chunk patterns and per-frame instances.
+    pub ground: GroundGpu,
+    /// How coarse far chunks of the ground may be drawn ([`GroundLod::DEFAULT`];
+    /// [`GroundLod::FINEST`] draws the mesh's own triangles in view).
+    pub ground_lod: GroundLod,
     /// The baked wind.
     pub wind: WindTexture,
     /// The trees and stones of the covering map (Zhang Sec. 5.5.2), drawn with the
@@ -103,13 +110,16 @@ impl SceneGpu {
                     },
                 ],
             });
-            let background = Background::new(device, &layout, sample_count);
+            let ground = GroundGpu::new(device, &terrain);
+            let background = Background::new(device, &layout, &ground.layout, sample_count);
             let props = PropsGpu::new(device, &scene.terrain, scene.config.seed);
             Self {
                 layout,
                 bind_group,
                 globals,
                 terrain,
+                ground,
+                ground_lod: GroundLod::DEFAULT,
                 wind,
                 props,
                 background,
@@ -123,23 +133,38 @@ impl SceneGpu {
         self.wind.bake(wind, time);
     }
 
-    /// Upload half: the wind texture and the frame globals.
-    pub fn upload(&self, gpu: &GpuContext, inputs: &FrameInputs<'_>) {
+    /// Upload half: the wind texture, the frame globals and the ground chunks this frame
+    /// draws (returned, for [`Self::draw_background`]).
+    pub fn upload(&self, gpu: &GpuContext, inputs: &FrameInputs<'_>) -> GroundDraws {
         self.wind.upload(gpu);
         let globals = inputs.globals(self.wind.max_speed());
         gpu.write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        self.ground.upload(
+            gpu,
+            &self.terrain,
+            &inputs.camera,
+            inputs.size.height,
+            self.ground_lod,
+        )
     }
 
     /// Draws the background (sky, ground, props, moving object; [`Background::draw`]) into
-    /// `pass`, which must have bind group 0 set.
-    pub fn draw_background(&self, pass: &mut crate::technique::RenderPass<'_>) {
-        self.background.draw(pass, &self.terrain, &self.props);
+    /// `pass`, which must have bind group 0 set; `ground` is what [`Self::upload`] returned
+    /// for this frame.
+    pub fn draw_background(
+        &self,
+        pass: &mut crate::technique::RenderPass<'_>,
+        ground: &GroundDraws,
+    ) {
+        self.background
+            .draw(pass, &self.ground, ground, &self.props);
     }
 
     /// GPU memory held by the shared scene resources, bytes.
     pub fn bytes(&self) -> u64 {
         let (w, h) = self.wind.resolution();
         self.terrain.bytes()
+            + self.ground.bytes()
             + u64::from(w * h * 16)
             + std::mem::size_of::<FrameGlobals>() as u64
             + self.props.bytes()

@@ -4,6 +4,7 @@
 
 mod background;
 mod gpu;
+mod ground;
 mod lighting;
 pub mod props;
 
@@ -14,6 +15,7 @@ use serde::{Deserialize, Serialize};
 pub use crate::object::ObjectConfig;
 pub use background::Background;
 pub use gpu::SceneGpu;
+pub use ground::{GroundDraws, GroundGpu};
 pub use lighting::{LightKey, LightState, LightsConfig, PointLight, SkyConfig};
 
 use crate::camera::{Camera, CameraConfig};

@@ -34,12 +34,48 @@ struct GroundOut {
     @location(1) normal: vec3<f32>,
 }
 
+// The ground mesh's vertices (`GroundVertex`: position, normal; six floats each), row by row.
+@group(1) @binding(0) var<storage, read> ground_mesh: array<f32>;
+
+// Cells along a chunk's side (`terrain::chunks::CHUNK_CELLS`).
+const CHUNK_CELLS: u32 = 8u;
+
+// The mesh vertex (column, row) the pattern's local vertex (i, j) stands on for a chunk
+// instance (`chunk`: first mesh column and row, mesh vertices along x and z): turned onto the
+// skirt's `edge` (0 west, 1 east, 2 south, 3 north; skirt patterns are built along the west
+// edge; 4 = a surface, left as it is), then clamped to the mesh.
+// Rust twin: `terrain::chunks::ChunkInstance::vertex`.
+fn ground_vertex(chunk: vec4<u32>, edge: u32, local: vec2<u32>) -> vec2<u32> {
+    var ij = local;
+    switch edge {
+        case 0u: { ij = vec2(0u, local.y); }
+        case 1u: { ij = vec2(CHUNK_CELLS, local.y); }
+        case 2u: { ij = vec2(local.y, 0u); }
+        case 3u: { ij = vec2(local.y, CHUNK_CELLS); }
+        default: {}
+    }
+    return min(chunk.xy + ij, chunk.zw - 1u);
+}
+
+// A chunk of the ground at one level (`src/terrain/chunks.rs`): the pattern's local vertex
+// (`local`: i, j in mesh cells from the chunk's corner, 1 for a skirt's lowered copy), the
+// instance's chunk (`chunk`: first mesh column and row, mesh vertices along x and z), the
+// edge a skirt hangs from and how far.
 @vertex
-fn vs_ground(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> GroundOut {
+fn vs_ground(
+    @location(0) local: vec3<u32>,
+    @location(1) chunk: vec4<u32>,
+    @location(2) edge: u32,
+    @location(3) depth: f32,
+) -> GroundOut {
+    let vertex = ground_vertex(chunk, edge, local.xy);
+    let k = (vertex.y * chunk.z + vertex.x) * 6u;
+    var position = vec3(ground_mesh[k], ground_mesh[k + 1u], ground_mesh[k + 2u]);
+    position.y -= depth * f32(local.z);
     var out: GroundOut;
     out.position = globals.view_proj * vec4(position, 1.0);
     out.world = position;
-    out.normal = normal;
+    out.normal = vec3(ground_mesh[k + 3u], ground_mesh[k + 4u], ground_mesh[k + 5u]);
     return out;
 }
 

@@ -1,9 +1,10 @@
 //! The terrain on the GPU: its three maps as textures and the ground mesh every technique
-//! shares (Bakay's shells are copies of it).
+//! shares (Bakay's shells are copies of it; the core draws it in chunks, [`super::chunks`]).
 
 use glam::Vec2;
 use wgpu::util::DeviceExt as _;
 
+use super::chunks::GroundChunks;
 use super::{Grid, Terrain};
 
 /// A vertex of the ground mesh.
@@ -36,14 +37,13 @@ pub struct TerrainGpu {
     pub density: wgpu::TextureView,
     /// Covering IDs (`R8Uint`).
     pub covering: wgpu::TextureView,
-    /// Ground mesh vertices ([`GroundVertex`]).
+    /// Ground mesh vertices ([`GroundVertex`]), row by row (cells wound by
+    /// [`Self::cell_indices`]).
     pub ground_vertices: wgpu::Buffer,
-    /// Ground mesh triangle list (u32 indices).
-    pub ground_indices: wgpu::Buffer,
-    /// Number of indices.
-    pub ground_index_count: u32,
     /// Vertices along x and z.
     pub ground_side: (u32, u32),
+    /// The mesh's chunks, their boxes and their errors per level of detail.
+    pub chunks: GroundChunks,
     bytes: u64,
 }
 
@@ -71,6 +71,22 @@ impl TerrainGpu {
         let a = j * nx + i;
         let (b, c, d) = (a + 1, a + nx, a + nx + 1);
         [a, c, b, b, c, d]
+    }
+
+    /// The ground mesh's vertices over `terrain`, row by row, and its side in vertices.
+    pub fn ground_mesh(terrain: &Terrain) -> ((u32, u32), Vec<GroundVertex>) {
+        let (nx, nz) = Self::ground_side_for(terrain);
+        let vertices = (0..nz)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let xz = Self::ground_xz(terrain, (nx, nz), i, j);
+                GroundVertex {
+                    position: terrain.point_at(xz).to_array(),
+                    normal: terrain.normal_at(xz).to_array(),
+                }
+            })
+            .collect();
+        ((nx, nz), vertices)
     }
 
     /// Uploads `terrain`. The ground mesh has about one vertex per metre (at most
@@ -101,45 +117,20 @@ impl TerrainGpu {
             terrain.covering(),
             1,
         );
-        let (nx, nz) = Self::ground_side_for(terrain);
-        let vertices: Vec<GroundVertex> = (0..nz)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let xz = Self::ground_xz(terrain, (nx, nz), i, j);
-                GroundVertex {
-                    position: terrain.point_at(xz).to_array(),
-                    normal: terrain.normal_at(xz).to_array(),
-                }
-            })
-            .collect();
-        let mut indices = Vec::with_capacity(((nx - 1) * (nz - 1) * 6) as usize);
-        for j in 0..nz - 1 {
-            for i in 0..nx - 1 {
-                indices.extend_from_slice(&Self::cell_indices(nx, i, j));
-            }
-        }
+        let ((nx, nz), vertices) = Self::ground_mesh(terrain);
         let ground_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ground vertices"),
             contents: bytemuck::cast_slice(&vertices),
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
         });
-        let ground_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ground indices"),
-            contents: bytemuck::cast_slice(&indices),
-            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
-        });
-        let bytes = hb
-            + db
-            + cb
-            + (vertices.len() * std::mem::size_of::<GroundVertex>() + indices.len() * 4) as u64;
+        let bytes = hb + db + cb + (vertices.len() * std::mem::size_of::<GroundVertex>()) as u64;
         Self {
             heights,
             density,
             covering,
             ground_vertices,
-            ground_indices,
-            ground_index_count: indices.len() as u32,
             ground_side: (nx, nz),
+            chunks: GroundChunks::new((nx, nz), &vertices),
             bytes,
         }
     }

@@ -5,6 +5,7 @@
 //! World space: y is up, the terrain spans `[-size.x/2, size.x/2] x [-size.z/2, size.z/2]`.
 //! Map sample `(0, 0)` lies at `(-size.x/2, -size.z/2)`, the last sample at the opposite corner.
 
+pub mod chunks;
 mod config;
 mod gpu;
 mod grid;
@@ -16,7 +17,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 pub use config::{CoveringSource, MapSource, TerrainConfig};
-pub use gpu::{GroundVertex, TerrainGpu};
+pub use gpu::{GroundVertex, MAX_GROUND_SIDE, TerrainGpu};
 pub use grid::Grid;
 
 use crate::{Error, Result};

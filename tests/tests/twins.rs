@@ -9,7 +9,7 @@
 //! `bezier_tangent`; bakay's `tilt` and `shell_segment`, and `cs_bend` itself; boulanger's LOD
 //! weights and opacities (Eq. 1-5) and the patch orientation map (Eq. 6-7); perbet's posture
 //! lookup, segment directions and the morph onto the animated strips; the prelude's
-//! `hash_u32`; jahrmann's `simulate` (property test over random winds and spheres), `cull`
+//! `hash_u32`; the background's `ground_vertex` (the ground's chunks); jahrmann's `simulate` (property test over random winds and spheres), `cull`
 //! (property test against the core's CPU frustum) and its whole compute pass `cs_simulate`.
 //!
 //! Tolerances: both sides compute in f32, mostly the same operations in the same order; what
@@ -1575,4 +1575,63 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
         );
     }
     Ok(())
+}
+
+/// The background shader's `ground_vertex` (which mesh vertex a ground chunk's pattern vertex
+/// stands on: turned onto a skirt's edge, clamped to the mesh) is
+/// `ChunkInstance::vertex`, exactly, over every edge and random chunks, meshes and locals.
+#[test]
+fn ground_vertex_is_chunk_instance_vertex() -> anyhow::Result<()> {
+    use grassbench::terrain::chunks::{CHUNK_CELLS, ChunkInstance, EDGES};
+    let gpu = gpu()?;
+    let mut rng = Rng::new(43);
+    let mut cases = Vec::new();
+    while cases.len() < 4000 {
+        let side = [
+            2 + (rng.next_u64() % 256) as u32,
+            2 + (rng.next_u64() % 256) as u32,
+        ];
+        let cells = |n: u32| (n - 1).div_ceil(CHUNK_CELLS);
+        let origin = [
+            (rng.next_u64() % u64::from(cells(side[0]))) as u32 * CHUNK_CELLS,
+            (rng.next_u64() % u64::from(cells(side[1]))) as u32 * CHUNK_CELLS,
+        ];
+        let instance = ChunkInstance {
+            origin,
+            side,
+            edge: (rng.next_u64() % u64::from(EDGES + 1)) as u32,
+            depth: 0.0,
+        };
+        let local = (
+            (rng.next_u64() % u64::from(CHUNK_CELLS + 1)) as u32,
+            (rng.next_u64() % u64::from(CHUNK_CELLS + 1)) as u32,
+        );
+        cases.push((instance, local));
+    }
+    let inputs: Vec<[[f32; 4]; 2]> = cases
+        .iter()
+        .map(|(c, (i, j))| {
+            let f = |v: u32| v as f32;
+            [
+                [f(c.origin[0]), f(c.origin[1]), f(c.side[0]), f(c.side[1])],
+                [f(c.edge), f(*i), f(*j), 0.0],
+            ]
+        })
+        .collect();
+    let body = "    let v = ground_vertex(vec4<u32>(x.v[0]), u32(x.v[1].x), vec2<u32>(x.v[1].yz));
+    y.v[0] = vec4(f32(v.x), f32(v.y), 0.0, 0.0);";
+    let shader = compose(grassbench::shaders::BACKGROUND);
+    let out: Vec<[[f32; 4]; 1]> = twin::map(&gpu, &shader, body, Bindings::new(), &inputs)?;
+    let mut worst = Worst::default();
+    for ((c, (i, j)), o) in cases.iter().zip(&out) {
+        let (col, row) = c.vertex(*i, *j);
+        let same = o[0][0] == col as f32 && o[0][1] == row as f32;
+        worst.record(if same { 0.0 } else { 1.0 }, || {
+            format!(
+                "{c:?} at ({i}, {j}): GPU {:?}, CPU ({col}, {row})",
+                &o[0][..2]
+            )
+        });
+    }
+    worst.check("ground_vertex", 0.0)
 }

@@ -20,7 +20,7 @@ use grassbench::camera::{Aabb, Camera, Frustum};
 use grassbench::glam::Vec3;
 use grassbench::terrain::{Terrain, TerrainGpu};
 
-use crate::lod::{ShellLod, nearest_depth};
+use crate::lod::ShellLod;
 
 /// Cells a side of a chunk.
 pub const CHUNK: u32 = 16;
@@ -109,12 +109,12 @@ impl Chunks {
     pub fn plan_into(&self, camera: &Camera, height: u32, lod: &ShellLod, out: &mut Vec<Draw>) {
         out.clear();
         let frustum = camera.frustum();
-        let focal = crate::lod::focal_pixels(camera, height);
+        let focal = camera.focal_pixels(height);
         for (range, b) in self.ranges.iter().zip(&self.bounds) {
             if !frustum.intersects_aabb(b) {
                 continue;
             }
-            let Some(level) = lod.level(nearest_depth(camera, b), focal) else {
+            let Some(level) = lod.level(camera.nearest_depth(b), focal) else {
                 continue;
             };
             match out.last_mut() {
@@ -297,7 +297,7 @@ mod tests {
             for (range, b) in chunks.ranges.iter().zip(&chunks.bounds) {
                 if d.indices.start <= range.start && range.end <= d.indices.end {
                     assert!(frustum.intersects_aabb(b));
-                    by_depth.push((nearest_depth(&cam, b), d.level));
+                    by_depth.push((cam.nearest_depth(b), d.level));
                 }
             }
         }

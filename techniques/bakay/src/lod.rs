@@ -15,8 +15,6 @@
 //! `pixels = 0` turns the level of detail off: every chunk in view gets all `N` shells (the
 //! paper's behaviour).
 
-use grassbench::camera::{Aabb, Camera};
-
 /// Instance indices a level owns: a draw at level `L` uses instances `L · LEVEL_INSTANCES`
 /// onwards (the shader splits an instance index into level and shell). At least the largest
 /// number of shells the parameters allow.
@@ -85,26 +83,6 @@ impl ShellLod {
 /// Shells between neighbouring drawn shells at `level`.
 fn stride(level: u32) -> u32 {
     1u32 << level.min(31)
-}
-
-/// Focal length in pixels of `camera` on a target `height` pixels tall.
-pub fn focal_pixels(camera: &Camera, height: u32) -> f32 {
-    height as f32 / (2.0 * (camera.fov_y * 0.5).tan())
-}
-
-/// Depth along the view direction of the nearest corner of `b` (negative when a corner is
-/// behind the eye).
-pub fn nearest_depth(camera: &Camera, b: &Aabb) -> f32 {
-    let mut depth = f32::INFINITY;
-    for c in 0..8 {
-        let corner = grassbench::glam::Vec3::new(
-            if c & 1 == 0 { b.min.x } else { b.max.x },
-            if c & 2 == 0 { b.min.y } else { b.max.y },
-            if c & 4 == 0 { b.min.z } else { b.max.z },
-        );
-        depth = depth.min((corner - camera.eye).dot(camera.forward));
-    }
-    depth
 }
 
 #[cfg(test)]
@@ -181,22 +159,5 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn nearest_depth_is_the_nearest_corner() {
-        let cam = Camera::look_at(
-            grassbench::glam::Vec3::ZERO,
-            grassbench::glam::Vec3::X,
-            1.0,
-            0.1,
-            100.0,
-            1.0,
-        );
-        let b = Aabb {
-            min: grassbench::glam::Vec3::new(10.0, -1.0, -5.0),
-            max: grassbench::glam::Vec3::new(26.0, 1.0, 5.0),
-        };
-        assert!((nearest_depth(&cam, &b) - 10.0).abs() < 1e-5);
     }
 }
