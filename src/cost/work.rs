@@ -196,7 +196,7 @@ mod tests {
             ..PipelineCost::default()
         };
         // 11 vertices fetching 8 texels each (a bilinear height and wind), 100 fragments
-        // sampling 3 textures and loading 1 texel.
+        // sampling 3 textures and loading 1 texel, 64 compute invocations loading 4.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
             vertex_fetches: TextureFetches {
@@ -207,6 +207,10 @@ mod tests {
                 loads: 1,
                 samples: 3,
             },
+            compute_fetches: TextureFetches {
+                loads: 4,
+                samples: 0,
+            },
         };
         assert_eq!(
             Work::from_counters(&counted, fetching),
@@ -215,7 +219,7 @@ mod tests {
                 primitives: 7.0,
                 fragments_alpha_tested: 100.0,
                 compute_invocations: 64.0,
-                texture_loads: 88.0 + 100.0,
+                texture_loads: 88.0 + 100.0 + 256.0,
                 texture_samples: 300.0,
                 ..Work::default()
             }

@@ -14,7 +14,8 @@ pub use fetches::{TextureFetches, entry_fetches};
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
 pub use pipeline::{
-    PipelineCost, PipelineSpec, RenderPipeline, depth_less, depth_test, render_pipeline,
+    ComputePipeline, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline, depth_less,
+    depth_test, render_pipeline,
 };
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,

@@ -30,11 +30,12 @@ pub struct PipelineSpec<'a> {
     pub targets: &'a [Option<wgpu::ColorTargetState>],
 }
 
-/// What one invocation of each stage of a render pipeline does beyond what the pipeline
-/// statistics count: how its fragments reach the target, and the texture fetches of its vertex
-/// and fragment entry points. Read off the pipeline and its shader, never declared by a
-/// technique; the work counters ([`crate::technique::work`]) keep a pipeline's invocations
-/// apart from those of pipelines that cost otherwise.
+/// What one invocation of each stage of a pipeline does beyond what the pipeline statistics
+/// count: how its fragments reach the target, and the texture fetches of its vertex and
+/// fragment entry points (a render pipeline) or of its compute entry point (a compute
+/// pipeline). Read off the pipeline and its shader, never declared by a technique; the work
+/// counters ([`crate::technique::work`]) keep a pipeline's invocations apart from those of
+/// pipelines that cost otherwise.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct PipelineCost {
     /// How its fragments reach the target.
@@ -43,6 +44,8 @@ pub struct PipelineCost {
     pub vertex_fetches: TextureFetches,
     /// Texture fetches of one fragment shader invocation.
     pub fragment_fetches: TextureFetches,
+    /// Texture fetches of one compute shader invocation.
+    pub compute_fetches: TextureFetches,
 }
 
 impl PipelineCost {
@@ -58,6 +61,15 @@ impl PipelineCost {
             fragments,
             vertex_fetches: module.fetches(vertex),
             fragment_fetches: module.fetches(fragment),
+            compute_fetches: TextureFetches::default(),
+        }
+    }
+
+    /// The cost of a compute pipeline running `module`'s entry point `entry`.
+    pub fn compute(module: &super::Module, entry: &str) -> Self {
+        Self {
+            compute_fetches: module.fetches(entry),
+            ..Self::default()
         }
     }
 
@@ -70,6 +82,55 @@ impl PipelineCost {
         };
         times(self.vertex_fetches, work.vertex_invocations)
             + times(self.fragment_fetches, work.fragment_invocations)
+            + times(self.compute_fetches, work.compute_invocations)
+    }
+}
+
+/// A compute pipeline and what its invocations cost (their texture fetches), as the frame
+/// encoder's compute passes take it, so the work of every dispatch is counted by
+/// [`PipelineCost`] ([`crate::technique::work`]).
+#[derive(Debug)]
+pub struct ComputePipeline {
+    raw: wgpu::ComputePipeline,
+    cost: PipelineCost,
+}
+
+impl ComputePipeline {
+    /// What its invocations cost.
+    pub fn cost(&self) -> PipelineCost {
+        self.cost
+    }
+}
+
+impl std::ops::Deref for ComputePipeline {
+    type Target = wgpu::ComputePipeline;
+
+    /// The wgpu pipeline, for passes outside the frame.
+    fn deref(&self) -> &wgpu::ComputePipeline {
+        &self.raw
+    }
+}
+
+/// Creates the compute pipeline running `module`'s entry point `entry` with `layout`, its
+/// cost read off the shader.
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &super::Module,
+    entry: &str,
+) -> ComputePipeline {
+    let raw = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    ComputePipeline {
+        raw,
+        cost: PipelineCost::compute(module, entry),
     }
 }
 

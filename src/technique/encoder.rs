@@ -205,16 +205,11 @@ impl<'a> FrameEncoder<'a> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let work = match self.work.as_deref_mut() {
-            Some(w) => match w.next(full.clone(), PassKind::Render, None) {
-                Some((queries, index)) => {
-                    pass.begin_pipeline_statistics_query(&queries, index);
-                    Some((w, full))
-                }
-                None => None,
-            },
-            None => None,
-        };
+        let (work, query) =
+            start_counting(self.work.as_deref_mut(), full, PassKind::Render).unzip();
+        if let Some((queries, index)) = query {
+            pass.begin_pipeline_statistics_query(&queries, index);
+        }
         RenderPass::new(pass, &mut self.counts, work)
     }
 
@@ -238,14 +233,12 @@ impl<'a> FrameEncoder<'a> {
                 }),
             });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let counted = self
-            .work
-            .as_deref_mut()
-            .and_then(|w| w.next(full, PassKind::Compute, None));
-        if let Some((queries, index)) = &counted {
-            pass.begin_pipeline_statistics_query(queries, *index);
+        let (work, query) =
+            start_counting(self.work.as_deref_mut(), full, PassKind::Compute).unzip();
+        if let Some((queries, index)) = query {
+            pass.begin_pipeline_statistics_query(&queries, index);
         }
-        ComputePass::new(pass, &mut self.counts, counted.is_some())
+        ComputePass::new(pass, &mut self.counts, work)
     }
 
     /// The raw command encoder, for copies and clears outside passes.
@@ -279,4 +272,17 @@ impl<'a> FrameEncoder<'a> {
         }
         self.encoder
     }
+}
+
+/// The counter and label a pass labelled `full` counts its segments with, and the query of its
+/// first segment, to begin as the pass opens (`None` where nothing is counted, or the counter
+/// is full).
+fn start_counting(
+    work: Option<&mut WorkCounter>,
+    full: String,
+    kind: PassKind,
+) -> Option<((&mut WorkCounter, String), (wgpu::QuerySet, u32))> {
+    let work = work?;
+    let query = work.next(full.clone(), kind, None)?;
+    Some(((work, full), query))
 }

@@ -10,8 +10,31 @@
 
 use std::ops::Range;
 
+use super::PassKind;
 use super::work::WorkCounter;
-use crate::shaders::RenderPipeline;
+use crate::shaders::{ComputePipeline, PipelineCost, RenderPipeline};
+
+/// Where a pass's segments are counted, and the pass's label for new segments.
+type Counting<'p> = Option<(&'p mut WorkCounter, String)>;
+
+/// Gives the running segment of a pass of `kind` the pipeline `cost`, or, where it has another
+/// (and the counter has room), starts the next segment: the query to begin after ending the
+/// running one.
+fn segment_for(
+    work: &mut Counting<'_>,
+    kind: PassKind,
+    cost: PipelineCost,
+) -> Option<(wgpu::QuerySet, u32)> {
+    let (work, label) = work.as_mut()?;
+    match work.current_pipeline() {
+        None => {
+            work.set_current_pipeline(cost);
+            None
+        }
+        Some(current) if current == cost || !work.has_room() => None,
+        Some(_) => work.next(label.clone(), kind, Some(cost)),
+    }
+}
 
 /// What the passes of one frame recorded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -29,7 +52,7 @@ pub struct RenderPass<'p> {
     /// A statistics query is open on the pass (ended on drop).
     counting: bool,
     /// Where the pass's segments are counted, and the pass's label for new segments.
-    work: Option<(&'p mut WorkCounter, String)>,
+    work: Counting<'p>,
 }
 
 impl Drop for RenderPass<'_> {
@@ -44,7 +67,7 @@ impl<'p> RenderPass<'p> {
     pub(super) fn new(
         pass: wgpu::RenderPass<'p>,
         counts: &'p mut PassCounts,
-        work: Option<(&'p mut WorkCounter, String)>,
+        work: Counting<'p>,
     ) -> Self {
         Self {
             pass,
@@ -61,20 +84,11 @@ impl<'p> RenderPass<'p> {
     /// and the next begun, so work is counted by [`crate::shaders::PipelineCost`].
     pub fn set_pipeline(&mut self, pipeline: &RenderPipeline) {
         self.pass.set_pipeline(pipeline);
-        let cost = pipeline.cost();
-        if let Some((work, label)) = self.work.as_mut() {
-            match work.current_pipeline() {
-                None => work.set_current_pipeline(cost),
-                Some(current) if current == cost || !work.has_room() => {}
-                Some(_) => {
-                    if let Some((queries, index)) =
-                        work.next(label.clone(), super::PassKind::Render, Some(cost))
-                    {
-                        self.pass.end_pipeline_statistics_query();
-                        self.pass.begin_pipeline_statistics_query(&queries, index);
-                    }
-                }
-            }
+        if let Some((queries, index)) =
+            segment_for(&mut self.work, PassKind::Render, pipeline.cost())
+        {
+            self.pass.end_pipeline_statistics_query();
+            self.pass.begin_pipeline_statistics_query(&queries, index);
         }
     }
 
@@ -144,6 +158,8 @@ pub struct ComputePass<'p> {
     counts: &'p mut PassCounts,
     /// A statistics query is open on the pass (ended on drop).
     counting: bool,
+    /// Where the pass's segments are counted, and the pass's label for new segments.
+    work: Counting<'p>,
 }
 
 impl Drop for ComputePass<'_> {
@@ -158,18 +174,28 @@ impl<'p> ComputePass<'p> {
     pub(super) fn new(
         pass: wgpu::ComputePass<'p>,
         counts: &'p mut PassCounts,
-        counting: bool,
+        work: Counting<'p>,
     ) -> Self {
         Self {
             pass,
             counts,
-            counting,
+            counting: work.is_some(),
+            work,
         }
     }
 
-    /// See [`wgpu::ComputePass::set_pipeline`].
-    pub fn set_pipeline(&mut self, pipeline: &wgpu::ComputePipeline) {
+    /// See [`wgpu::ComputePass::set_pipeline`]. Only pipelines made by
+    /// [`crate::shaders::compute_pipeline`] can be set: where their cost (their texture
+    /// fetches) differs from the running segment's, the statistics query is ended and the next
+    /// begun, as in a render pass.
+    pub fn set_pipeline(&mut self, pipeline: &ComputePipeline) {
         self.pass.set_pipeline(pipeline);
+        if let Some((queries, index)) =
+            segment_for(&mut self.work, PassKind::Compute, pipeline.cost())
+        {
+            self.pass.end_pipeline_statistics_query();
+            self.pass.begin_pipeline_statistics_query(&queries, index);
+        }
     }
 
     /// See [`wgpu::ComputePass::set_bind_group`].

@@ -4,9 +4,10 @@
 //! nor report them about itself: the pass wrappers begin the query when the pass opens and end
 //! it when the pass is dropped.
 //!
-//! Within a render pass, the counting follows the pipelines: whenever a pipeline of another
+//! Within a pass, the counting follows the pipelines: whenever a pipeline of another
 //! [`PipelineCost`] is set (its fragments of another [`crate::shaders::FragmentKind`]:
-//! opaque, alpha-tested, blended; or its shaders fetching other numbers of texels), the wrapper
+//! opaque, alpha-tested, blended; or its shaders, compute shaders too, fetching other numbers
+//! of texels), the wrapper
 //! ends the running query and begins the next, so each query — a *segment* — holds the work of
 //! pipelines that cost alike, and the cost model can price fragments by kind and texture
 //! fetches by invocation. (Past [`MAX_COUNTED_PASSES`] segments in a frame, the last segment
@@ -87,8 +88,8 @@ pub struct PassWorkRecord {
     pub label: String,
     /// Render or compute.
     pub kind: PassKind,
-    /// The cost of the pipelines drawn in the segment (`None` for compute passes and for a
-    /// render pass that set no pipeline).
+    /// The cost of the pipelines drawn or dispatched in the segment (`None` for a pass that
+    /// set no pipeline).
     pub pipeline: Option<PipelineCost>,
     /// What it did.
     pub work: PassWork,

@@ -64,6 +64,30 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A compute pipeline's texture fetches are counted like a render pipeline's (issue 20 §3):
+/// jahrmann's simulation reads the wind texture for every blade, so its texel loads are at
+/// least its compute invocations times the loads `cs_simulate` makes, as the naga IR counts
+/// them.
+#[test]
+fn compute_shaders_texture_fetches_are_counted() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let module = grassbench::shaders::module(&gpu.device, "jahrmann", grassbench_jahrmann::SHADER);
+    let per_invocation = module.fetches("cs_simulate").loads;
+    assert!(
+        per_invocation >= 4,
+        "cs_simulate's wind lookup is bilinear: {per_invocation} loads"
+    );
+    let r = frame_of(&gpu, "jahrmann", "")?;
+    let cs = r.compute_invocations.context("compute")?;
+    let loads = r.texture_loads.context("texture loads")?;
+    assert!(cs > 0, "{r:?}");
+    assert!(
+        loads >= cs * per_invocation,
+        "{loads} loads for {cs} invocations"
+    );
+    Ok(())
+}
+
 /// Fragments are counted by the kind of the pipeline that drew them (issue 20 §1-§2: the cost
 /// model prices opaque, alpha-tested and blended fragments apart): the kinds add up to the
 /// total for every technique, the reference's opaque strips are all opaque, bakay's shells
@@ -97,15 +121,27 @@ fn fragments_are_split_by_the_kind_of_their_pipeline() -> anyhow::Result<()> {
 }
 
 /// Uploads are counted by the harness: the reference uploads nothing per frame, so its frame
-/// uploads exactly the core's wind texture and frame globals.
+/// uploads exactly the core's wind texture, frame globals and the ground chunks it draws.
 #[test]
 fn uploads_are_counted_for_every_frame() -> anyhow::Result<()> {
     let gpu = gpu()?;
-    let r = frame_of(&gpu, "reference", "")?;
+    let entry = grassbench_cli::registry::find("reference")?;
+    let mut harness = Harness::new(&gpu, lawn()?, TEST_SIZE, false)?;
+    let mut technique = harness.create(entry, &toml::Table::new())?;
+    let r = render_record(&mut harness, technique.as_mut(), 2)?.1;
     let scene = lawn()?;
     let (w, h) = grassbench::wind::WindTexture::resolution_for(&scene.terrain);
-    let core =
-        u64::from(w * h * 16) + std::mem::size_of::<grassbench::frame::FrameGlobals>() as u64;
+    let camera = harness.world.camera(&harness.view, 2);
+    let scene_gpu = &harness.world.scene_gpu;
+    let ground = scene_gpu
+        .terrain
+        .chunks
+        .plan(&camera, TEST_SIZE.height, scene_gpu.ground_lod)
+        .instances;
+    assert!(!ground.is_empty(), "the lawn's ground is in view");
+    let core = u64::from(w * h * 16)
+        + std::mem::size_of::<grassbench::frame::FrameGlobals>() as u64
+        + std::mem::size_of_val(ground.as_slice()) as u64;
     assert_eq!(r.upload_bytes, Some(core));
     // zhang uploads its near blades' control points every frame.
     let z = frame_of(&gpu, "zhang", "")?;

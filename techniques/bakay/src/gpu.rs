@@ -32,7 +32,7 @@ pub struct ParamsUniform {
 
 /// Pipelines, bind groups and the buffers and textures they hold.
 pub struct ShellGpu {
-    bend: wgpu::ComputePipeline,
+    bend: shaders::ComputePipeline,
     bend_group: wgpu::BindGroup,
     shells: grassbench::shaders::RenderPipeline,
     shell_group: wgpu::BindGroup,
@@ -177,17 +177,14 @@ impl ShellGpu {
         });
 
         let module = shaders::module(device, "bakay", SHADER);
-        let bend = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("bakay bend"),
-            layout: Some(
-                &ctx.scene_gpu
-                    .pipeline_layout(device, "bakay bend", &[&bend_layout]),
-            ),
-            module: &module,
-            entry_point: Some("cs_bend"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let bend = shaders::compute_pipeline(
+            device,
+            "bakay bend",
+            &ctx.scene_gpu
+                .pipeline_layout(device, "bakay bend", &[&bend_layout]),
+            &module,
+            "cs_bend",
+        );
         let shell_pipeline_layout =
             ctx.scene_gpu
                 .pipeline_layout(device, "bakay shells", &[&shell_layout]);

@@ -146,7 +146,7 @@ pub struct BladeGpu {
     rest: wgpu::Buffer,
     v2: [wgpu::Buffer; 2],
     counters: wgpu::Buffer,
-    simulate: wgpu::ComputePipeline,
+    simulate: shaders::ComputePipeline,
     near: grassbench::shaders::RenderPipeline,
     far: grassbench::shaders::RenderPipeline,
     /// Per parity `p`: reads tips `p`, writes curve `1 − p`.
@@ -308,18 +308,14 @@ impl BladeGpu {
         };
 
         let module = shaders::module(device, "jahrmann", SHADER);
-        let simulate = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("jahrmann simulate"),
-            layout: Some(&ctx.scene_gpu.pipeline_layout(
-                device,
-                "jahrmann simulate",
-                &[&simulate_layout],
-            )),
-            module: &module,
-            entry_point: Some("cs_simulate"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let simulate = shaders::compute_pipeline(
+            device,
+            "jahrmann simulate",
+            &ctx.scene_gpu
+                .pipeline_layout(device, "jahrmann simulate", &[&simulate_layout]),
+            &module,
+            "cs_simulate",
+        );
         let draw_pipeline_layout =
             ctx.scene_gpu
                 .pipeline_layout(device, "jahrmann draw", &[&draw_layout]);
