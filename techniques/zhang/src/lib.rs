@@ -420,10 +420,17 @@ impl GrassTechnique for Zhang {
         ];
         let mut by_level = vec![0u64; billboards.steps.len()];
         for f in &plan.far {
-            by_level[f.level] += u64::from(billboards.grids[f.grid as usize][f.level].billboards);
+            by_level[f.level] +=
+                u64::from(billboards.level_of(f.group, f.grid, f.level).billboards);
         }
-        for (&step, n) in billboards.steps.iter().zip(by_level) {
+        let grid_levels = billboards.grid_levels();
+        for (&step, &n) in billboards.steps.iter().zip(&by_level).take(grid_levels) {
             c.push((billboard_counter(step), n as f64));
+        }
+        if !billboards.groups.is_empty() {
+            // Far groups (ours): one billboard each.
+            c.push(("groups_drawn", plan.groups as f64));
+            c.push(("groups_culled", plan.groups_culled as f64));
         }
         c.push(("wings", self.frame.wings.len() as f64));
         c.push(("fading_grids", plan.fading as f64));

@@ -111,14 +111,12 @@ impl Layout {
                 lattice: Lattice::Strata { first: [0, 0] },
             };
         }
-        // `grids` grids along the longer side, square (the strata are), and never wider than
-        // the shorter side, so the grids hold about as many lattice points as there are
-        // strata on the terrain whatever its shape.
-        let n = cells
-            .max_element()
-            .div_ceil(params.grids.max(1))
-            .min(cells.min_element());
+        // Square grids (the strata are) of `grid_size` metres, or `grids` of them along the
+        // longer side (the thesis' count), never wider than the shorter side, so the grids
+        // hold about as many lattice points as there are strata on the terrain whatever its
+        // shape.
         let cell = field.cell_size();
+        let n = strata_per_grid(params, cells, cell);
         Self {
             grids: UVec2::new(cells.x.div_ceil(n), cells.y.div_ceil(n)),
             per_side: n,
@@ -173,6 +171,19 @@ impl Layout {
         );
         (j0..j1).flat_map(move |j| (i0..i1).map(move |i| (i, j)))
     }
+}
+
+/// Strata per grid side on a terrain of `cells` strata of `cell` metres: the whole number
+/// nearest `params.grid_size` metres (at least 1) when it is above 0, else `⌈cells/grids⌉`
+/// along the longer side (the thesis' count of grids, Sec. 5.1); never more than the shorter
+/// side holds.
+pub fn strata_per_grid(params: &Params, cells: UVec2, cell: f32) -> u32 {
+    let n = if params.grid_size > 0.0 && cell > 0.0 {
+        ((params.grid_size / cell).round() as u32).max(1)
+    } else {
+        cells.max_element().div_ceil(params.grids.max(1))
+    };
+    n.min(cells.min_element()).max(1)
 }
 
 /// Plants every blade that grows: the lattice's candidates kept where the covering map says
@@ -354,7 +365,11 @@ mod tests {
     #[test]
     fn by_default_the_plants_are_the_scenes_blades() {
         let terrain = rolling();
-        let params = Params::default();
+        // The thesis' count of grids (16 along the longer side).
+        let params = Params {
+            grid_size: 0.0,
+            ..Params::default()
+        };
         for density in [7.0, 40.0, 90.0] {
             let field = field(density, 9);
             let (layout, planted) = plant(&params, &field, &terrain, 9);
