@@ -26,6 +26,12 @@
 //! block), and a block where none grows (the covering map's gaps, the density map, the part of
 //! an edge grid beyond the terrain) has no billboard. A grid where no plant grows has no
 //! anchors. [`GridLevel::represented`] counts the plants of the blocks that draw a wing.
+//!
+//! Far groups (ours, [`GroupLevel`]): the same construction on the lattice of a block of
+//! `2^k x 2^k` grids, one billboard spanning it, its middle line on the block's middle plant;
+//! their anchors follow the grids' and their levels come after the grids' in
+//! [`Billboards::steps`] (one texture layer each). Their wings are thinned along their length
+//! by the gaps and the density map instead of dropped at a gap.
 
 use std::ops::Range;
 

@@ -7,6 +7,10 @@
 //! a grid border is already in motion: blades are animated in the grids up to two away, the
 //! anchors of a grid one or more away at the finer of its own and its next-closer step.
 //! Near a border a grid may be drawn both ways, fading (Sec. 6.1, [`crate::fade`]).
+//!
+//! With far groups ([`crate::billboard::GroupLevel`]), only the grids nearer than the groups
+//! are planned one by one; the groups are found top-down ([`Plan::new`]) and animate their
+//! anchors only while drawn.
 
 use std::ops::Range;
 

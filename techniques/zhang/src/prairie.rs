@@ -9,11 +9,12 @@
 //! density threshold), growing exactly when [`BladeField::grows`] says so. So zhang's single
 //! plants stand where the reference's blades stand, its population follows `grass.density`
 //! (and the density and covering maps) like every technique's, and comparisons between them
-//! measure the rendering, not a different number of blades. The grids keep the thesis' count:
-//! `grids` along the terrain's longer side (16 x 16 on a square terrain, Sec. 5.1), each
-//! `n = ⌈cells / grids⌉` strata a side, so they tile the terrain (fewer grids along the
-//! shorter side of a rectangular one; the last row and column of grids partly beyond the
-//! terrain, with fewer plants). Flowers, the thesis' own addition, are hashed by zhang per
+//! measure the rendering, not a different number of blades. The grids are square, `n`
+//! strata a side: the whole number nearest `grid_size` metres (ours, so the grids near the
+//! camera keep their size on any terrain; [`strata_per_grid`]), or with `grid_size = 0` the
+//! thesis' count, `grids` along the terrain's longer side (16 x 16 on a square terrain,
+//! Sec. 5.1), `n = ⌈cells / grids⌉`; they tile the terrain (the last row and column of grids
+//! partly beyond it, with fewer plants). Flowers, the thesis' own addition, are hashed by zhang per
 //! lattice point.
 //!
 //! `blades_per_side > 0` lays out the thesis' own lattice instead (`grids x grids` grids fitted
