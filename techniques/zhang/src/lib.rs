@@ -187,19 +187,23 @@
 //!   identical. `grid_size = 15` gives the prairie its old grids back.
 //! - Far groups (above) are ours: Sec. 5.2 draws every far grid at Eq. 8's length, which
 //!   keeps as many billboards in each doubling of the distance, so a larger terrain seen to
-//!   its edge costs more. Measured on `experiments/scaling.toml`'s meadow (480x270, 2
-//!   warm-up and 5 frames, 3 repetitions, a host loaded by other sessions, 1.2-1.4 cores
-//!   busy besides; one sweep, so the ratios compare): from 80 m to 160, 240 and 400 m
-//!   triangles 26.7 k → 19.9 k, 20.1 k, 27.4 k (1.03x at 400 m; 41.8 k, 1.57x, with 5.1 m
-//!   grids without groups; 393 k, 14.7x, with the thesis' count), GPU wall 46.9 → 45.1, 48.3,
-//!   61.0 ms (1.30x; 1.72x without groups; 4.69x with the count), of which the core's
-//!   background pass (sky, ground mesh over the whole heightmap, props) 12.7 → 22.6 ms and
-//!   zhang's own passes 34.2 → 38.4 ms (1.12x); CPU update 7.1 → 12.7 ms (1.79x; 4.73x
-//!   without groups, 11.4x with the count). What still grows in the update is bounded by
-//!   `far_groups`, not by the terrain: the grids nearer than `T_1` (up to 31 x 31 of them
-//!   against the meadow's 16 x 16 at 80 m) are planned one by one and animate their anchors
-//!   (hidden at half rate where not drawn). The picture: at 400 m far groups against every
-//!   grid on its own FLIP 0.0029 (0.0026 at 1/4; `tests/tests/gpu_zhang.rs`).
+//!   its edge costs more. Measured on `experiments/scaling.toml` with zhang alone (meadow at
+//!   20 blades/m², 480x270, 2 warm-up and 5 frames, 3 repetitions; a host loaded by other
+//!   sessions, 1.2-1.4 of its 2 cores busy besides, so compare within a configuration),
+//!   from 80 m to 160, 240 and 400 m: triangles 26.7 k → 19.9 k, 20.1 k, 27.4 k (1.03x at
+//!   400 m; with the thesis' count 393 k, 14.7x), GPU wall 49.4 → 45.0, 49.0, 59.5 ms (1.21x;
+//!   with the count 46.6 → 236.3 ms, 5.07x), of which the core's background pass (sky,
+//!   ground mesh over the whole heightmap, props) 11.2 → 17.5 ms and zhang's own passes
+//!   38.1 → 42.0 ms (1.10x); CPU update 7.4 → 9.3, 17.4, 16.2 ms (2.2x; with the count 9.4 →
+//!   115.6 ms, 12.3x). In an earlier sweep 5.1 m grids without groups gave 41.8 k triangles
+//!   (1.57x) and 1.72x the GPU time. What still grows in the update is bounded by
+//!   `far_groups`, not by the terrain: the grids nearer than `T_1` (up to 31 x 31 of them,
+//!   against the 16 x 16 of the whole 80 m meadow) are planned one by one and animate their
+//!   anchors (hidden at half rate where not drawn); with `far_groups = 8` the update stayed
+//!   at the 80 m figure in one sweep. Below 80 m the metric grids are larger than the
+//!   count's (1 m grids on a 16 m terrain), so more is drawn as single plants: 16 m 3.5 k
+//!   triangles against 2.4 k, 36 m 7.1 k against 3.1 k. The picture: at 400 m far groups
+//!   against every grid on its own FLIP 0.0029 (0.0026 at 1/4; `tests/tests/gpu_zhang.rs`).
 //! - The thesis' Verlet step has no restoring force and no damping: blades return only when
 //!   the (random, zero-mean) fluid wind pushes them back, and a steady wind of any other
 //!   model would lay them flat. We add a spring to the rest pose (`spring`, scaled by the
