@@ -414,6 +414,56 @@ mod tests {
     }
 
     #[test]
+    fn metric_grids_keep_the_meadows_grids_at_80_m() {
+        let params = Params::default();
+        // The meadow at 80 m: 760 strata a side at 90 blades/m², 358 at 20; both 16 grids.
+        for (density, cells, n) in [(90.0f32, 760u32, 48u32), (20.0, 358, 23)] {
+            let cell = 1.0 / density.sqrt();
+            let got = strata_per_grid(&params, UVec2::splat(cells), cell);
+            assert_eq!(got, n, "{density} blades/m²");
+            assert_eq!(cells.div_ceil(got), 16);
+            let count = Params {
+                grid_size: 0.0,
+                ..Params::default()
+            };
+            assert_eq!(strata_per_grid(&count, UVec2::splat(cells), cell), n);
+        }
+        // 400 m at 20 blades/m²: the same 23 strata, 78 grids; the thesis' count 112 (25 m).
+        let cell = 1.0 / 20f32.sqrt();
+        assert_eq!(strata_per_grid(&params, UVec2::splat(1789), cell), 23);
+        let count = Params {
+            grid_size: 0.0,
+            ..Params::default()
+        };
+        assert_eq!(strata_per_grid(&count, UVec2::splat(1789), cell), 112);
+    }
+
+    proptest::proptest! {
+        /// A metric grid is the whole number of strata nearest `grid_size` (at least one),
+        /// unless the terrain's shorter side holds fewer.
+        #[test]
+        fn metric_grids_are_the_nearest_whole_number_of_strata(
+            size in 0.05f32..100.0,
+            cell in 0.02f32..2.0,
+            cells in (1u32..5000, 1u32..5000),
+        ) {
+            let params = Params {
+                grid_size: size,
+                ..Params::default()
+            };
+            let cells = UVec2::new(cells.0, cells.1);
+            let n = strata_per_grid(&params, cells, cell);
+            proptest::prop_assert!(n >= 1 && n <= cells.min_element().max(1));
+            if n < cells.min_element() && n > 1 {
+                proptest::prop_assert!((n as f32 * cell - size).abs() <= 0.5 * cell + 1e-3);
+            }
+            if n == 1 && cells.min_element() > 1 {
+                proptest::prop_assert!(size <= 1.5 * cell + 1e-3);
+            }
+        }
+    }
+
+    #[test]
     fn no_density_no_grids() {
         let terrain = rolling();
         let (layout, planted) = plant(&Params::default(), &field(0.0, 9), &terrain, 9);
