@@ -575,3 +575,85 @@ fn hidden_blades_at_half_rate_draw_what_full_steps_draw() -> anyhow::Result<()> 
     assert!(mean < 0.007, "{differ} pixels, FLIP {mean}");
     Ok(())
 }
+
+/// The meadow's terrain at `size` metres a side at 20 blades/m², as `experiments/scaling.toml`
+/// has it.
+fn meadow_sized(size: f32) -> anyhow::Result<grassbench::Scene> {
+    let base = scene("meadow", 1.0)?;
+    let mut config = base.config;
+    config.terrain.size = [size, size];
+    config.grass.density = 20.0;
+    Ok(grassbench::Scene::from_config(config, base.base_dir)?)
+}
+
+/// Issue 20 §7: grass grids of a fixed size in metres (`grid_size`) and far groups of grids
+/// (`far_groups`) keep zhang's cost from growing with the terrain, and the picture where
+/// they change it stays close.
+///
+/// At 80 m (the scaling sweep's first saturated size) the meadow has 16 x 16 grids either
+/// way and no group: the frame is the thesis count's, pixel for pixel (measured 0 pixels
+/// differing). At 400 m, frame 5 at 480x270 on lavapipe: far groups (148 drawn, 342 culled)
+/// against every grid on its own measured FLIP 0.0029 at full scale and 0.0026 at 1/4,
+/// 27 332 triangles against 41 730 (and 393 k with the thesis' 16 x 16 grids of 25 m, the
+/// scaling sweep's); the thresholds are about twice the FLIPs, and the triangles must stay
+/// within 1.3x of the 80 m frame's 26 586 (measured 1.03x).
+#[test]
+fn fixed_grids_and_far_groups_bound_the_cost_of_a_large_terrain() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    let size = Size {
+        width: 480,
+        height: 270,
+    };
+    let entry = grassbench_cli::registry::find("zhang")?;
+    let thesis_count: toml::Table = toml::from_str("grid_size = 0.0\nfar_groups = 0")?;
+    let ungrouped: toml::Table = toml::from_str("far_groups = 0")?;
+    // 80 m: the same grids as the thesis' count, no group.
+    let mut harness = Harness::new(&gpu, meadow_sized(80.0)?, size, false)?;
+    let mut small = harness.create(entry, &toml::Table::new())?;
+    let small_image = render_with(&mut harness, small.as_mut(), 5)?;
+    let mut small_thesis = harness.create(entry, &thesis_count)?;
+    let small_thesis_image = render_with(&mut harness, small_thesis.as_mut(), 5)?;
+    let differing = pixels_differing(&small_image, &small_thesis_image, 0);
+    eprintln!("measured: 80 m, {differing} pixels differ from the thesis' count");
+    assert_eq!(differing, 0);
+    assert_eq!(counter(small.as_ref(), "groups_drawn"), 0.0);
+    let small_triangles = small.stats().triangles;
+    drop(harness);
+    // 400 m.
+    let mut harness = Harness::new(&gpu, meadow_sized(400.0)?, size, false)?;
+    let mut grouped = harness.create(entry, &toml::Table::new())?;
+    let grouped_image = render_with(&mut harness, grouped.as_mut(), 5)?;
+    let mut grids = harness.create(entry, &ungrouped)?;
+    let grids_image = render_with(&mut harness, grids.as_mut(), 5)?;
+    let (g, u) = (grouped.stats(), grids.stats());
+    eprintln!(
+        "measured: 400 m grouped {g:?} {:?}; every grid {u:?}; 80 m {small_triangles} triangles",
+        grouped.counters()
+    );
+    assert!(counter(grouped.as_ref(), "groups_drawn") > 10.0);
+    assert_eq!(counter(grids.as_ref(), "groups_drawn"), 0.0);
+    // The same single plants; the groups stand for at least the blades the grids' billboards
+    // did (the grids' drop wings at gaps).
+    assert_eq!(g.blades_drawn, u.blades_drawn);
+    assert!(g.blades_represented >= u.blades_represented);
+    assert!(g.triangles * 4 < u.triangles * 3, "{g:?} against {u:?}");
+    assert!(
+        g.triangles * 10 < small_triangles * 13,
+        "{} triangles at 400 m against {small_triangles} at 80 m",
+        g.triangles
+    );
+    let mut failures = Vec::new();
+    for (factor, limit) in [(1u32, 0.006), (4, 0.005)] {
+        let mean = flip(
+            &downsample(&grids_image, factor),
+            &downsample(&grouped_image, factor),
+        )?
+        .mean;
+        eprintln!("measured: 400 m far groups against every grid at 1/{factor}: FLIP {mean:.4}");
+        if mean >= limit {
+            failures.push(format!("1/{factor}: FLIP {mean:.4} ≥ {limit}"));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:?}");
+    Ok(())
+}

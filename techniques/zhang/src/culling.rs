@@ -110,6 +110,11 @@ impl GridIndex {
         }
     }
 
+    /// The number `k` of grid index `grid` among the non-empty grids, if it has blades.
+    pub fn slot(&self, grid: u32) -> Option<usize> {
+        self.ids.binary_search(&grid).ok()
+    }
+
     /// Grid index (`gz·grids + gx`) of non-empty grid `k`.
     pub fn id(&self, k: usize) -> u32 {
         self.ids[k]

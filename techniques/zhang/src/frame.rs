@@ -7,6 +7,10 @@
 //! a grid border is already in motion: blades are animated in the grids up to two away, the
 //! anchors of a grid one or more away at the finer of its own and its next-closer step.
 //! Near a border a grid may be drawn both ways, fading (Sec. 6.1, [`crate::fade`]).
+//!
+//! With far groups ([`crate::billboard::GroupLevel`]), only the grids nearer than the groups
+//! are planned one by one; the groups are found top-down ([`Plan::new`]) and animate their
+//! anchors only while drawn.
 
 use std::ops::Range;
 
@@ -35,17 +39,23 @@ pub struct NearGrid {
     pub alpha: f32,
 }
 
-/// A far grid drawn as billboards this frame.
+/// A far grid (or far group of grids) drawn as billboards this frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FarGrid {
-    /// Grid index (`gz·grids.x + gx`).
+    /// 0: a grid; `k ≥ 1`: a group of `2^k x 2^k` grids ([`crate::billboard::GroupLevel`]).
+    pub group: u8,
+    /// Grid index (`gz·grids.x + gx`), or the group's index in its level.
     pub grid: u32,
-    /// Offset from the camera grid, in grids.
+    /// Offset from the camera grid, in grids (of a group: from the camera grid to its
+    /// middle, rounded towards the camera grid).
     pub delta: IVec2,
-    /// Billboard level (index into [`Billboards::steps`]).
+    /// Billboard level (index into [`Billboards::steps`]: the texture layer).
     pub level: usize,
-    /// Grid offset `g` from the camera grid.
+    /// Grid offset `g` from the camera grid (of a group: to its nearest grid).
     pub offset: u32,
+    /// Twice the offset of its middle from the camera grid's middle, in grids (the far to
+    /// near order of grids and groups alike).
+    pub centre2: IVec2,
     /// Alpha (1 unless fading, Sec. 6.1).
     pub alpha: f32,
 }
@@ -83,6 +93,10 @@ pub struct Plan {
     pub billboard_blades: u64,
     /// Grids drawn both ways, fading between billboards and single plants (Sec. 6.1).
     pub fading: usize,
+    /// Far groups drawn ([`crate::billboard::GroupLevel`]).
+    pub groups: usize,
+    /// Far groups culled.
+    pub groups_culled: usize,
 }
 
 impl Plan {
@@ -112,7 +126,17 @@ impl Plan {
     ) -> Self {
         let mut plan = Self::default();
         let camera = transition.camera();
-        for k in 0..index.len() {
+        // With far groups, the grids nearer than the groups one by one (the groups found
+        // from the coarsest level down, so far grids are never visited); without, every grid.
+        let (ks, group_anchors) = if lod && !billboards.groups.is_empty() {
+            let mut ks = Vec::new();
+            let anchors = plan.far_groups(layout, index, billboards, camera, frustum, &mut ks);
+            ks.sort_unstable();
+            (ks, anchors)
+        } else {
+            ((0..index.len()).collect(), Vec::new())
+        };
+        for k in ks {
             let grid = index.id(k);
             let g = grid_offset(layout, grid, camera);
             let delta = grid_coords(layout, grid) - camera;
@@ -172,20 +196,117 @@ impl Plan {
                     plan.billboard_blades += billboards.grids[grid as usize][level].represented;
                 }
                 plan.far.push(FarGrid {
+                    group: 0,
                     grid,
                     delta,
                     level,
                     offset: g,
+                    centre2: 2 * delta,
                     alpha: 1.0 - single,
                 });
             }
             plan.fading += usize::from(single > 0.0 && single < 1.0);
         }
+        // The groups' anchors follow every grid's.
+        for r in group_anchors {
+            push_merged(&mut plan.animate_anchors, r);
+        }
         if sort {
-            order::sort_grids(&mut plan.far, |f| f.delta);
+            order::sort_grids(&mut plan.far, |f| f.centre2);
             order::sort_grids(&mut plan.near, |n| n.delta);
         }
         plan
+    }
+
+    /// Finds the far groups of this frame (Sec. 5.2's far level continued over groups of
+    /// grids, [`crate::billboard::GroupLevel`]): from the coarsest level down, a group whose
+    /// nearest grid is at least its level's threshold away from `camera` is drawn whole
+    /// (when its box meets `frustum`; culled otherwise), any other is split into its four
+    /// children; the non-empty grids reached below the finest groups are pushed to `ks`
+    /// (their numbers in `index`). A group's children are never nearer than it, and the
+    /// thresholds grow with the level, so every grid is drawn by exactly one grid or group.
+    /// Returns the anchor ranges of the groups drawn (sorted), which are animated; the grids
+    /// inside drawn groups are not animated.
+    fn far_groups(
+        &mut self,
+        layout: &Layout,
+        index: &GridIndex,
+        billboards: &Billboards,
+        camera: IVec2,
+        frustum: Option<&Frustum>,
+        ks: &mut Vec<usize>,
+    ) -> Vec<Range<u32>> {
+        let levels = &billboards.groups;
+        let Some(top) = levels.last() else {
+            return Vec::new();
+        };
+        let mut stack: Vec<(usize, IVec2)> = Vec::new();
+        for az in 0..top.count.y as i32 {
+            for ax in 0..top.count.x as i32 {
+                stack.push((levels.len(), IVec2::new(ax, az)));
+            }
+        }
+        let grids = layout.grids.as_ivec2();
+        let mut drawn = Vec::new();
+        while let Some((k, a)) = stack.pop() {
+            if k == 0 {
+                if a.cmplt(grids).all()
+                    && let Some(slot) = index.slot((a.y * grids.x + a.x) as u32)
+                {
+                    ks.push(slot);
+                }
+                continue;
+            }
+            let level = &levels[k - 1];
+            let size = level.size as i32;
+            let (lo, hi) = (a * size, ((a + 1) * size).min(grids) - 1);
+            if lo.cmpge(grids).any() {
+                continue;
+            }
+            // Offset from the camera grid to the group's nearest grid.
+            let near = (lo - camera)
+                .max(camera - hi)
+                .max(IVec2::ZERO)
+                .max_element() as u32;
+            if near < level.threshold {
+                for d in [IVec2::ZERO, IVec2::X, IVec2::Y, IVec2::ONE] {
+                    stack.push((k - 1, 2 * a + d));
+                }
+                continue;
+            }
+            let id = (a.y * level.count.x as i32 + a.x) as u32;
+            let Some(bounds) = &level.bounds[id as usize] else {
+                continue;
+            };
+            if !frustum.is_none_or(|f| f.intersects_aabb(bounds)) {
+                self.groups_culled += 1;
+                continue;
+            }
+            let cell = &level.cells[id as usize];
+            if cell.billboards == 0 {
+                continue;
+            }
+            self.groups += 1;
+            self.billboard_blades += cell.represented;
+            drawn.push((k, id, cell.anchors.clone()));
+            let centre2 = (2 * a + IVec2::ONE) * size - (2 * camera + IVec2::ONE);
+            self.far.push(FarGrid {
+                group: k as u8,
+                grid: id,
+                delta: centre2 / 2,
+                level: level.layer,
+                offset: near,
+                centre2,
+                alpha: 1.0,
+            });
+        }
+        // The groups' anchors in order (level by level, group by group).
+        drawn.sort_unstable_by_key(|(k, id, _)| (*k, *id));
+        let mut out = Vec::new();
+        for (.., anchors) in drawn {
+            push_merged(&mut out, anchors);
+        }
+        out
     }
 }
 
@@ -222,7 +343,7 @@ pub fn wings(
         sway,
     };
     // Two halves of about equal wing counts on two threads, if worth it.
-    let count = |f: &FarGrid| billboards.grids[f.grid as usize][f.level].wings.len();
+    let count = |f: &FarGrid| billboards.level_of(f.group, f.grid, f.level).wings.len();
     let total: usize = plan.far.iter().map(count).sum();
     let mut split = plan.far.len();
     if total >= PARALLEL_WINGS {
@@ -304,7 +425,7 @@ impl WingBuilder<'_> {
                 v.y = v.y.clamp(0.1 * height, height);
                 p.root + v
             };
-            let level = &billboards.grids[far.grid as usize][far.level];
+            let level = billboards.level_of(far.group, far.grid, far.level);
             // Every wing corner is one of the level's anchors (a prefix of the grid's).
             let first = level.anchors.start;
             tops.clear();
@@ -415,6 +536,87 @@ mod tests {
     use grassbench::camera::Camera;
     use grassbench::grass::{BladeField, GrassConfig};
     use grassbench::terrain::Terrain;
+
+    proptest::proptest! {
+        /// With far groups, every non-empty grid is drawn once, by itself (single plants or
+        /// billboards) or inside one group, and nothing else is drawn: the population drawn
+        /// is the planted one whatever the eye (no culling, no fades, flat full grass, so
+        /// every block has a billboard).
+        #[test]
+        fn grids_and_far_groups_tile_the_prairie(x in -70.0f32..70.0, z in -70.0f32..70.0) {
+            let (layout, index, billboards, planted) = &*GROUPED;
+            let eye = Vec3::new(x, 1.6, z);
+            let plan = Plan::new(
+                layout,
+                index,
+                billboards,
+                &Transition::new(layout, eye, 0.0),
+                None,
+                (true, true),
+            );
+            let mut drawn = vec![0u32; layout.grid_count() as usize];
+            for n in &plan.near {
+                drawn[n.grid as usize] += 1;
+            }
+            for f in &plan.far {
+                if f.group == 0 {
+                    drawn[f.grid as usize] += 1;
+                    continue;
+                }
+                let g = &billboards.groups[usize::from(f.group) - 1];
+                let (ax, az) = (f.grid % g.count.x, f.grid / g.count.x);
+                for grid in 0..layout.grid_count() {
+                    let (gx, gz) = (grid % layout.grids.x, grid / layout.grids.x);
+                    if gx / g.size == ax && gz / g.size == az {
+                        drawn[grid as usize] += 1;
+                    }
+                }
+            }
+            for k in 0..index.len() {
+                proptest::prop_assert_eq!(drawn[index.id(k) as usize], 1, "grid {}", index.id(k));
+            }
+            proptest::prop_assert_eq!(
+                plan.blade_count() + plan.billboard_blades,
+                planted.len() as u64
+            );
+            proptest::prop_assert!(plan.groups > 0);
+            // Far to near: grids and groups by their middles' offsets.
+            let far_to_near = plan
+                .far
+                .windows(2)
+                .all(|w| w[0].centre2.length_squared() >= w[1].centre2.length_squared());
+            proptest::prop_assert!(far_to_near);
+            // The anchors animated are sorted and hold every drawn group's.
+            let sorted = plan.animate_anchors.windows(2).all(|w| w[0].end < w[1].start);
+            proptest::prop_assert!(sorted);
+        }
+    }
+
+    /// A flat 150 m prairie of full grass in 2.5 m grids, far groups from offset 6.
+    static GROUPED: std::sync::LazyLock<(
+        Layout,
+        GridIndex,
+        Billboards,
+        Vec<crate::prairie::Planted>,
+    )> = std::sync::LazyLock::new(|| {
+        let terrain = Terrain::flat(Vec2::new(150.0, 150.0));
+        let params = Params {
+            grid_size: 2.5,
+            far_groups: 6,
+            ..Params::default()
+        };
+        let field = BladeField::new(
+            GrassConfig {
+                density: 3.0,
+                ..GrassConfig::default()
+            },
+            4,
+        );
+        let (layout, planted) = plant(&params, &field, &terrain, 4);
+        let index = GridIndex::new(&planted);
+        let billboards = Billboards::new(&layout, &params, &field, &terrain, 4, &planted);
+        (layout, index, billboards, planted)
+    });
 
     #[test]
     fn wings_on_two_threads_are_the_wings_of_one() {

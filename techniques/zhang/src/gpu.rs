@@ -273,10 +273,19 @@ pub fn estimate(params: &Params, scene: &Scene) -> GpuEstimate {
     let size = |n: u64, each: usize| GpuEstimate::buffer(n.saturating_mul(each as u64));
     // Billboard wings: at most six per billboard of the finest step in every grid.
     let (wings, layers) = if params.lod && layout.grid_count() > 0 {
-        let steps = billboard::steps(layout.per_side, layout.grids.max_element());
+        let most = layout.grids.max_element();
+        let steps = billboard::steps(layout.per_side, most);
+        let groups = billboard::group_levels(params.far_groups, most);
         let per_side = u64::from(lod::billboards_per_side(layout.per_side, 5));
         let grids = u64::from(layout.grid_count());
-        (6 * per_side * per_side * grids, steps.len() as u32)
+        // A group has one billboard, of at most six wings.
+        let group_wings: u64 = (1..=groups)
+            .map(|k| 6 * u64::from(billboard::group_layout(&layout, k).grid_count()))
+            .sum();
+        (
+            6 * per_side * per_side * grids + group_wings,
+            steps.len() as u32 + groups,
+        )
     } else {
         (1, 0)
     };

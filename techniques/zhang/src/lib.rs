@@ -5,7 +5,9 @@
 //! blade is a cubic Bezier curve over four control points moved by that wind with Verlet
 //! integration and length constraints; flowers are petal quads on heavier points. The camera
 //! grid and its eight neighbours draw these single plants; every other grass grid draws
-//! billboards of six rectangles whose length doubles with the grid offset (Ch. 4, Sec. 5.2).
+//! billboards of six rectangles whose length doubles with the grid offset (Ch. 4, Sec. 5.2),
+//! and beyond `far_groups` grids (ours) blocks of `2^k x 2^k` grids draw one billboard each,
+//! so the cost of a frame does not grow with the terrain.
 //! Grids are culled against the view frustum, single plants of the near grids too (Sec. 5.3);
 //! everything is drawn far to near and blended (Sec. 5.4), and grids crossing between the two
 //! representations fade (Sec. 6.1); the scene's moving object pushes blades aside (Sec. 6.2),
@@ -38,18 +40,21 @@
 //!   the meadow whose scene asks for 90 (a full image at `grass.density = 0`, the same one at
 //!   30 and at 90), and part of its speed-up over the reference was fewer blades; a
 //!   comparison must differ in how the blades are drawn, not in how many there are. The
-//!   grids keep the thesis' count: `grids` (16) along the terrain's longer side, square,
-//!   `n = ⌈cells/grids⌉` strata a side (no more than the shorter side has), as many along the
-//!   shorter side as it takes to cover it, the grid origin on the strata lattice; the last
-//!   row and column of grids reach past the terrain and hold fewer plants. The meadow (80 m
-//!   at 90 blades/m², 760 strata a side) has 16 x 16 grids of 48 x 48 (5.06 m), the
-//!   prairie flyover (240 m at 14) 16 x 16 of 57 x 57 (15.2 m), the football field (105 x
-//!   68 m at 40) 16 x 11 of 42 x 42 (6.6 m), and 433 720, 449 282 and 285 605 blades grow
-//!   on them, the reference's counts exactly; `grass.density = 0` has no grids and draws
-//!   nothing. Flowers, the thesis' addition to the grass, are hashed per lattice point.
+//!   grids are square, `n` strata a side: the whole number of strata nearest `grid_size`
+//!   metres (5.1 by default; see Deviations), or with `grid_size = 0` the thesis' count,
+//!   `n = ⌈cells/grids⌉` for `grids` (16) along the terrain's longer side; never more than
+//!   the shorter side has; as many grids along each side as it takes to cover it, the grid
+//!   origin on the strata lattice; the last row and column of grids reach past the terrain
+//!   and hold fewer plants. The meadow (80 m at 90 blades/m², 760 strata a side) has 16 x 16
+//!   grids of 48 x 48 (5.06 m) either way; the prairie flyover (240 m at 14) 48 x 48 of
+//!   19 x 19 (5.08 m; the thesis' count: 16 x 16 of 57 x 57, 15.2 m), the football field
+//!   (105 x 68 m at 40) 21 x 14 of 32 x 32 (5.06 m; the count: 16 x 11 of 42 x 42, 6.6 m),
+//!   and 433 720, 449 282 and 285 605 blades grow on them, the reference's counts exactly;
+//!   `grass.density = 0` has no grids and draws nothing. Flowers, the thesis' addition to the grass, are hashed per lattice point.
 //!   `blades_per_side > 0` plants the thesis' lattice instead (`grids x grids` grids of
 //!   `blades_per_side²` jittered candidates fitted over the terrain, sizes from the scene's
-//!   `[grass]` ranges, thinned by the same rule), for paper-like figures.
+//!   `[grass]` ranges, thinned by the same rule, whatever `grid_size`), for paper-like
+//!   figures.
 //! - **Blade (Sec. 3.1.1, Fig. 5).** Four control points `P0..P3`; `P0` is the root (inverse
 //!   mass 0, Sec. 3.4). The vertex shader samples the backbone at `n` points with Eq. (5)
 //!   (`t = i/(n−1)`) and extends each backbone point sideways into two segment points along
@@ -102,8 +107,31 @@
 //!   `blades_drawn` counts). Each wing is cut down at
 //!   start-up to the texels it can show ([`wing_trim`]; see Deviations), and lit per vertex
 //!   by the ambient and the sun, per pixel by the point light.
+//! - **Far groups (ours, [`billboard::GroupLevel`], [`frame::Plan`]).** With `far_groups = F`
+//!   (16 by default, 0 in `paper`), groups of `2^k x 2^k` grids aligned on multiples of
+//!   `2^k` are drawn as one billboard each once their nearest grid is at least
+//!   `T_k = ⌈F·2^((k−1)/2)⌉` grids from the camera grid (16, 23, 32, 46, 64, ...): Eq. 8's
+//!   doubling continued across grids, but with the side doubling every `√2` in distance
+//!   rather than every 2, so the groups in a ring of the view get fewer outwards (a bounded
+//!   sum) where Eq. 8's would stay as many per ring, a count growing with the logarithm of
+//!   the terrain. A group's billboard is built like a grid's (six wings on lattice plants,
+//!   [`billboard`]) on the lattice of the whole group, its middle line on the group's middle
+//!   plant (of the part on the terrain, in an edge group), one texture layer per group level
+//!   with the blades per spacing of its span, so it stands for every plant growing in the
+//!   group (`blades_represented`). Gaps do not drop a group's wings: each is thinned by the
+//!   mean of density times "is grass" at 16 points along it (a gap at the middle plant would
+//!   otherwise take tens of metres of grass away), and dropped only where no grass lies
+//!   along it. Each frame the groups are found from the coarsest level down: a group far
+//!   enough is drawn (or culled by its box), any other split into its four children, and the
+//!   grids reached below the finest level are planned one by one as before; since children
+//!   are never nearer than their group and `T_k` grows with `k`, every grid is drawn by
+//!   exactly one grid or group (tested over random eyes, with the population conserved), and
+//!   grids inside a drawn or culled group are never visited. Level changes between grids and
+//!   groups, like Eq. 8's steps, are not faded. A group's anchors are animated (in full)
+//!   only while it is drawn; no group is drawn on a terrain that no grid offset of `T_1` or
+//!   more fits in (the meadow at 80 m: 16 grids), so there nothing changes.
 //! - **Level of detail (Sec. 5.2, [`lod`], [`frame`]).** `g ≤ 1`: single plants; otherwise
-//!   billboards. Blades are animated in the grids up to two away and anchors at the step one
+//!   billboards (and far groups, above). Blades are animated in the grids up to two away and anchors at the step one
 //!   grid closer, so a grid whose level changes at a border crossing is already in motion;
 //!   the far blades are not animated at all (the bulk of part 1's CPU time). Of what is
 //!   animated, only what the frame draws gets the full step; the rest is hidden (see
@@ -142,6 +170,40 @@
 //!   it (`n x n` of them), so the grid size and the billboards' blocks scale with the density
 //!   (`blades_per_side = 32` gives the thesis' lattice back). Billboards of blocks where no
 //!   plant grows are left out: they would stand for nothing.
+//! - Grass grids have a size in metres, not the thesis' fixed count (`grid_size = 5.1`;
+//!   `grid_size = 0` keeps Sec. 5.1's 16 x 16, as `paper` does): with 16 x 16 grids whatever
+//!   the terrain, the camera grid and its eight neighbours (single plants) cover 75 x 75 m of
+//!   a 400 m terrain and the billboard blocks grow with the grid, so zhang cost 4.7x as much
+//!   GPU time at 400 m as at 80 m on `experiments/scaling.toml`'s meadow (20 blades/m²,
+//!   480x270: 393 k triangles against 27 k; CPU update 11x). 5.1 m keeps the meadow's grids
+//!   at 80 m (48 strata at 90 blades/m², 23 at 20: pixel for pixel the thesis count's frame,
+//!   `tests/tests/gpu_zhang.rs`) and the football field's about as wide, but the prairie
+//!   flyover's 15.2 m grids become 5.1 m ones: seen from its 32 m altitude the single plants
+//!   (within a grid of the camera's ground point) are out of view and its whole frame is
+//!   billboards, whose regular lattice shows in the foreground; measured there (640x360,
+//!   frame 3 of 3 after 2 warm-up frames, one run, loaded host): 13.8 k triangles against
+//!   126 k, GPU 58 against 141 ms, FLIP against the reference 0.0689 against 0.0606; on the
+//!   football field 11.1 k against 26.7 k triangles, FLIP 0.0179 against 0.0187; the meadow
+//!   identical. `grid_size = 15` gives the prairie its old grids back.
+//! - Far groups (above) are ours: Sec. 5.2 draws every far grid at Eq. 8's length, which
+//!   keeps as many billboards in each doubling of the distance, so a larger terrain seen to
+//!   its edge costs more. Measured on `experiments/scaling.toml` with zhang alone (meadow at
+//!   20 blades/m², 480x270, 2 warm-up and 5 frames, 3 repetitions; a host loaded by other
+//!   sessions, 1.2-1.4 of its 2 cores busy besides, so compare within a configuration),
+//!   from 80 m to 160, 240 and 400 m: triangles 26.7 k → 19.9 k, 20.1 k, 27.4 k (1.03x at
+//!   400 m; with the thesis' count 393 k, 14.7x), GPU wall 49.4 → 45.0, 49.0, 59.5 ms (1.21x;
+//!   with the count 46.6 → 236.3 ms, 5.07x), of which the core's background pass (sky,
+//!   ground mesh over the whole heightmap, props) 11.2 → 17.5 ms and zhang's own passes
+//!   38.1 → 42.0 ms (1.10x); CPU update 7.4 → 9.3, 17.4, 16.2 ms (2.2x; with the count 9.4 →
+//!   115.6 ms, 12.3x). In an earlier sweep 5.1 m grids without groups gave 41.8 k triangles
+//!   (1.57x) and 1.72x the GPU time. What still grows in the update is bounded by
+//!   `far_groups`, not by the terrain: the grids nearer than `T_1` (up to 31 x 31 of them,
+//!   against the 16 x 16 of the whole 80 m meadow) are planned one by one and animate their
+//!   anchors (hidden at half rate where not drawn); with `far_groups = 8` the update stayed
+//!   at the 80 m figure in one sweep. Below 80 m the metric grids are larger than the
+//!   count's (1 m grids on a 16 m terrain), so more is drawn as single plants: 16 m 3.5 k
+//!   triangles against 2.4 k, 36 m 7.1 k against 3.1 k. The picture: at 400 m far groups
+//!   against every grid on its own FLIP 0.0029 (0.0026 at 1/4; `tests/tests/gpu_zhang.rs`).
 //! - The thesis' Verlet step has no restoring force and no damping: blades return only when
 //!   the (random, zero-mean) fluid wind pushes them back, and a steady wind of any other
 //!   model would lay them flat. We add a spring to the rest pose (`spring`, scaled by the
@@ -198,7 +260,8 @@
 //! ## Cost model
 //! CPU per frame: animated are the blades of the (at most 5 x 5) grids up to two away, their
 //! flowers, and the anchors of the far grids (289 per grid at `l' = 5`, 81 at 9, 25 at 17,
-//! for `n = 32`; 625, 169 and 49 for the meadow's `n = 48`). The drawn ones (`B_draw`: the visible near grids' blades and the anchors
+//! for `n = 32`; 625, 169 and 49 for the meadow's `n = 48`) nearer than the far groups, and
+//! the drawn groups' (at most 9 each). The drawn ones (`B_draw`: the visible near grids' blades and the anchors
 //! the visible wings read) cost 3 wind samples + Verlet + 3 length constraints each (and one
 //! `acos` for θ, blades only); the hidden ones (`B_hid`) half of one sample + Verlet each
 //! frame. On the meadow walk with the thesis' lattice (16 x 16 grids of `n = 32`, before
@@ -225,7 +288,10 @@
 //! flyover (8.3x). Upload `48·B_draw + 32·F_anim` bytes, 80 bytes per wing,
 //! and with sorting 80 bytes per drawn single plant. GPU: `2(n−1)` triangles (8 at `n = 5`)
 //! per visible near blade, 2 per petal and 2 per wing (at most `6·n'²` wings per far grid);
-//! 3-5 draws. On a software rasteriser the wings' fill dominates: on the meadow's walk at
+//! 3-5 draws. With far groups (default) the billboards beyond `T_1 = far_groups` grids are at
+//! most six wings per group, and the groups in view stay about as many however large the
+//! terrain: 148 drawn (342 culled) with 8.9 k wings in all on the 400 m meadow of the
+//! scaling sweep (Deviations). On a software rasteriser the wings' fill dominates: on the meadow's walk at
 //! 640x360 with `n = 32` they covered 5.4 screens whole and 4.0 cut (on the prairie's flight
 //! 1.1 and 0.6; measured before issue 19's population),
 //! most of it in the nearest billboards (`l' = 5`). Memory: `80·B + 32·F` bytes of
@@ -258,6 +324,14 @@
 //!   switches to single plants show it for the first second (at the meadow's frame 30 the
 //!   mean absolute difference from the finest image grows from 2.2 to 2.7 levels of 255;
 //!   with fades it stays at 3.1) and a grid turning into view shows it either way.
+//! - A far group's anchors are animated only while it is drawn, and a grid's only while it
+//!   is nearer than the groups: when the camera moves so that a group splits into grids (or
+//!   grids merge into a group), the newly drawn anchors start from where they were last left
+//!   (at rest at first) and take about a second to sway with the wind. They are at least
+//!   `T_1` grids (80 m by default) away, where the sway is below a pixel at the scenes'
+//!   resolutions. Switches between grids and groups are not faded (as Eq. 8's steps are
+//!   not). A group's billboard is thinned by the gaps along its wings instead of split by
+//!   them, so a gap far away shows as thinner grass rather than bare ground.
 //! - With the tiled fluid wind the same motion repeats every grass grid (offset per grid,
 //!   Sec. 5.1); the thesis accepts this.
 //!
@@ -409,7 +483,7 @@ impl GrassTechnique for Zhang {
     }
 
     /// Grass grids drawn and culled (Sec. 5.3), single plants drawn, billboards drawn by
-    /// length `l'` (Eq. 8).
+    /// length `l'` (Eq. 8), and with far groups the groups drawn and culled.
     fn counters(&self) -> Vec<(&'static str, f64)> {
         let plan = &self.frame.plan;
         let billboards = &self.plants.billboards;
@@ -420,10 +494,17 @@ impl GrassTechnique for Zhang {
         ];
         let mut by_level = vec![0u64; billboards.steps.len()];
         for f in &plan.far {
-            by_level[f.level] += u64::from(billboards.grids[f.grid as usize][f.level].billboards);
+            by_level[f.level] +=
+                u64::from(billboards.level_of(f.group, f.grid, f.level).billboards);
         }
-        for (&step, n) in billboards.steps.iter().zip(by_level) {
+        let grid_levels = billboards.grid_levels();
+        for (&step, &n) in billboards.steps.iter().zip(&by_level).take(grid_levels) {
             c.push((billboard_counter(step), n as f64));
+        }
+        if !billboards.groups.is_empty() {
+            // Far groups (ours): one billboard each.
+            c.push(("groups_drawn", plan.groups as f64));
+            c.push(("groups_culled", plan.groups_culled as f64));
         }
         c.push(("wings", self.frame.wings.len() as f64));
         c.push(("fading_grids", plan.fading as f64));

@@ -7,6 +7,12 @@ use crate::params::{Sorting, WingLighting};
 
 /// Sec. 5.1: "we place 16x16 grass grids".
 pub const GRIDS: u32 = 16;
+/// Sec. 5.1 fixes the grids' count (16 x 16), not their size: `grid_size = 0` keeps the
+/// count whatever the terrain (a size in metres is ours).
+pub const GRID_SIZE: f32 = 0.0;
+/// Sec. 5.2 draws every far grid on its own, at the billboard length of Eq. 8 (grouping far
+/// grids is ours).
+pub const FAR_GROUPS: u32 = 0;
 /// Sec. 7, Fig. 22: "each grass grid contains 20x20 blades of grasses" (the prairie of the
 /// results; Sec. 5.1's example grid holds 32 x 32).
 pub const BLADES_PER_SIDE: u32 = 20;
@@ -31,6 +37,8 @@ pub const SORTING: Sorting = Sorting::Sort;
 
 /// The `paper` variant's overrides: exactly the constants above (tested).
 pub const VARIANT: &str = r#"grids = 16
+grid_size = 0.0
+far_groups = 0
 blades_per_side = 20
 backbone_points = 4
 spring = 0.0
@@ -50,6 +58,8 @@ mod tests {
     fn the_paper_variant_sets_exactly_the_cited_values() {
         let cited = Params {
             grids: GRIDS,
+            grid_size: GRID_SIZE,
+            far_groups: FAR_GROUPS,
             blades_per_side: BLADES_PER_SIDE,
             backbone_points: BACKBONE_POINTS,
             spring: SPRING,
@@ -61,7 +71,7 @@ mod tests {
             ..Params::default()
         };
         assert_eq!(
-            variant_differences("zhang", VARIANT, &cited, 9),
+            variant_differences("zhang", VARIANT, &cited, 11),
             Vec::<String>::new()
         );
     }

@@ -34,9 +34,19 @@ pub enum WingLighting {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Params {
-    /// Grass grids along the terrain's longer side (Sec. 5.1: 16 x 16).
+    /// Grass grids along the terrain's longer side when `grid_size = 0` (Sec. 5.1: the
+    /// thesis' fixed 16 x 16, whatever the terrain's size).
     #[schemars(range(min = 1, max = 256))]
     pub grids: u32,
+    /// Side of a grass grid on the scene's strata, m (ours; issue 20 §7). Above 0 it replaces
+    /// the thesis' count `grids`: a grid is the whole number of strata nearest this side, so
+    /// the single-plant region (3 x 3 grids) stays the same size however large the terrain.
+    /// 0: `grids` grids along the longer side, as the thesis. The thesis' lattice
+    /// (`blades_per_side > 0`, the `paper` variant) always fits `grids x grids` grids over the
+    /// terrain. The default 5.1 m keeps the meadow's 16 x 16 grids at 80 m (48 strata a side
+    /// at 90 blades/m², 23 at 20).
+    #[schemars(range(min = 0.0, max = 10_000.0))]
+    pub grid_size: f32,
     /// Lattice points per grass-grid side. 0 (the default): the scene's blade strata
     /// (`grassbench::grass::BladeField`), as many a side as it takes `grids` grids to cover
     /// the terrain, so zhang draws the scene's population, the same blades as the reference.
@@ -85,6 +95,15 @@ pub struct Params {
     /// the other grids as billboards (Ch. 4). Off draws single plants everywhere (the
     /// `finest` variant).
     pub lod: bool,
+    /// Far groups (ours, issue 20 §7; [`crate::billboard::GroupLevel`]): from this grid
+    /// offset on, blocks of 2 x 2 grids (aligned on even grids) are drawn as one billboard
+    /// each, from `⌈√2·far_groups⌉` on blocks of 4 x 4, then 8 x 8 from `2·far_groups`, ...
+    /// (the side doubling every `√2` in offset), so the far billboards' count stays bounded
+    /// however large the terrain. 0: every grid is drawn on its own at Eq. 8's steps, as the
+    /// thesis does (the `paper` variant). The default 16 is past the meadow's 16 x 16 grids
+    /// at 80 m (no group there).
+    #[schemars(range(min = 0, max = 65_536))]
+    pub far_groups: u32,
     /// Extra sway of billboards per grid of offset beyond 2 (Sec. 4.2: far billboards move
     /// more so their motion stays visible): a billboard `g` grids away moves its top by
     /// `1 + billboard_sway·(g − 2)` times its plants' displacement. 0 = exactly the plants'.
@@ -116,6 +135,7 @@ impl Default for Params {
     fn default() -> Self {
         Self {
             grids: 16,
+            grid_size: 5.1,
             blades_per_side: 0,
             jitter: 1.0,
             backbone_points: 5,
@@ -129,6 +149,7 @@ impl Default for Params {
             alpha_cutoff: 0.5,
             culling: true,
             lod: true,
+            far_groups: 16,
             billboard_sway: 0.05,
             sorting: Sorting::Sort,
             fade_radius: 0.25,
@@ -174,6 +195,8 @@ mod tests {
             assert!(e.contains(key), "{e}");
         };
         bad(|p| p.grids = 0, "zhang.grids");
+        bad(|p| p.grid_size = -1.0, "zhang.grid_size");
+        bad(|p| p.grid_size = f32::NAN, "zhang.grid_size");
         bad(|p| p.backbone_points = 1, "zhang.backbone_points");
         bad(|p| p.wind_response = f32::NAN, "zhang.wind_response");
         bad(|p| p.flower_fraction = 2.0, "zhang.flower_fraction");

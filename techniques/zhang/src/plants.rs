@@ -128,7 +128,11 @@ impl Plants {
         let sorting = (params.sorting == Sorting::Sort)
             .then(|| SortLookup::new(&layout, planted, &billboards));
         let mut grids = GridIndex::new(planted);
-        grids.include(&billboards.anchors, billboard_height);
+        // The grids' anchors (the far groups' have their own boxes).
+        grids.include(
+            &billboards.anchors[..billboards.grid_anchors as usize],
+            billboard_height,
+        );
         let plants = Self {
             layout,
             grids,

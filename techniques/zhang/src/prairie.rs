@@ -9,11 +9,12 @@
 //! density threshold), growing exactly when [`BladeField::grows`] says so. So zhang's single
 //! plants stand where the reference's blades stand, its population follows `grass.density`
 //! (and the density and covering maps) like every technique's, and comparisons between them
-//! measure the rendering, not a different number of blades. The grids keep the thesis' count:
-//! `grids` along the terrain's longer side (16 x 16 on a square terrain, Sec. 5.1), each
-//! `n = ⌈cells / grids⌉` strata a side, so they tile the terrain (fewer grids along the
-//! shorter side of a rectangular one; the last row and column of grids partly beyond the
-//! terrain, with fewer plants). Flowers, the thesis' own addition, are hashed by zhang per
+//! measure the rendering, not a different number of blades. The grids are square, `n`
+//! strata a side: the whole number nearest `grid_size` metres (ours, so the grids near the
+//! camera keep their size on any terrain; [`strata_per_grid`]), or with `grid_size = 0` the
+//! thesis' count, `grids` along the terrain's longer side (16 x 16 on a square terrain,
+//! Sec. 5.1), `n = ⌈cells / grids⌉`; they tile the terrain (the last row and column of grids
+//! partly beyond it, with fewer plants). Flowers, the thesis' own addition, are hashed by zhang per
 //! lattice point.
 //!
 //! `blades_per_side > 0` lays out the thesis' own lattice instead (`grids x grids` grids fitted
@@ -111,14 +112,12 @@ impl Layout {
                 lattice: Lattice::Strata { first: [0, 0] },
             };
         }
-        // `grids` grids along the longer side, square (the strata are), and never wider than
-        // the shorter side, so the grids hold about as many lattice points as there are
-        // strata on the terrain whatever its shape.
-        let n = cells
-            .max_element()
-            .div_ceil(params.grids.max(1))
-            .min(cells.min_element());
+        // Square grids (the strata are) of `grid_size` metres, or `grids` of them along the
+        // longer side (the thesis' count), never wider than the shorter side, so the grids
+        // hold about as many lattice points as there are strata on the terrain whatever its
+        // shape.
         let cell = field.cell_size();
+        let n = strata_per_grid(params, cells, cell);
         Self {
             grids: UVec2::new(cells.x.div_ceil(n), cells.y.div_ceil(n)),
             per_side: n,
@@ -173,6 +172,19 @@ impl Layout {
         );
         (j0..j1).flat_map(move |j| (i0..i1).map(move |i| (i, j)))
     }
+}
+
+/// Strata per grid side on a terrain of `cells` strata of `cell` metres: the whole number
+/// nearest `params.grid_size` metres (at least 1) when it is above 0, else `⌈cells/grids⌉`
+/// along the longer side (the thesis' count of grids, Sec. 5.1); never more than the shorter
+/// side holds.
+pub fn strata_per_grid(params: &Params, cells: UVec2, cell: f32) -> u32 {
+    let n = if params.grid_size > 0.0 && cell > 0.0 {
+        ((params.grid_size / cell).round() as u32).max(1)
+    } else {
+        cells.max_element().div_ceil(params.grids.max(1))
+    };
+    n.min(cells.min_element()).max(1)
 }
 
 /// Plants every blade that grows: the lattice's candidates kept where the covering map says
@@ -354,7 +366,11 @@ mod tests {
     #[test]
     fn by_default_the_plants_are_the_scenes_blades() {
         let terrain = rolling();
-        let params = Params::default();
+        // The thesis' count of grids (16 along the longer side).
+        let params = Params {
+            grid_size: 0.0,
+            ..Params::default()
+        };
         for density in [7.0, 40.0, 90.0] {
             let field = field(density, 9);
             let (layout, planted) = plant(&params, &field, &terrain, 9);
@@ -393,6 +409,56 @@ mod tests {
                     "{xz} outside grid {}",
                     p.grid
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn metric_grids_keep_the_meadows_grids_at_80_m() {
+        let params = Params::default();
+        // The meadow at 80 m: 760 strata a side at 90 blades/m², 358 at 20; both 16 grids.
+        for (density, cells, n) in [(90.0f32, 760u32, 48u32), (20.0, 358, 23)] {
+            let cell = 1.0 / density.sqrt();
+            let got = strata_per_grid(&params, UVec2::splat(cells), cell);
+            assert_eq!(got, n, "{density} blades/m²");
+            assert_eq!(cells.div_ceil(got), 16);
+            let count = Params {
+                grid_size: 0.0,
+                ..Params::default()
+            };
+            assert_eq!(strata_per_grid(&count, UVec2::splat(cells), cell), n);
+        }
+        // 400 m at 20 blades/m²: the same 23 strata, 78 grids; the thesis' count 112 (25 m).
+        let cell = 1.0 / 20f32.sqrt();
+        assert_eq!(strata_per_grid(&params, UVec2::splat(1789), cell), 23);
+        let count = Params {
+            grid_size: 0.0,
+            ..Params::default()
+        };
+        assert_eq!(strata_per_grid(&count, UVec2::splat(1789), cell), 112);
+    }
+
+    proptest::proptest! {
+        /// A metric grid is the whole number of strata nearest `grid_size` (at least one),
+        /// unless the terrain's shorter side holds fewer.
+        #[test]
+        fn metric_grids_are_the_nearest_whole_number_of_strata(
+            size in 0.05f32..100.0,
+            cell in 0.02f32..2.0,
+            cells in (1u32..5000, 1u32..5000),
+        ) {
+            let params = Params {
+                grid_size: size,
+                ..Params::default()
+            };
+            let cells = UVec2::new(cells.0, cells.1);
+            let n = strata_per_grid(&params, cells, cell);
+            proptest::prop_assert!(n >= 1 && n <= cells.min_element().max(1));
+            if n < cells.min_element() && n > 1 {
+                proptest::prop_assert!((n as f32 * cell - size).abs() <= 0.5 * cell + 1e-3);
+            }
+            if n == 1 && cells.min_element() > 1 {
+                proptest::prop_assert!(size <= 1.5 * cell + 1e-3);
             }
         }
     }
