@@ -122,10 +122,11 @@ fn thresholds(id: &str) -> Thresholds {
             ..Default::default()
         },
         // jahrmann (GPU culling; levels per 4 m tile, the far level from 15 m keeping one blade
-        // in four, widened 4x, blended over 5 m): LOD FLIP 0.020 / 0.008 / 0.031 against its
-        // finest (culling and levels off); FLIP 1/16 0.044 / 0.005 / 0.013, coverage per tile
-        // 0.015 / 0.002 / 0.017 (the reference's blades drawn by another blade model; distance
-        // culling thins the prairie's far field).
+        // in four, widened 4x, blended over 5 m; thinned as (40 m / d)² beyond 40 m): LOD FLIP
+        // 0.020 / 0.008 / 0.032 against its finest (culling and levels off); FLIP 1/16 0.044 /
+        // 0.004 / 0.013, coverage per tile 0.015 / 0.002 / 0.019 (the reference's blades drawn
+        // by another blade model; distance culling thins the prairie's far field; before the
+        // thinning 0.020 / 0.008 / 0.031, 0.044 / 0.005 / 0.013, 0.015 / 0.002 / 0.017).
         "jahrmann" => Thresholds {
             lod_flip: 0.038,
             cross_flip_sixteenth: 0.055,

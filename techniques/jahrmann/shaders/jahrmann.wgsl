@@ -22,9 +22,12 @@ struct Params {
     cull: vec4<f32>,
     // x: lod distance (m); y: band (m); z: far widening; w: orientation fade
     lod: vec4<f32>,
+    // x: thinning distance D (m; 0: off); yzw: unused
+    thin: vec4<f32>,
     // x: switches (FLAG_*); y: distance buckets; z: far level keeps one blade in z; w: unused
     flags: vec4<u32>,
-    // x: blades; y: workgroups along x; zw: unused
+    // x: blades; y: workgroups along x; z: dispatched ranges (tiles.rs); w: 1 when the pass
+    // runs over the ranges, 0 when over every blade
     counts: vec4<u32>,
 }
 
@@ -49,11 +52,12 @@ const FAR_SEGMENTS: u32 = 3u;
 
 const UP: vec3<f32> = vec3(0.0, 1.0, 0.0);
 const SURVIVOR_SALT: u32 = 0x68bc21ebu;
+const THIN_SALT: u32 = 0x2f6b9d45u;
 
 @group(1) @binding(0) var<uniform> params: Params;
 // Root xyz, orientation.
 @group(1) @binding(1) var<storage, read> blade_v0: array<vec4<f32>>;
-// Height, width, colour variation, 0.
+// Height, width, colour variation, the blade's scene index (its hashes' input).
 @group(1) @binding(3) var<storage, read> blade_looks: array<vec4<f32>>;
 
 fn has(flag: u32) -> bool {
@@ -75,10 +79,25 @@ fn survivor(id: u32) -> bool {
     return hash_u32(id ^ SURVIVOR_SALT) % max(params.flags.z, 1u) == 0u;
 }
 
-// Ground distance up to which the distance test keeps blade `id`.
+// Ground distance up to which the distance test keeps blade `id`: its bucket's, and D / √u
+// beyond the thinning distance D (cull.rs's `distance_cutoff`).
 fn distance_cutoff(id: u32) -> f32 {
     let n = max(params.flags.y, 1u);
-    return params.cull.z * (1.0 - f32(bucket(id)) / f32(n));
+    let cutoff = params.cull.z * (1.0 - f32(bucket(id)) / f32(n));
+    if (params.thin.x > 0.0) {
+        let u = f32(hash_u32(id ^ THIN_SALT) >> 8u) / 16777216.0;
+        return min(cutoff, params.thin.x / sqrt(u));
+    }
+    return cutoff;
+}
+
+// The width factor making up for the thinning at ground distance `d` (cull.rs's `thin_widen`).
+fn thin_widen(d: f32) -> f32 {
+    if (has(FLAG_DISTANCE) && params.thin.x > 0.0 && d > params.thin.x) {
+        let r = d / params.thin.x;
+        return r * r;
+    }
+    return 1.0;
 }
 
 // Horizontal distance from the eye to the root (the paper's d_proj).
@@ -139,11 +158,22 @@ struct Counters {
     verdicts: array<atomic<u32>, 6>,
     // Near-level blades inside the hand-over band.
     in_band: atomic<u32>,
-    // Unused.
+    // Blades not dispatched this frame (written by the CPU, tiles.rs).
+    skipped: u32,
+    // Of those, far non-survivors counted as represented (tiles.rs).
+    represented_untested: u32,
     pad: u32,
 }
 
-@group(1) @binding(8) var<storage, read_write> counters: Counters;
+// The counters, then the frame's dispatched ranges of blades (tiles.rs: first workgroup,
+// first blade, end, 0), written by the CPU; one buffer, so the pass binds no more than the
+// 8 storage buffers WebGPU guarantees.
+struct CountBlock {
+    counts: Counters,
+    ranges: array<vec4<u32>>,
+}
+
+@group(1) @binding(8) var<storage, read_write> block: CountBlock;
 
 struct Curve {
     v1: vec3<f32>,
@@ -284,20 +314,47 @@ var<workgroup> wg_near: atomic<u32>;
 var<workgroup> wg_far: atomic<u32>;
 var<workgroup> wg_base: vec2<u32>;
 
-// Simulates every blade, then culls it and appends the survivors of each level to `visible`:
+// The blade of invocation `lid` of flat workgroup `w`, and whether there is one: over the
+// ranges, the last range starting at or before `w` (binary search), else blade w·64 + lid.
+fn blade_of(w: u32, lid: u32) -> vec2<u32> {
+    if (params.counts.w == 0u) {
+        let i = w * WORKGROUP + lid;
+        return vec2(i, u32(i < params.counts.x));
+    }
+    var lo = 0u;
+    var hi = params.counts.z;
+    if (hi == 0u) {
+        return vec2(0u, 0u);
+    }
+    while (hi - lo > 1u) {
+        let mid = (lo + hi) / 2u;
+        if (block.ranges[mid].x <= w) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let r = block.ranges[lo];
+    let i = r.y + (w - r.x) * WORKGROUP + lid;
+    return vec2(i, u32(i < r.z));
+}
+
+// Simulates every blade dispatched, then culls it and appends the survivors of each level to `visible`:
 // slots are handed out per workgroup (one global atomic per level and workgroup), so the draw
 // lists are compact and their counts are the indirect draws' instance counts.
 @compute @workgroup_size(64)
 fn cs_simulate(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>) {
     let n = params.counts.x;
-    let i = (wid.y * params.counts.y + wid.x) * WORKGROUP + lid;
-    if (i == 0u) {
-        counters.near.vertex_count = 2u * NEAR_SEGMENTS + 1u;
-        counters.far.vertex_count = 2u * FAR_SEGMENTS + 1u;
+    let w = wid.y * params.counts.y + wid.x;
+    if (w == 0u && lid == 0u) {
+        block.counts.near.vertex_count = 2u * NEAR_SEGMENTS + 1u;
+        block.counts.far.vertex_count = 2u * FAR_SEGMENTS + 1u;
     }
+    let blade = blade_of(w, lid);
+    let i = blade.x;
     var verdict = VERDICTS;
     var slot = 0u;
-    if (i < n) {
+    if (blade.y == 1u) {
         let root = blade_v0[i];
         let rest = blade_rest[i];
         let looks = blade_looks[i];
@@ -305,7 +362,7 @@ fn cs_simulate(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id)
         let c = simulate(v0, root.w, rest.xyz, rest.w, looks.x, v2_in[i].xyz, wind_at(v0.xz), globals.object, globals.camera_forward.w);
         v1_out[i] = vec4(c.v1, 0.0);
         v2_out[i] = vec4(c.v2, 0.0);
-        verdict = cull(i, v0, c.v1, c.v2, root.w);
+        verdict = cull(u32(looks.w), v0, c.v1, c.v2, root.w);
         atomicAdd(&wg_verdicts[verdict], 1u);
         if (verdict == NEAR) {
             slot = atomicAdd(&wg_near, 1u);
@@ -320,16 +377,16 @@ fn cs_simulate(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id)
     if (lid == 0u) {
         let near = atomicLoad(&wg_near);
         let far = atomicLoad(&wg_far);
-        wg_base = vec2(atomicAdd(&counters.near.instance_count, near), atomicAdd(&counters.far.instance_count, far));
+        wg_base = vec2(atomicAdd(&block.counts.near.instance_count, near), atomicAdd(&block.counts.far.instance_count, far));
         for (var k = 0u; k < VERDICTS; k++) {
             let count = atomicLoad(&wg_verdicts[k]);
             if (count > 0u) {
-                atomicAdd(&counters.verdicts[k], count);
+                atomicAdd(&block.counts.verdicts[k], count);
             }
         }
         let band = atomicLoad(&wg_in_band);
         if (band > 0u) {
-            atomicAdd(&counters.in_band, band);
+            atomicAdd(&block.counts.in_band, band);
         }
     }
     let base = workgroupUniformLoad(&wg_base);
@@ -416,6 +473,7 @@ fn width_scale(id: u32, v0: vec3<f32>, orientation: f32, far: bool) -> f32 {
         let b = band_weight(level_distance(v0));
         scale = select(1.0 - b, 1.0 + (params.lod.z - 1.0) * b, survivor(id));
     }
+    scale *= thin_widen(ground_distance(v0));
     if (has(FLAG_TRANSITIONS)) {
         if (has(FLAG_DISTANCE) && params.cull.w > 0.0) {
             let left = distance_cutoff(id) - ground_distance(v0);
@@ -435,17 +493,18 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3(2.0 * x - 0.5, 1.0 - abs(2.0 * x - 1.0), 1.5 - 2.0 * x), vec3(0.0), vec3(1.0)) * 0.6;
 }
 
-// Vertex `vertex` of blade `id` drawn with `segments` segments (the far level when `far`).
+// Vertex `vertex` of the blade at `index` in the arrays drawn with `segments` segments (the far level when `far`).
 // Vertices alternate left (even) and right (odd) up the blade; the last is the tip. In the
 // hand-over band the near level's vertices move onto the far level's strip (a geomorph), so
 // the switch at the band's end changes nothing on screen.
-fn blade_vertex(id: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
+fn blade_vertex(index: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
     var out: VsOut;
-    let root = blade_v0[id];
-    let looks = blade_looks[id];
+    let root = blade_v0[index];
+    let looks = blade_looks[index];
+    let id = u32(looks.w);
     let v0 = root.xyz;
-    let v1 = v1_draw[id].xyz;
-    let v2 = v2_draw[id].xyz;
+    let v1 = v1_draw[index].xyz;
+    let v2 = v2_draw[index].xyz;
     let side_axis = width_dir(root.w);
     let level = min(vertex / 2u, segments);
     let t = f32(level) / f32(segments);

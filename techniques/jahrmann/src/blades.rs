@@ -19,22 +19,37 @@ pub struct BladeArrays {
     pub v0: Vec<[f32; 4]>,
     /// Rest tip xyz; w: stiffness.
     pub rest: Vec<[f32; 4]>,
-    /// Height, width, colour variation, 0.
+    /// Height, width, colour variation, the blade's index in the scene (exact as an `f32`
+    /// up to [`MAX_BLADES`]: the hashes that pick its distance bucket and whether the far
+    /// level keeps it take this index, so they stay the scene's in any order).
     pub looks: Vec<[f32; 4]>,
 }
 
+/// The most blades whose scene indices an `f32` holds exactly (2^24).
+pub const MAX_BLADES: usize = 1 << 24;
+
 impl BladeArrays {
-    /// The arrays of `blades`.
+    /// The arrays of `blades`, in their order.
     pub fn new(blades: &[Blade]) -> Self {
+        let order: Vec<u32> = (0..blades.len() as u32).collect();
+        Self::in_order(blades, &order)
+    }
+
+    /// The arrays of the scene's `blades` taken in `order` (scene indices; each entry keeps
+    /// its scene index in `looks`).
+    pub fn in_order(blades: &[Blade], order: &[u32]) -> Self {
         let mut out = Self {
-            v0: Vec::with_capacity(blades.len()),
-            rest: Vec::with_capacity(blades.len()),
-            looks: Vec::with_capacity(blades.len()),
+            v0: Vec::with_capacity(order.len()),
+            rest: Vec::with_capacity(order.len()),
+            looks: Vec::with_capacity(order.len()),
         };
-        for b in blades {
+        for &id in order {
+            let Some(b) = blades.get(id as usize) else {
+                continue;
+            };
             out.v0.push(b.root.extend(b.facing).to_array());
             out.rest.push(rest_tip(b).extend(b.stiffness).to_array());
-            out.looks.push([b.height, b.width, b.variation, 0.0]);
+            out.looks.push([b.height, b.width, b.variation, id as f32]);
         }
         out
     }
@@ -139,5 +154,10 @@ mod tests {
         assert_eq!(r.stiffness, blades[1].stiffness);
         assert_eq!(r.rest_tip, rest_tip(&blades[1]));
         assert!(a.rest_of(2).is_none());
+        // In another order each entry keeps its scene index.
+        let b = BladeArrays::in_order(&blades, &[1, 0]);
+        assert_eq!(b.looks[0][3], 1.0);
+        assert_eq!(b.v0[0], a.v0[1]);
+        assert_eq!(a.looks[1][3], 1.0);
     }
 }

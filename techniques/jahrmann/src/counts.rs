@@ -3,7 +3,7 @@
 //! The pass counts its verdicts (blades drawn per level, stood for, culled by each test) in
 //! the same buffer that holds the two indirect draws, so the instance counts the GPU draws are
 //! the counts reported: nothing is estimated. They are never waited for: each frame copies the
-//! 64-byte block into the next of three small read-back buffers, and the next frame's `update`
+//! 72-byte block into the next of three small read-back buffers, and the next frame's `update`
 //! asks for the previous frame's buffer to be mapped; the mapping completes during whatever
 //! wait for the GPU comes next (the harness waits for every frame), so `stats()` after frame
 //! `f` reports frame `f − 1`'s counts, and the counts of frame `f` are never read during frame
@@ -31,6 +31,12 @@ pub struct GpuCounts {
     pub verdicts: [u32; 6],
     /// Near-level blades inside the hand-over band (narrowing or widening).
     pub in_band: u32,
+    /// Blades the frame did not dispatch (`tiles.rs`): set by the CPU before the pass, like
+    /// the verdicts it gives them (culled by the frustum or the distance, or represented).
+    pub skipped: u32,
+    /// Of the skipped blades, those counted as represented: far tiles' non-survivors that no
+    /// per-blade test saw (some would have been culled by orientation or the frustum).
+    pub represented_untested: u32,
     /// Unused.
     pub pad: u32,
 }
@@ -173,7 +179,7 @@ mod tests {
 
     #[test]
     fn counts_lay_out_as_two_indirect_draws_then_the_verdicts() {
-        assert_eq!(GpuCounts::SIZE, 64);
+        assert_eq!(GpuCounts::SIZE, 72);
         assert_eq!(
             GpuCounts::FAR_ARGS as usize,
             std::mem::size_of::<wgpu::util::DrawIndirectArgs>()

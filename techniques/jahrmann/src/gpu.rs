@@ -59,9 +59,12 @@ pub struct ParamsUniform {
     pub cull: [f32; 4],
     /// LOD distance, band, far widening, orientation fade.
     pub lod: [f32; 4],
+    /// Thinning distance (0: off), unused, unused, unused.
+    pub thin: [f32; 4],
     /// Switches ([`flags`]), distance buckets, far keep, unused.
     pub flags: [u32; 4],
-    /// Blades, workgroups along x, unused, unused.
+    /// Blades, workgroups along x, dispatched ranges, 1 when the pass runs over the ranges
+    /// (`tiles.rs`) and 0 when over every blade.
     pub counts: [u32; 4],
 }
 
@@ -111,6 +114,7 @@ pub fn uniform(
             params.far_widen,
             params.orientation_fade,
         ],
+        thin: [params.thin_distance, 0.0, 0.0, 0.0],
         flags: [switches, params.buckets, params.far_keep, 0],
         counts: [blades, groups_x, 0, 0],
     }
@@ -125,12 +129,19 @@ pub fn workgroups(blades: u32, max_per_dimension: u32) -> (u32, u32) {
 }
 
 /// GPU memory for `blades` blades, bytes: the per-blade arrays and draw list, and the
-/// per-frame blocks (uniform, counters, read-back ring).
+/// per-frame blocks (uniform, counters and their starting values, read-back ring; the
+/// table of ranges is [`ranges_bytes`]).
 pub fn bytes(blades: u64) -> u64 {
     blades.max(1) * (ENTRY * ARRAYS + VISIBLE_ENTRY)
         + std::mem::size_of::<ParamsUniform>() as u64
+        + RANGES_OFFSET
         + GpuCounts::SIZE
         + crate::counts::Readback::bytes()
+}
+
+/// GPU memory of the table of `ranges` dispatched ranges, bytes.
+pub fn ranges_bytes(ranges: usize) -> u64 {
+    ranges.max(1) as u64 * RANGE_ENTRY
 }
 
 /// The largest single buffer for `blades` blades, bytes.
@@ -138,14 +149,27 @@ pub fn largest_buffer(blades: u64) -> u64 {
     blades.max(1) * ENTRY
 }
 
+/// Bytes of one entry of the table of dispatched ranges.
+const RANGE_ENTRY: u64 = 16;
+/// Byte offset of the table of dispatched ranges in the counters' buffer (the shader's
+/// `CountBlock`: the counts, then the table at the next 16-byte boundary).
+pub const RANGES_OFFSET: u64 = GpuCounts::SIZE.next_multiple_of(RANGE_ENTRY);
+
 /// Buffers, pipelines and bind groups.
 pub struct BladeGpu {
     blades: u32,
     groups: (u32, u32),
+    max_per_dimension: u32,
     uniform: wgpu::Buffer,
     rest: wgpu::Buffer,
     v2: [wgpu::Buffer; 2],
+    /// The counts (also the indirect draws), then the frame's dispatched ranges
+    /// (`tiles.rs`) from [`RANGES_OFFSET`].
     counters: wgpu::Buffer,
+    /// Ranges the counters' buffer has room for.
+    max_ranges: usize,
+    /// What the counters start each frame from (the CPU's verdicts on the blades it skips).
+    counters_start: wgpu::Buffer,
     simulate: shaders::ComputePipeline,
     near: grassbench::shaders::RenderPipeline,
     far: grassbench::shaders::RenderPipeline,
@@ -156,8 +180,9 @@ pub struct BladeGpu {
 }
 
 impl BladeGpu {
-    /// Uploads `arrays` and builds the pipelines.
-    pub fn new(ctx: &InitContext<'_>, arrays: &BladeArrays) -> Result<Self> {
+    /// Uploads `arrays` and builds the pipelines, with room for `max_ranges` dispatched
+    /// ranges a frame.
+    pub fn new(ctx: &InitContext<'_>, arrays: &BladeArrays, max_ranges: usize) -> Result<Self> {
         let device = &ctx.gpu.device;
         let limits = device.limits();
         let blades = u32::try_from(arrays.len()).map_err(|_| too_many(arrays.len(), u64::MAX))?;
@@ -215,12 +240,17 @@ impl BladeGpu {
             storage,
         );
         let counters = empty(
-            "jahrmann counters",
-            GpuCounts::SIZE,
+            "jahrmann counters and dispatched ranges",
+            RANGES_OFFSET + ranges_bytes(max_ranges),
             storage
                 | wgpu::BufferUsages::INDIRECT
                 | wgpu::BufferUsages::COPY_SRC
                 | wgpu::BufferUsages::COPY_DST,
+        );
+        let counters_start = empty(
+            "jahrmann counters start",
+            GpuCounts::SIZE,
+            wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
         );
         let uniform = empty(
             "jahrmann params",
@@ -335,11 +365,14 @@ impl BladeGpu {
         Ok(Self {
             blades,
             groups,
+            max_per_dimension: limits.max_compute_workgroups_per_dimension,
+            counters_start,
             near: pipeline("jahrmann near", "vs_near"),
             far: pipeline("jahrmann far", "vs_far"),
             simulate,
             simulate_groups: [simulate_group(0), simulate_group(1)],
             draw_groups: [draw_group(0), draw_group(1)],
+            max_ranges: max_ranges.max(1),
             uniform,
             rest,
             v2,
@@ -347,23 +380,43 @@ impl BladeGpu {
         })
     }
 
-    /// Workgroups along x and y of the compute pass.
+    /// Workgroups along x and y of the compute pass over every blade.
     pub fn groups(&self) -> (u32, u32) {
         self.groups
     }
 
-    /// Uploads this frame's uniform.
-    pub fn upload(&self, gpu: &GpuContext, uniform: &ParamsUniform) {
+    /// Workgroups along x and y for `groups` workgroups, within the adapter's limit.
+    pub fn split(&self, groups: u32) -> (u32, u32) {
+        let x = groups.clamp(1, self.max_per_dimension.max(1));
+        (x, groups.div_ceil(x))
+    }
+
+    /// Uploads this frame's uniform, the counters' starting values and the dispatched ranges
+    /// (none when the pass runs over every blade).
+    pub fn upload(
+        &self,
+        gpu: &GpuContext,
+        uniform: &ParamsUniform,
+        start: &GpuCounts,
+        ranges: &[[u32; 4]],
+    ) {
         gpu.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
+        gpu.write_buffer(&self.counters_start, 0, bytemuck::bytes_of(start));
+        if !ranges.is_empty() {
+            let ranges = &ranges[..ranges.len().min(self.max_ranges)];
+            gpu.write_buffer(&self.counters, RANGES_OFFSET, bytemuck::cast_slice(ranges));
+        }
     }
 
     /// Records the frame's compute work: (after a reset, the rest pose into the tips read)
-    /// the compute pass reading copy `parity`, then the counts' copy into `readback`.
+    /// the counters' start, the compute pass reading copy `parity` over `groups` workgroups,
+    /// then the counts' copy into `readback`.
     pub fn encode_compute(
         &self,
         encoder: &mut FrameEncoder<'_>,
         parity: usize,
         reset: bool,
+        groups: (u32, u32),
         readback: &wgpu::Buffer,
     ) {
         if self.blades == 0 {
@@ -381,13 +434,19 @@ impl BladeGpu {
                     u64::from(self.blades) * ENTRY,
                 );
             }
-            commands.clear_buffer(&self.counters, 0, None);
+            commands.copy_buffer_to_buffer(
+                &self.counters_start,
+                0,
+                &self.counters,
+                0,
+                GpuCounts::SIZE,
+            );
         }
         {
             let mut pass = encoder.compute_pass("simulate");
             pass.set_pipeline(&self.simulate);
             pass.set_bind_group(1, &self.simulate_groups[p], &[]);
-            pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+            pass.dispatch_workgroups(groups.0, groups.1, 1);
         }
         encoder.command_encoder().copy_buffer_to_buffer(
             &self.counters,
@@ -438,6 +497,9 @@ mod tests {
             u64::from(shaders::struct_size(SHADER, "Counters").unwrap()),
             GpuCounts::SIZE
         );
+        // WGSL puts `CountBlock.ranges` (16-byte aligned) at the first multiple of 16 after
+        // the 72-byte counts.
+        assert_eq!(RANGES_OFFSET, 80);
     }
 
     #[test]

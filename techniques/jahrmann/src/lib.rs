@@ -1,8 +1,9 @@
 //! # `jahrmann`: GPU-driven Bezier blades, with Ghost of Tsushima's levels of detail
 //!
 //! Jahrmann and Wimmer 2017, *Responsive Real-Time Grass Rendering for General 3D Scenes*
-//! (I3D), the modern baseline: every blade is simulated, culled and drawn on the GPU, the CPU
-//! does no per-blade work, and nothing is read back within a frame. Its level of detail
+//! (I3D), the modern baseline: blades are simulated, culled and drawn on the GPU, the CPU
+//! does no per-blade work each frame (it picks the ground tiles in view), and nothing is read
+//! back within a frame. Its level of detail
 //! follows Sucker Punch's GDC 2021 talk on Ghost of Tsushima's procedural grass. The paper
 //! itself was not in the corpus; each step below names the description it follows:
 //! - (A) `shared/ANCHORS.md`, what is publicly known of the paper and the talk;
@@ -22,9 +23,24 @@
 //!   stiffness (the paper's four `vec4`s: `v0`+orientation, `v1`+height, `v2`+width,
 //!   `up`+stiffness; here stored as arrays of `vec4` — structure of arrays, so no binding
 //!   passes the adapter's storage-binding limit — with the simulated `v1`, `v2` kept twice).
+//!   The arrays hold the blades grouped by ground tile ([`tiles`]): a permutation of the
+//!   scene's, each blade keeping its scene index, which is what the hashes below take, so
+//!   the same blades are bucketed, kept and widened in any order.
+//! - **Dispatch by tile** ([`tiles`]; Ghost of Tsushima's work per tile in view, (A); not in
+//!   the paper, which runs every blade; `dispatch_tile = 0` does that): the ground is cut
+//!   into `dispatch_tile` = 8 m squares. Each frame `update` picks, on the CPU, the tiles
+//!   whose box (roots' bounds grown by `2·h + 0.25` m for the curve) meets the view frustum,
+//!   and in each only the blades that can still be drawn there: within a tile the far
+//!   level's survivors come first, then the others, each sorted by their distance cutoff,
+//!   so the blades within reach of the tile's nearest point are a prefix; a tile wholly
+//!   beyond the far level's start dispatches its survivors only. The ranges (at most two a
+//!   tile) go to the GPU as a small table; each workgroup finds its range by a binary
+//!   search. Every skip is one the per-blade tests would make (tested over random cameras
+//!   and settings: `tiles::tests`), so the picture is the every-blade pass's: FLIP 0.00000
+//!   on the three suite scenes (`tests/tests/gpu_jahrmann.rs`).
 //! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R),
-//!   validation (C) Sec. 5.2 with (R)'s length estimate), every frame for every blade in one
-//!   compute pass, `dt` from the frame inputs (the frame globals): recovery towards the rest
+//!   validation (C) Sec. 5.2 with (R)'s length estimate), every frame for every blade
+//!   dispatched (above) in one compute pass, `dt` from the frame inputs (the frame globals): recovery towards the rest
 //!   pose by the stiffness (Hooke), gravity (environmental plus the front gravity ¼·|g|·f),
 //!   wind sampled on the GPU from the scene's wind texture (`wind_at`: every wind model of the
 //!   shared module is baked into it each frame, so breeze, point source, fluid and Perbet's
@@ -35,7 +51,9 @@
 //! - **Culling** ([`cull`], the shader's `cull`; (A), (C)), in the same pass: orientation (seen
 //!   edge-on, `|view · width| > 0.9`), view frustum (`v0`, the midpoint and `v2`, with a
 //!   tolerance), distance (buckets by a hash of the blade: density falls by one bucket per
-//!   `d_max / n` metres). Survivors are appended to a draw list with atomics, one global
+//!   `d_max / n` metres; beyond `thin_distance` = 40 m, not in the paper, a second hash also
+//!   keeps only a share `(D / d)²` of them, widened by `(d / D)²`, so the blades per pixel and
+//!   the far field's cost stay about constant however far the ground runs). Survivors are appended to a draw list with atomics, one global
 //!   atomic per workgroup and level; the two counts are the instance counts of the two
 //!   `draw_indirect` calls: no read-back.
 //! - **Levels** (Ghost of Tsushima, (A)): no tessellation stage in wgpu, so the draws pull their
@@ -70,19 +88,32 @@
 //!
 //! ## Counts (`stats`, `levels`, `counters`)
 //! The compute pass counts its verdicts in the buffer that holds the two indirect draws, so
-//! the reported counts are the GPU's own, exact. They are copied into a small read-back ring
+//! the reported counts are the GPU's own, exact. The blades a frame does not dispatch are
+//! counted by the CPU into the same buffer before the pass (the starting values of its
+//! counters): a tile outside the frustum counts as culled by the frustum, the blades beyond
+//! their cutoff as culled by distance, the non-survivors of a tile wholly beyond the far
+//! level's start as represented (`represented_untested`: these no per-blade test saw, so
+//! some of them the orientation or frustum test would have culled: on the 400 m meadow of
+//! `experiments/scaling.toml` 42 k of the 44 k represented, where the every-blade pass
+//! counts 25 k). `simulated` = `considered` less the blades not dispatched. They are copied into a small read-back ring
 //! ([`counts`]) and mapped the next frame: `stats()` after frame `f` reports frame `f − 1`'s
 //! counts (`count_lag_frames` in `counters()` says how old they are). `blades_drawn` = near +
 //! far; `blades_represented` = blades beyond the hand-over the far level does not draw;
 //! blades culled by a test are neither (the honest reading of `TechniqueStats`: culling
 //! removes blades from the picture). `levels()`: `near`, and `far` (drawn and stood for).
-//! `counters()`: `considered`, `culled_orientation`, `culled_frustum`, `culled_distance`
-//! (each blade counted by the first test that culls it), `drawn_near`, `drawn_far`,
-//! `represented_far`, `in_band`, `count_lag_frames`.
+//! `counters()`: `considered` (every blade), `simulated` (dispatched), `culled_orientation`,
+//! `culled_frustum`, `culled_distance` (each blade counted by the first test that culls it),
+//! `drawn_near`, `drawn_far`, `represented_far`, `represented_untested`, `in_band`,
+//! `count_lag_frames`.
 //!
 //! ## Cost model
-//! Compute: every blade every frame, `O(B)` — 64 bytes read, 32 written, two bilinear
-//! lookups of the terrain and one of the wind per blade; one global atomic per workgroup.
+//! Compute: per dispatched blade 64 bytes read, 32 written, two bilinear lookups of the
+//! terrain and one of the wind; one global atomic per workgroup; on the CPU a pass over the
+//! tiles (`O(T)`, 2 500 at 400 m) and a table of at most `2T` ranges uploaded. Blades
+//! dispatched: those within reach in the tiles in view, which the thinning bounds — on the
+//! meadow at 20 blades/m² (`experiments/scaling.toml`), 23 k at 80 m and 28 k at 400 m,
+//! against 97 k and 2.26 M for the every-blade pass; triangles 75 k and 79 k (84 k and
+//! 239 k without the thinning).
 //! Geometry: `13·B_near + 5·B_far` triangles, `15·B_near + 7·B_far` vertices, each vertex
 //! evaluating the curve once (three times inside the band). Memory: `116·B` bytes (seven
 //! `vec4` arrays and a 4-byte draw list entry per blade) plus a few hundred bytes. On a
@@ -99,6 +130,16 @@
 //! - The draw list's order changes from frame to frame (atomics), so blades at exactly equal
 //!   depth may swap which one shows; images are otherwise the same run to run.
 //! - Counts are one frame late (see above).
+//! - Blades outside the view are not simulated: their state waits where it was when their
+//!   tile left the view, and resumes from there when it comes back. The recovery is implicit
+//!   with `stiffness · dt` = 1 at 30 fps (blade stiffness 1), so each step halves what stands
+//!   between a blade and its forced pose: a returning tile's stale bend (at most the wind's
+//!   bend, a few centimetres at the tip) is down to 1/8 in three frames and 1/32 in five, and
+//!   the tile's box, grown by the curve margin, usually enters the frustum a little before
+//!   its blades show. The sphere does not push blades out of view until they come back.
+//! - The thinning's widened blades are coarser with distance (at 200 m about 25 times the
+//!   far level's width, ~1 px at 480x270); FLIP against no thinning 0.0015 / 0.0035 / 0.013 on
+//!   the meadow / football field / prairie fly-over (`gpu_jahrmann.rs`).
 //!
 //! ## Departures from the sources
 //! - Up is the world's vertical for every blade, as `reference`'s blades (the paper uses the
@@ -126,6 +167,20 @@
 //!   (the paper uses the index modulo `n`, which stripes a field generated row by row).
 //! - Hand-over blending for the paper's distance and orientation tests (they switch blades
 //!   off at once in the paper); off with `transitions = false`.
+//! - The compute pass runs only over the tiles in view and the blades within reach there
+//!   (`dispatch_tile`; 0 = the paper's every blade every frame), and the distance test also
+//!   thins as `(D / d)²` beyond `thin_distance` (0 = the paper's buckets alone). Both keep
+//!   the far field's cost bounded as the terrain grows. Measured on `experiments/scaling.toml`'s
+//!   meadow at 80 m and 400 m (jahrmann alone, 4 repetitions, 480x270, lavapipe on a 2-core
+//!   host that other processes kept 1.1-1.5 cores busy, so times are noisy): GPU wall ms,
+//!   median of the repetitions' medians, 82.5 → 565.5 (6.9x) with both off, 70.5 → 99.0
+//!   (1.40x) with both on (the least of the four: 72.3 → 523.2, 7.2x; 50.3 → 58.2, 1.16x);
+//!   the cost model's prediction 48.1 → 141.1 ms (2.9x) and 44.0 → 58.1 ms (1.32x), what
+//!   still grows with both on being mostly the core's ground mesh (its vertex and primitive
+//!   terms: the blades' triangles grow 5 %). Tiles alone took the 400 m frame from 2.26 M
+//!   blades simulated to 79 k (triangles unchanged at 239 k: the far level then dominates);
+//!   the thinning alone took triangles to 79 k (simulated unchanged). The CPU's pass over the
+//!   tiles grows with the terrain: `update` 0.05 ms at 80 m, 0.5 ms at 400 m.
 //!
 //! ## Parameters
 //! See [`Params`]. Defaults and where they come from: `stiffness` 30/s (a 33 ms response at
@@ -133,7 +188,9 @@
 //! (= 0.048 × 30: the reference's bend for small winds); the paper's orientation threshold
 //! 0.9; a 0.1 m frustum tolerance (about a blade's width); `cull_distance` 240 m in 8 buckets
 //! (the first 30 m keep every blade: at 640x360 a blade there is under a pixel wide);
-//! `lod_distance` 15 m with a 5 m band (a 0.5 m blade is about 14 px tall at 15 m, where 3
+//! `dispatch_tile` 8 m (about 1 300 blades, 20 workgroups, a tile at 20 blades/m²: the tail
+//! workgroups waste a few percent; 2 500 tiles at 400 m); `thin_distance` 40 m (beyond the
+//! hand-over and the first distance bucket); `lod_distance` 15 m with a 5 m band (a 0.5 m blade is about 14 px tall at 15 m, where 3
 //! segments follow its curve); `far_widen` 4 = `far_keep`: measured against the reference on
 //! the comparison suite's meadow and prairie (coverage per screen tile), widening 2x leaves
 //! 0.031 / 0.035 of the tiles' coverage off, 3x 0.021 / 0.024, 4x 0.015 / 0.017.
@@ -146,6 +203,7 @@ pub mod cull;
 pub mod gpu;
 mod params;
 pub mod sim;
+pub mod tiles;
 
 pub use gpu::SHADER;
 pub use params::{Params, VARIANTS};
@@ -159,8 +217,9 @@ use grassbench::{
 
 use crate::blades::BladeArrays;
 use crate::counts::{GpuCounts, Readback};
-use crate::cull::Verdict;
+use crate::cull::{CullSettings, Verdict};
 use crate::gpu::{BladeGpu, ParamsUniform};
+use crate::tiles::{Selection, TileGrid};
 
 /// The registry line for this technique.
 pub const ENTRY: TechniqueEntry = grassbench::technique::entry::<Jahrmann>();
@@ -193,6 +252,14 @@ pub struct Jahrmann {
     reset: bool,
     last_frame: Option<u64>,
     uniform: ParamsUniform,
+    /// The blades by dispatch tile (`None`: every blade every frame).
+    grid: Option<TileGrid>,
+    /// This frame's dispatched ranges and skipped blades.
+    selection: Selection,
+    /// The counters' starting values this frame (the skipped blades' verdicts).
+    start: GpuCounts,
+    /// Workgroups of this frame's compute pass.
+    groups: (u32, u32),
     gpu_bytes: u64,
 }
 
@@ -216,9 +283,26 @@ impl Technique for Jahrmann {
     fn new(ctx: &InitContext<'_>, params: Params) -> Result<Self> {
         let scene = ctx.scene;
         let blades = scene.blades.all_blades(&scene.terrain);
-        let arrays = BladeArrays::new(&blades);
-        let gpu = BladeGpu::new(ctx, &arrays)?;
+        if blades.len() > blades::MAX_BLADES {
+            return Err(grassbench::Error::Technique {
+                technique: "jahrmann".into(),
+                message: format!(
+                    "{} blades: at most {} (a blade's scene index is kept in an f32); lower grass.density",
+                    blades.len(),
+                    blades::MAX_BLADES
+                ),
+            });
+        }
+        let grid = (params.dispatch_tile > 0.0)
+            .then(|| TileGrid::new(&blades, params.dispatch_tile, &CullSettings::of(&params)));
+        let arrays = match &grid {
+            Some(g) => BladeArrays::in_order(&blades, &g.order),
+            None => BladeArrays::new(&blades),
+        };
+        let max_ranges = grid.as_ref().map_or(1, |g| 2 * g.tiles.len());
+        let gpu = BladeGpu::new(ctx, &arrays, max_ranges)?;
         let count = arrays.len() as u64;
+        let groups = gpu.groups();
         Ok(Self {
             params,
             gpu,
@@ -228,15 +312,27 @@ impl Technique for Jahrmann {
             reset: true,
             last_frame: None,
             uniform: ParamsUniform::default(),
-            gpu_bytes: gpu::bytes(count),
+            grid,
+            selection: Selection::default(),
+            start: GpuCounts::default(),
+            groups,
+            gpu_bytes: gpu::bytes(count) + gpu::ranges_bytes(max_ranges),
         })
     }
 
-    fn estimate(scene: &Scene, _params: &Params) -> Result<GpuEstimate> {
-        // At most one blade per candidate (fewer where the density map thins them).
+    fn estimate(scene: &Scene, params: &Params) -> Result<GpuEstimate> {
+        // At most one blade per candidate (fewer where the density map thins them); two
+        // ranges per dispatch tile holding blades, at most one tile per blade or per cell of
+        // the terrain (one more each way for the grid's offset).
         let candidates = scene.blades.candidate_count(&scene.terrain);
+        let ranges = if params.dispatch_tile > 0.0 {
+            let cells = (scene.terrain.size() / params.dispatch_tile).ceil() + 1.0;
+            2 * candidates.min((cells.x * cells.y) as u64)
+        } else {
+            1
+        };
         Ok(GpuEstimate {
-            bytes: gpu::bytes(candidates),
+            bytes: gpu::bytes(candidates) + gpu::ranges_bytes(ranges as usize),
             largest_buffer: gpu::largest_buffer(candidates),
         })
     }
@@ -262,8 +358,13 @@ impl Jahrmann {
     /// as [`GrassTechnique::encode`] records them before its draws: for timing the compute
     /// pass by wall clock (`benches/compute.rs`), lavapipe's compute timestamps being wrong.
     pub fn encode_compute(&self, encoder: &mut FrameEncoder<'_>) {
-        self.gpu
-            .encode_compute(encoder, self.parity, self.reset, self.readback.target());
+        self.gpu.encode_compute(
+            encoder,
+            self.parity,
+            self.reset,
+            self.groups,
+            self.readback.target(),
+        );
     }
 
     /// The GPU's counts of the newest frame delivered, and how many frames old they are.
@@ -294,18 +395,44 @@ impl GrassTechnique for Jahrmann {
         }
         self.last_frame = Some(inputs.frame);
         self.readback.begin_frame();
+        self.selection = match &self.grid {
+            Some(grid) => grid.select(
+                inputs.camera.eye,
+                &inputs.camera.frustum().planes,
+                &CullSettings::of(&self.params),
+            ),
+            None => Selection::default(),
+        };
+        let tiled = self.grid.is_some();
+        self.groups = if tiled {
+            self.gpu.split(self.selection.groups)
+        } else {
+            self.gpu.groups()
+        };
         self.uniform = gpu::uniform(
             &self.params,
             &inputs.scene.config.grass,
             &inputs.camera,
             self.blades,
-            self.gpu.groups().0,
+            self.groups.0,
         );
+        self.uniform.counts[2] = u32::try_from(self.selection.ranges.len()).unwrap_or(u32::MAX);
+        self.uniform.counts[3] = u32::from(tiled);
+        let sel = &self.selection;
+        let count = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
+        let mut start = GpuCounts::default();
+        start.verdicts[Verdict::Frustum as usize] = count(sel.frustum);
+        start.verdicts[Verdict::Distance as usize] = count(sel.distance);
+        start.verdicts[Verdict::Represented as usize] = count(sel.represented);
+        start.skipped = count(sel.frustum + sel.distance + sel.represented);
+        start.represented_untested = count(sel.represented);
+        self.start = start;
         Ok(())
     }
 
     fn prepare(&mut self, gpu: &GpuContext, _inputs: &FrameInputs<'_>) -> Result<()> {
-        self.gpu.upload(gpu, &self.uniform);
+        self.gpu
+            .upload(gpu, &self.uniform, &self.start, &self.selection.ranges);
         Ok(())
     }
 
@@ -345,12 +472,14 @@ impl GrassTechnique for Jahrmann {
         let n = |v: Verdict| f64::from(c.of(v));
         vec![
             ("considered", c.considered() as f64),
+            ("simulated", (c.considered() - u64::from(c.skipped)) as f64),
             ("culled_orientation", n(Verdict::Orientation)),
             ("culled_frustum", n(Verdict::Frustum)),
             ("culled_distance", n(Verdict::Distance)),
             ("drawn_near", n(Verdict::Near)),
             ("drawn_far", n(Verdict::Far)),
             ("represented_far", n(Verdict::Represented)),
+            ("represented_untested", f64::from(c.represented_untested)),
             ("in_band", f64::from(c.in_band)),
             ("count_lag_frames", lag as f64),
         ]

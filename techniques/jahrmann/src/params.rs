@@ -39,10 +39,21 @@ pub struct Params {
     /// Ground distance from the eye beyond which no blade is kept, m (the paper's `d_max`).
     #[schemars(range(min = 1.0, max = 100_000.0))]
     pub cull_distance: f32,
+    /// Ground distance beyond which the distance test also thins blades as `(D / d)²` (about
+    /// as many blades per pixel at any distance), widening those kept by `(d / D)²` so they
+    /// cover what the others covered, m (not in the paper; 0: off, the paper's test alone).
+    #[schemars(range(min = 0.0, max = 100_000.0))]
+    pub thin_distance: f32,
     /// Distance buckets (the paper's `n`): blades of the first `cull_distance / buckets`
     /// metres are all kept, then one bucket's blades fewer per further bucket.
     #[schemars(range(min = 1, max = 64))]
     pub buckets: u32,
+    /// Side of the square ground tiles the compute pass is dispatched over, m: each frame
+    /// only the tiles that meet the view frustum are simulated and culled, and in each only
+    /// the blades the distance test and the far level can still draw there (`tiles.rs`); 0
+    /// dispatches every blade every frame (the paper).
+    #[schemars(range(min = 0.0, max = 1000.0))]
+    pub dispatch_tile: f32,
     /// Two levels of detail (Ghost of Tsushima): 15 vertices a blade near, 7 far.
     pub lod: bool,
     /// Side of the square ground tiles whose blades change level together, m (Ghost of
@@ -91,6 +102,8 @@ impl Default for Params {
             distance_culling: true,
             cull_distance: 240.0,
             buckets: 8,
+            thin_distance: 40.0,
+            dispatch_tile: 8.0,
             lod: true,
             tile_size: 4.0,
             lod_distance: 15.0,
