@@ -165,7 +165,7 @@ struct Counters {
     pad: u32,
 }
 
-// The counters, then the frame's dispatched ranges of blades (tiles.rs: first workgroup,
+// The counters, then the frame's dispatched ranges of blades (tiles.rs: first invocation,
 // first blade, end, 0), written by the CPU; one buffer, so the pass binds no more than the
 // 8 storage buffers WebGPU guarantees.
 struct CountBlock {
@@ -315,11 +315,12 @@ var<workgroup> wg_far: atomic<u32>;
 var<workgroup> wg_base: vec2<u32>;
 
 // The blade of invocation `lid` of flat workgroup `w`, and whether there is one: over the
-// ranges, the last range starting at or before `w` (binary search), else blade w·64 + lid.
+// ranges, invocation g = w·64 + lid falls in the last range starting at or before g (binary
+// search); else it is blade g.
 fn blade_of(w: u32, lid: u32) -> vec2<u32> {
+    let g = w * WORKGROUP + lid;
     if (params.counts.w == 0u) {
-        let i = w * WORKGROUP + lid;
-        return vec2(i, u32(i < params.counts.x));
+        return vec2(g, u32(g < params.counts.x));
     }
     var lo = 0u;
     var hi = params.counts.z;
@@ -328,15 +329,15 @@ fn blade_of(w: u32, lid: u32) -> vec2<u32> {
     }
     while (hi - lo > 1u) {
         let mid = (lo + hi) / 2u;
-        if (block.ranges[mid].x <= w) {
+        if (block.ranges[mid].x <= g) {
             lo = mid;
         } else {
             hi = mid;
         }
     }
     let r = block.ranges[lo];
-    let i = r.y + (w - r.x) * WORKGROUP + lid;
-    return vec2(i, u32(i < r.z));
+    let i = r.y + (g - r.x);
+    return vec2(i, u32(g >= r.x && i < r.z));
 }
 
 // Simulates every blade dispatched, then culls it and appends the survivors of each level to `visible`:

@@ -34,8 +34,10 @@
 //!   level's survivors come first, then the others, each sorted by their distance cutoff,
 //!   so the blades within reach of the tile's nearest point are a prefix; a tile wholly
 //!   beyond the far level's start dispatches its survivors only. The ranges (at most two a
-//!   tile) go to the GPU as a small table; each workgroup finds its range by a binary
-//!   search. Every skip is one the per-blade tests would make (tested over random cameras
+//!   tile) go to the GPU as a small table, one after the other in invocation order (a far
+//!   tile's few survivors share a workgroup with the next tile's: one workgroup per range
+//!   made 941 workgroups of 64 for 28 k blades at 400 m); each invocation finds its range by
+//!   a binary search. Every skip is one the per-blade tests would make (tested over random cameras
 //!   and settings: `tiles::tests`), so the picture is the every-blade pass's: FLIP 0.00000
 //!   on the three suite scenes (`tests/tests/gpu_jahrmann.rs`).
 //! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R),
@@ -188,8 +190,7 @@
 //! (= 0.048 × 30: the reference's bend for small winds); the paper's orientation threshold
 //! 0.9; a 0.1 m frustum tolerance (about a blade's width); `cull_distance` 240 m in 8 buckets
 //! (the first 30 m keep every blade: at 640x360 a blade there is under a pixel wide);
-//! `dispatch_tile` 8 m (about 1 300 blades, 20 workgroups, a tile at 20 blades/m²: the tail
-//! workgroups waste a few percent; 2 500 tiles at 400 m); `thin_distance` 40 m (beyond the
+//! `dispatch_tile` 8 m (about 1 300 blades a tile at 20 blades/m²; 2 500 tiles at 400 m); `thin_distance` 40 m (beyond the
 //! hand-over and the first distance bucket); `lod_distance` 15 m with a 5 m band (a 0.5 m blade is about 14 px tall at 15 m, where 3
 //! segments follow its curve); `far_widen` 4 = `far_keep`: measured against the reference on
 //! the comparison suite's meadow and prairie (coverage per screen tile), widening 2x leaves

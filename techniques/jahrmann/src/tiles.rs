@@ -76,9 +76,11 @@ pub struct TileGrid {
 /// What one frame dispatches, and what it skips.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Selection {
-    /// `(first workgroup, first blade, end, 0)` per dispatched range.
+    /// `(first invocation, first blade, end, 0)` per dispatched range: the ranges follow
+    /// each other in invocation order without gaps, so a far tile's few blades do not take a
+    /// workgroup of their own.
     pub ranges: Vec<[u32; 4]>,
-    /// Workgroups in all.
+    /// Workgroups in all (the dispatched blades rounded up to whole workgroups once).
     pub groups: u32,
     /// Blades dispatched.
     pub dispatched: u64,
@@ -196,9 +198,11 @@ impl TileGrid {
             if count == 0 {
                 return;
             }
-            out.ranges.push([out.groups, start, start + count, 0]);
-            out.groups += count.div_ceil(WORKGROUP);
+            // Invocations stay below 2^32: the blades are at most `u32::MAX`.
+            out.ranges
+                .push([out.dispatched as u32, start, start + count, 0]);
             out.dispatched += u64::from(count);
+            out.groups = (out.dispatched as u32).div_ceil(WORKGROUP);
         };
         for t in &self.tiles {
             let total = u64::from(t.end - t.start);
@@ -436,12 +440,15 @@ mod tests {
             1.6,
         );
         let sel = grid.select(camera.eye, &camera.frustum().planes, &s);
-        let groups: u32 = sel
-            .ranges
-            .iter()
-            .map(|r| (r[2] - r[1]).div_ceil(WORKGROUP))
-            .sum();
-        assert_eq!(groups, sel.groups);
+        // The ranges follow each other in invocation order without gaps, and the workgroups
+        // cover the dispatched blades once rounded up.
+        let mut next = 0u32;
+        for r in &sel.ranges {
+            assert_eq!(r[0], next, "{:?}", sel.ranges);
+            next += r[2] - r[1];
+        }
+        assert_eq!(u64::from(next), sel.dispatched);
+        assert_eq!(sel.groups, next.div_ceil(WORKGROUP));
         assert!(sel.frustum > 0 && sel.dispatched > 0);
     }
 }
