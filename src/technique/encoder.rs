@@ -1,7 +1,7 @@
 //! Recording a frame: passes opened here get bind group 0 set, timestamp queries and
 //! pipeline-statistics queries (the work they did, [`super::work`]) added.
 
-use super::pass::{ComputePass, PassCounts, RenderPass};
+use super::pass::{ComputePass, Counting, PassCounts, RenderPass};
 use super::work::WorkCounter;
 use crate::scene::SceneGpu;
 use crate::{GpuContext, RenderTarget};
@@ -205,8 +205,7 @@ impl<'a> FrameEncoder<'a> {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let (work, query) =
-            start_counting(self.work.as_deref_mut(), full, PassKind::Render).unzip();
+        let (work, query) = start_counting(self.work.as_deref_mut(), full, PassKind::Render);
         if let Some((queries, index)) = query {
             pass.begin_pipeline_statistics_query(&queries, index);
         }
@@ -233,8 +232,7 @@ impl<'a> FrameEncoder<'a> {
                 }),
             });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let (work, query) =
-            start_counting(self.work.as_deref_mut(), full, PassKind::Compute).unzip();
+        let (work, query) = start_counting(self.work.as_deref_mut(), full, PassKind::Compute);
         if let Some((queries, index)) = query {
             pass.begin_pipeline_statistics_query(&queries, index);
         }
@@ -281,8 +279,12 @@ fn start_counting(
     work: Option<&mut WorkCounter>,
     full: String,
     kind: PassKind,
-) -> Option<((&mut WorkCounter, String), (wgpu::QuerySet, u32))> {
-    let work = work?;
-    let query = work.next(full.clone(), kind, None)?;
-    Some(((work, full), query))
+) -> (Counting<'_>, Option<(wgpu::QuerySet, u32)>) {
+    let Some(work) = work else {
+        return (None, None);
+    };
+    match work.next(full.clone(), kind, None) {
+        Some(query) => (Some((work, full)), Some(query)),
+        None => (None, None),
+    }
 }

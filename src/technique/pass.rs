@@ -15,7 +15,7 @@ use super::work::WorkCounter;
 use crate::shaders::{ComputePipeline, PipelineCost, RenderPipeline};
 
 /// Where a pass's segments are counted, and the pass's label for new segments.
-type Counting<'p> = Option<(&'p mut WorkCounter, String)>;
+pub(super) type Counting<'p> = Option<(&'p mut WorkCounter, String)>;
 
 /// Gives the running segment of a pass of `kind` the pipeline `cost`, or, where it has another
 /// (and the counter has room), starts the next segment: the query to begin after ending the

@@ -179,10 +179,10 @@ fn counts_are_the_gpus_and_follow_the_cull() -> anyhow::Result<()> {
     );
     let arrays = blades::BladeArrays::new(&population);
     let mut cpu = std::collections::BTreeMap::new();
-    for i in 0..arrays.len() {
+    for (i, skip) in skipped.iter().enumerate().take(arrays.len()) {
         let rest = arrays.rest_of(i).unwrap();
         let curve = blades::rest_curve(&rest);
-        let v = skipped[i].unwrap_or_else(|| {
+        let v = skip.unwrap_or_else(|| {
             cull::verdict(
                 i as u32,
                 (rest.v0, curve.v1, curve.v2),
