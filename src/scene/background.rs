@@ -18,27 +18,19 @@ pub struct Background {
 }
 
 impl Background {
-    /// Builds the pipelines for `sample_count`; the ground's reads the mesh through
-    /// `ground_layout` (group 1).
+    /// Builds the pipelines for `sample_count`.
     pub fn new(
         device: &wgpu::Device,
         scene_layout: &wgpu::BindGroupLayout,
-        ground_layout: &wgpu::BindGroupLayout,
         sample_count: u32,
     ) -> Self {
         let module = shaders::module(device, "background", shaders::BACKGROUND);
-        let scene_only = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("background"),
             bind_group_layouts: &[Some(scene_layout)],
             immediate_size: 0,
         });
-        let with_ground = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("ground"),
-            bind_group_layouts: &[Some(scene_layout), Some(ground_layout)],
-            immediate_size: 0,
-        });
         let pipeline = |label,
-                        layout: &wgpu::PipelineLayout,
                         vs,
                         fs,
                         buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
@@ -53,7 +45,7 @@ impl Background {
             let kind = FragmentKind::of(&targets, &multisample, module.discards(fs));
             let raw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
-                layout: Some(layout),
+                layout: Some(&layout),
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some(vs),
@@ -91,7 +83,6 @@ impl Background {
         Self {
             sky: pipeline(
                 "sky",
-                &scene_only,
                 "vs_sky",
                 "fs_sky",
                 &[],
@@ -101,7 +92,6 @@ impl Background {
             ),
             apron: pipeline(
                 "apron",
-                &scene_only,
                 "vs_apron",
                 "fs_apron",
                 &[],
@@ -111,7 +101,6 @@ impl Background {
             ),
             ground: pipeline(
                 "ground",
-                &with_ground,
                 "vs_ground",
                 "fs_ground",
                 &[Some(Pattern::LAYOUT), Some(ChunkInstance::LAYOUT)],
@@ -121,7 +110,6 @@ impl Background {
             ),
             props: pipeline(
                 "trees and stones",
-                &scene_only,
                 "vs_prop",
                 "fs_prop",
                 &[Some(PropVertex::LAYOUT)],
@@ -131,7 +119,6 @@ impl Background {
             ),
             object: pipeline(
                 "object",
-                &scene_only,
                 "vs_object",
                 "fs_object",
                 &[],

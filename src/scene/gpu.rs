@@ -111,7 +111,7 @@ impl SceneGpu {
                 ],
             });
             let ground = GroundGpu::new(device, &terrain);
-            let background = Background::new(device, &layout, &ground.layout, sample_count);
+            let background = Background::new(device, &layout, sample_count);
             let props = PropsGpu::new(device, &scene.terrain, scene.config.seed);
             Self {
                 layout,

@@ -1,7 +1,9 @@
 //! The ground on the GPU, drawn in chunks ([`crate::terrain::chunks`]): one instanced draw
 //! per level for the chunks' surfaces and one per level for the skirts where levels meet.
-//! The vertex shader (`background.wgsl`, `vs_ground`) reads the mesh's vertices from the
-//! shared ground buffer by index, so every level draws the mesh's own vertices.
+//! The vertex shader (`background.wgsl`, `vs_ground`) places each pattern vertex on the mesh
+//! vertex it stands for, its height and normal read from the scene's height map as the mesh's
+//! were computed on the CPU, so every level draws the mesh's own vertices and no storage
+//! buffer is bound to the vertex stage.
 
 use std::ops::Range;
 
@@ -52,12 +54,8 @@ pub struct GroundDraws {
     pub skirts: [Range<u32>; LEVELS],
 }
 
-/// The ground's level patterns, the per-frame instance buffer and the bind group that lets
-/// the vertex shader read the mesh.
+/// The ground's level patterns and the per-frame instance buffer.
 pub struct GroundGpu {
-    /// Layout of the ground's bind group (group 1 of the ground pipeline).
-    pub layout: wgpu::BindGroupLayout,
-    bind_group: wgpu::BindGroup,
     surfaces: Vec<PatternGpu>,
     skirts: Vec<PatternGpu>,
     instances: wgpu::Buffer,
@@ -66,27 +64,6 @@ pub struct GroundGpu {
 impl GroundGpu {
     /// The patterns of every level and room for every chunk's surface and four skirts.
     pub fn new(device: &wgpu::Device, terrain: &TerrainGpu) -> Self {
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ground mesh"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only: true },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ground mesh"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: terrain.ground_vertices.as_entire_binding(),
-            }],
-        });
         let (cx, cz) = terrain.chunks.count();
         let capacity =
             u64::from(cx * cz * (1 + EDGES)) * std::mem::size_of::<ChunkInstance>() as u64;
@@ -98,8 +75,6 @@ impl GroundGpu {
         });
         let levels = 0..LEVELS as u32;
         Self {
-            layout,
-            bind_group,
             surfaces: levels
                 .clone()
                 .map(|l| PatternGpu::new(device, "ground surface", &Pattern::surface(l)))
@@ -133,7 +108,6 @@ impl GroundGpu {
 
     /// Draws `draws` with the ground pipeline set; bind group 0 must be set.
     pub fn draw(&self, pass: &mut crate::technique::RenderPass<'_>, draws: &GroundDraws) {
-        pass.set_bind_group(1, &self.bind_group, &[]);
         pass.set_vertex_buffer(1, self.instances.slice(..));
         let all = self.surfaces.iter().zip(&draws.surfaces);
         for (pattern, instances) in all.chain(self.skirts.iter().zip(&draws.skirts)) {

@@ -34,9 +34,6 @@ struct GroundOut {
     @location(1) normal: vec3<f32>,
 }
 
-// The ground mesh's vertices (`GroundVertex`: position, normal; six floats each), row by row.
-@group(1) @binding(0) var<storage, read> ground_mesh: array<f32>;
-
 // Cells along a chunk's side (`terrain::chunks::CHUNK_CELLS`).
 const CHUNK_CELLS: u32 = 8u;
 
@@ -60,7 +57,10 @@ fn ground_vertex(chunk: vec4<u32>, edge: u32, local: vec2<u32>) -> vec2<u32> {
 // A chunk of the ground at one level (`src/terrain/chunks.rs`): the pattern's local vertex
 // (`local`: i, j in mesh cells from the chunk's corner, 1 for a skirt's lowered copy), the
 // instance's chunk (`chunk`: first mesh column and row, mesh vertices along x and z), the
-// edge a skirt hangs from and how far.
+// edge a skirt hangs from and how far. The vertex is the ground mesh's (`TerrainGpu::
+// ground_mesh`): its xz spread evenly over the terrain, its height and normal read from the
+// height map as the CPU's `Terrain::point_at` / `normal_at` do (their twins), so no storage
+// buffer is bound to the vertex stage (adapters with WebGL2's limits have none there).
 @vertex
 fn vs_ground(
     @location(0) local: vec3<u32>,
@@ -69,13 +69,13 @@ fn vs_ground(
     @location(3) depth: f32,
 ) -> GroundOut {
     let vertex = ground_vertex(chunk, edge, local.xy);
-    let k = (vertex.y * chunk.z + vertex.x) * 6u;
-    var position = vec3(ground_mesh[k], ground_mesh[k + 1u], ground_mesh[k + 2u]);
-    position.y -= depth * f32(local.z);
+    let uv = vec2<f32>(vertex) / vec2<f32>(max(chunk.zw, vec2(2u)) - 1u);
+    let xz = globals.terrain.xy + uv * globals.terrain.zw;
+    let position = vec3(xz.x, terrain_height(xz) - depth * f32(local.z), xz.y);
     var out: GroundOut;
     out.position = globals.view_proj * vec4(position, 1.0);
     out.world = position;
-    out.normal = vec3(ground_mesh[k + 3u], ground_mesh[k + 4u], ground_mesh[k + 5u]);
+    out.normal = terrain_normal(xz);
     return out;
 }
 

@@ -1,200 +1,196 @@
 //! # `jahrmann`: GPU-driven Bezier blades, with Ghost of Tsushima's levels of detail
 //!
-//! Jahrmann and Wimmer 2017, *Responsive Real-Time Grass Rendering for General 3D Scenes*
-//! (I3D), the modern baseline: blades are simulated, culled and drawn on the GPU, the CPU
-//! does no per-blade work each frame (it picks the ground tiles in view), and nothing is read
-//! back within a frame. Its level of detail
-//! follows Sucker Punch's GDC 2021 talk on Ghost of Tsushima's procedural grass. The paper
-//! itself was not in the corpus; each step below names the description it follows:
+//! Jahrmann and Wimmer 2017, *Responsive Real-Time Grass Rendering for General 3D Scenes* (I3D),
+//! the modern baseline: blades are simulated, culled and drawn on the GPU, the CPU does no
+//! per-blade work each frame (it picks the ground tiles in view), and nothing is read back within a
+//! frame. Its level of detail follows Sucker Punch's GDC 2021 talk on Ghost of Tsushima's
+//! procedural grass. The paper itself was not in the corpus; each step below names the description
+//! it follows:
 //! - (A) `shared/ANCHORS.md`, what is publicly known of the paper and the talk;
 //! - (C) the CIS 565 "Vulkan Grass Rendering" course description of the paper
-//!   (`CIS5650-Fall-2024/Project5-Vulkan-Grass-Rendering`, `INSTRUCTION.md`): the four
-//!   `vec4`s, `g_E`, `g_F = ¼·|g_E|·f`, `r = (I_v2 − v2)·s`, the translation `(r + g + w)·Δt`,
-//!   the frustum test's three points, and the section number 5.2 for the validation;
+//!   (`CIS5650-Fall-2024/Project5-Vulkan-Grass-Rendering`, `INSTRUCTION.md`): the four `vec4`s,
+//!   `g_E`, `g_F = ¼·|g_E|·f`, `r = (I_v2 − v2)·s`, the translation `(r + g + w)·Δt`, the frustum
+//!   test's three points, and the section number 5.2 for the validation;
 //! - (R) a CIS 565 re-implementation's description (`rmurdock41/Project5-Vulkan-Grass-Rendering`,
-//!   `README.md`): the wind's directional alignment `1 − |ŵ·(v2 − v0)/|v2 − v0||` and height
-//!   ratio `(v2 − v0)·up / h`, and the length estimate `L = (2·L0 + L1) / 3`.
+//!   `README.md`): the wind's directional alignment `1 − |ŵ·(v2 − v0)/|v2 − v0||` and height ratio
+//!   `(v2 − v0)·up / h`, and the length estimate `L = (2·L0 + L1) / 3`.
 //!
 //! ## Algorithm, step by step
 //! - **Blades** ([`blades`]; (A), (C)): the scene's population from
-//!   `grassbench::grass::BladeField`, the module `reference` draws, in the same order, so with culling and levels off every blade
-//!   stands where the reference's stands. A blade is the paper's quadratic Bezier curve: root
-//!   `v0`, guide `v1`, tip `v2` where forces act, with orientation, height, width and
-//!   stiffness (the paper's four `vec4`s: `v0`+orientation, `v1`+height, `v2`+width,
-//!   `up`+stiffness; here stored as arrays of `vec4` — structure of arrays, so no binding
-//!   passes the adapter's storage-binding limit — with the simulated `v1`, `v2` kept twice).
-//!   The arrays hold the blades grouped by ground tile ([`tiles`]): a permutation of the
-//!   scene's, each blade keeping its scene index, which is what the hashes below take, so
-//!   the same blades are bucketed, kept and widened in any order.
-//! - **Dispatch by tile** ([`tiles`]; Ghost of Tsushima's work per tile in view, (A); not in
-//!   the paper, which runs every blade; `dispatch_tile = 0` does that): the ground is cut
-//!   into `dispatch_tile` = 8 m squares. Each frame `update` picks, on the CPU, the tiles
-//!   whose box (roots' bounds grown by `2·h + 0.25` m for the curve) meets the view frustum,
-//!   and in each only the blades that can still be drawn there: within a tile the far
-//!   level's survivors come first, then the others, each sorted by their distance cutoff,
-//!   so the blades within reach of the tile's nearest point are a prefix; a tile wholly
-//!   beyond the far level's start dispatches its survivors only. The ranges (at most two a
-//!   tile) go to the GPU as a small table, one after the other in invocation order (a far
-//!   tile's few survivors share a workgroup with the next tile's: one workgroup per range
-//!   made 941 workgroups of 64 for 28 k blades at 400 m); each invocation finds its range by
-//!   a binary search. Every skip is one the per-blade tests would make (tested over random cameras
-//!   and settings: `tiles::tests`), so the picture is the every-blade pass's: FLIP 0.00000
-//!   on the three suite scenes (`tests/tests/gpu_jahrmann.rs`).
-//! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R),
-//!   validation (C) Sec. 5.2 with (R)'s length estimate), every frame for every blade
-//!   dispatched (above) in one compute pass, `dt` from the frame inputs (the frame globals): recovery towards the rest
-//!   pose by the stiffness (Hooke), gravity (environmental plus the front gravity ¼·|g|·f),
-//!   wind sampled on the GPU from the scene's wind texture (`wind_at`: every wind model of the
-//!   shared module is baked into it each frame, so breeze, point source, fluid and Perbet's
-//!   primitives all drive these blades) times the paper's alignment term, collision with the
-//!   scene's moving sphere (`globals.object`: tip and midpoint pushed out); then the paper's
-//!   validation (Sec. 5.2): tip above the ground, `v1` placed from the tip's projection, the
-//!   curve rescaled to keep its length. [`sim`]'s docs give every formula.
+//!   `grassbench::grass::BladeField`, the module `reference` draws, in the same order, so with
+//!   culling and levels off every blade stands where the reference's stands. A blade is the paper's
+//!   quadratic Bezier curve: root `v0`, guide `v1`, tip `v2` where forces act, with orientation,
+//!   height, width and stiffness (the paper's four `vec4`s: `v0`+orientation, `v1`+height,
+//!   `v2`+width, `up`+stiffness; here stored as arrays of `vec4` — structure of arrays, so no
+//!   binding passes the adapter's storage-binding limit — with the simulated `v1`, `v2` kept
+//!   twice). The arrays hold the blades grouped by ground tile ([`tiles`]): a permutation of the
+//!   scene's, each blade keeping its scene index, which is what the hashes below take, so the same
+//!   blades are bucketed, kept and widened in any order.
+//! - **Dispatch by tile** ([`tiles`]; Ghost of Tsushima's work per tile in view, (A); not in the
+//!   paper, which runs every blade; `dispatch_tile = 0` does that): the ground is cut into
+//!   `dispatch_tile` = 8 m squares. Each frame `update` picks, on the CPU, the tiles whose box
+//!   (roots' bounds grown by `2·h + 0.25` m for the curve) meets the view frustum, and in each only
+//!   the blades that can still be drawn there: within a tile the far level's survivors come first,
+//!   then the others, each sorted by their distance cutoff, so the blades within reach of the
+//!   tile's nearest point are a prefix; a tile wholly beyond the far level's start dispatches its
+//!   survivors only. The ranges (at most two a tile) go to the GPU as a small table, one after the
+//!   other in invocation order (a far tile's few survivors share a workgroup with the next tile's:
+//!   one workgroup per range made 941 workgroups of 64 for 28 k blades at 400 m); each invocation
+//!   finds its range by a binary search. Every skip is one the per-blade tests would make (tested
+//!   over random cameras and settings: `tiles::tests`), so the picture is the every-blade pass's:
+//!   FLIP 0.00000 on the three suite scenes (`tests/tests/gpu_jahrmann.rs`).
+//! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R), validation
+//!   (C) Sec. 5.2 with (R)'s length estimate), every frame for every blade dispatched (above) in
+//!   one compute pass, `dt` from the frame inputs (the frame globals): recovery towards the rest
+//!   pose by the stiffness (Hooke), gravity (environmental plus the front gravity ¼·|g|·f), wind
+//!   sampled on the GPU from the scene's wind texture (`wind_at`: every wind model of the shared
+//!   module is baked into it each frame, so breeze, point source, fluid and Perbet's primitives all
+//!   drive these blades) times the paper's alignment term, collision with the scene's moving sphere
+//!   (`globals.object`: tip and midpoint pushed out); then the paper's validation (Sec. 5.2): tip
+//!   above the ground, `v1` placed from the tip's projection, the curve rescaled to keep its
+//!   length. [`sim`]'s docs give every formula.
 //! - **Culling** ([`cull`], the shader's `cull`; (A), (C)), in the same pass: orientation (seen
 //!   edge-on, `|view · width| > 0.9`), view frustum (`v0`, the midpoint and `v2`, with a
-//!   tolerance), distance (buckets by a hash of the blade: density falls by one bucket per
-//!   `d_max / n` metres; beyond `thin_distance` = 40 m, not in the paper, a second hash also
-//!   keeps only a share `(D / d)²` of them, widened by `(d / D)²`, so the blades per pixel and
-//!   the far field's cost stay about constant however far the ground runs). Survivors are appended to a draw list with atomics, one global
-//!   atomic per workgroup and level; the two counts are the instance counts of the two
-//!   `draw_indirect` calls: no read-back.
+//!   tolerance), distance (buckets by a hash of the blade: density falls by one bucket per `d_max /
+//!   n` metres; beyond `thin_distance` = 40 m, not in the paper, a second hash also keeps only a
+//!   share `(D / d)²` of them, widened by `(d / D)²`, so the blades per pixel and the far field's
+//!   cost stay about constant however far the ground runs). Survivors are appended to a draw list
+//!   with atomics, one global atomic per workgroup and level; the two counts are the instance
+//!   counts of the two `draw_indirect` calls: no read-back.
 //! - **Levels** (Ghost of Tsushima, (A)): no tessellation stage in wgpu, so the draws pull their
-//!   vertices: each visible blade is an instance of a triangle strip whose vertex count is
-//!   its level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the
-//!   curve at each vertex. Levels are chosen per square ground tile of `tile_size` = 4 m, by
-//!   the distance of the tile's centre, so a tile's blades change level together as Ghost of
-//!   Tsushima's tiles do. Far tiles (beyond `lod_distance` + the band) draw one blade in
-//!   `far_keep` = 4, widened by `far_widen` = 4 so the survivors cover what the others covered
-//!   (for blades thinner than a pixel, coverage grows with width); the others are not drawn
-//!   and count as stood for (`blades_represented`). Ghost of Tsushima generates each tile's
-//!   blades in compute every frame (far tiles twice the size); here blades are the scene's
-//!   fixed population (to compare with the reference), so tiles only group the choice of
-//!   level, and which blades survive comes from a hash of the blade's index.
-//! - **Hand-overs** ((A): shapes "blended across the hand-over to hide popping"; the geomorph
-//!   and the fades are this crate's; with `transitions`, the default): over the band (5 m) the near level's
-//!   vertices move onto the far level's 3-segment strip (a geomorph), the blades the far level
-//!   drops narrow to nothing and the survivors widen to `far_widen`, so the switch at the
-//!   band's end changes nothing on screen. Likewise each blade narrows to nothing over the
-//!   last `distance_fade` metres before the distance test drops it, and over the last
-//!   `orientation_fade` of `|view · width|` before the orientation test does.
-//!   `no_transitions` switches at once. Measured (`tests/tests/temporal.rs`, the meadow at a
-//!   quarter of its blades, 320x180): along a dolly and a pan the blended hand-overs change
-//!   the spurious change against the reference by 1-2 % (peak x1.02 without them), short of
-//!   the suite's 10 % rule: a tile switches in the 15-20 m band, a few rows of the picture,
-//!   each blade's fade happens at its own distance (switches are spread over the frames
-//!   anyway), and most of the spurious change is the Bezier blades' own parallax against the
-//!   reference's.
-//! - **Shading**: `reference`'s: two-sided `shade_leaf` with the prelude's lights, colour from
-//!   root to tip with the blade's variation, ambient darkened towards the root, no shadows,
-//!   the shared fog.
+//!   vertices: each visible blade is an instance of a triangle strip whose vertex count is its
+//!   level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the curve at
+//!   each vertex. Levels are chosen per square ground tile of `tile_size` = 4 m, by the distance of
+//!   the tile's centre, so a tile's blades change level together as Ghost of Tsushima's tiles do.
+//!   Far tiles (beyond `lod_distance` + the band) draw one blade in `far_keep` = 4, widened by
+//!   `far_widen` = 4 so the survivors cover what the others covered (for blades thinner than a
+//!   pixel, coverage grows with width); the others are not drawn and count as stood for
+//!   (`blades_represented`). Ghost of Tsushima generates each tile's blades in compute every frame
+//!   (far tiles twice the size); here blades are the scene's fixed population (to compare with the
+//!   reference), so tiles only group the choice of level, and which blades survive comes from a
+//!   hash of the blade's index.
+//! - **Hand-overs** ((A): shapes "blended across the hand-over to hide popping"; the geomorph and
+//!   the fades are this crate's; with `transitions`, the default): over the band (5 m) the near
+//!   level's vertices move onto the far level's 3-segment strip (a geomorph), the blades the far
+//!   level drops narrow to nothing and the survivors widen to `far_widen`, so the switch at the
+//!   band's end changes nothing on screen. Likewise each blade narrows to nothing over the last
+//!   `distance_fade` metres before the distance test drops it, and over the last `orientation_fade`
+//!   of `|view · width|` before the orientation test does. `no_transitions` switches at once.
+//!   Measured (`tests/tests/temporal.rs`, the meadow at a quarter of its blades, 320x180): along a
+//!   dolly and a pan the blended hand-overs change the spurious change against the reference by 1-2
+//!   % (peak x1.02 without them), short of the suite's 10 % rule: a tile switches in the 15-20 m
+//!   band, a few rows of the picture, each blade's fade happens at its own distance (switches are
+//!   spread over the frames anyway), and most of the spurious change is the Bezier blades' own
+//!   parallax against the reference's.
+//! - **Shading**: `reference`'s: two-sided `shade_leaf` with the prelude's lights, colour from root
+//!   to tip with the blade's variation, ambient darkened towards the root, no shadows, the shared
+//!   fog.
 //!
 //! ## Counts (`stats`, `levels`, `counters`)
-//! The compute pass counts its verdicts in the buffer that holds the two indirect draws, so
-//! the reported counts are the GPU's own, exact. The blades a frame does not dispatch are
-//! counted by the CPU into the same buffer before the pass (the starting values of its
-//! counters): a tile outside the frustum counts as culled by the frustum, the blades beyond
-//! their cutoff as culled by distance, the non-survivors of a tile wholly beyond the far
-//! level's start as represented (`represented_untested`: these no per-blade test saw, so
-//! some of them the orientation or frustum test would have culled: on the 400 m meadow of
-//! `experiments/scaling.toml` 42 k of the 44 k represented, where the every-blade pass
-//! counts 25 k). `simulated` = `considered` less the blades not dispatched. They are copied into a small read-back ring
-//! ([`counts`]) and mapped the next frame: `stats()` after frame `f` reports frame `f − 1`'s
-//! counts (`count_lag_frames` in `counters()` says how old they are). `blades_drawn` = near +
-//! far; `blades_represented` = blades beyond the hand-over the far level does not draw;
-//! blades culled by a test are neither (the honest reading of `TechniqueStats`: culling
-//! removes blades from the picture). `levels()`: `near`, and `far` (drawn and stood for).
-//! `counters()`: `considered` (every blade), `simulated` (dispatched), `culled_orientation`,
-//! `culled_frustum`, `culled_distance` (each blade counted by the first test that culls it),
-//! `drawn_near`, `drawn_far`, `represented_far`, `represented_untested`, `in_band`,
-//! `count_lag_frames`.
+//! The compute pass counts its verdicts in the buffer that holds the two indirect draws, so the
+//! reported counts are the GPU's own, exact. The blades a frame does not dispatch are counted by
+//! the CPU into the same buffer before the pass (the starting values of its counters): a tile
+//! outside the frustum counts as culled by the frustum, the blades beyond their cutoff as culled by
+//! distance, the non-survivors of a tile wholly beyond the far level's start as represented
+//! (`represented_untested`: these no per-blade test saw, so some of them the orientation or frustum
+//! test would have culled: on the 400 m meadow of `experiments/scaling.toml` 42 k of the 44 k
+//! represented, where the every-blade pass counts 25 k). `simulated` = `considered` less the blades
+//! not dispatched. They are copied into a small read-back ring ([`counts`]) and mapped the next
+//! frame: `stats()` after frame `f` reports frame `f − 1`'s counts (`count_lag_frames` in
+//! `counters()` says how old they are). `blades_drawn` = near + far; `blades_represented` = blades
+//! beyond the hand-over the far level does not draw; blades culled by a test are neither (the
+//! honest reading of `TechniqueStats`: culling removes blades from the picture). `levels()`:
+//! `near`, and `far` (drawn and stood for). `counters()`: `considered` (every blade), `simulated`
+//! (dispatched), `culled_orientation`, `culled_frustum`, `culled_distance` (each blade counted by
+//! the first test that culls it), `drawn_near`, `drawn_far`, `represented_far`,
+//! `represented_untested`, `in_band`, `count_lag_frames`.
 //!
 //! ## Cost model
-//! Compute: per dispatched blade 64 bytes read, 32 written, two bilinear lookups of the
-//! terrain and one of the wind; one global atomic per workgroup; on the CPU a pass over the
-//! tiles (`O(T)`, 2 500 at 400 m) and a table of at most `2T` ranges uploaded. Blades
-//! dispatched: those within reach in the tiles in view, which the thinning bounds — on the
-//! meadow at 20 blades/m² (`experiments/scaling.toml`), 23 k at 80 m and 28 k at 400 m,
-//! against 97 k and 2.26 M for the every-blade pass; triangles 75 k and 79 k (84 k and
-//! 239 k without the thinning).
-//! Geometry: `13·B_near + 5·B_far` triangles, `15·B_near + 7·B_far` vertices, each vertex
-//! evaluating the curve once (three times inside the band). Memory: `116·B` bytes (seven
-//! `vec4` arrays and a 4-byte draw list entry per blade) plus a few hundred bytes. On a
-//! software rasteriser the draw dominates wherever many blades survive; the compute pass is
-//! timed by wall clock only (lavapipe's compute timestamps are wrong: `shared/PLATFORM.md`).
+//! Compute: per dispatched blade 64 bytes read, 32 written, two bilinear lookups of the terrain and
+//! one of the wind; one global atomic per workgroup; on the CPU a pass over the tiles (`O(T)`, 2
+//! 500 at 400 m) and a table of at most `2T` ranges uploaded. Blades dispatched: those within reach
+//! in the tiles in view, which the thinning bounds — on the meadow at 20 blades/m²
+//! (`experiments/scaling.toml`), 23 k at 80 m and 28 k at 400 m, against 97 k and 2.26 M for the
+//! every-blade pass; triangles 75 k and 79 k (84 k and 239 k without the thinning). Geometry:
+//! `13·B_near + 5·B_far` triangles, `15·B_near + 7·B_far` vertices, each vertex evaluating the
+//! curve once (three times inside the band). Memory: `116·B` bytes (seven `vec4` arrays and a
+//! 4-byte draw list entry per blade) plus a few hundred bytes. On a software rasteriser the draw
+//! dominates wherever many blades survive; the compute pass is timed by wall clock only (lavapipe's
+//! compute timestamps are wrong: `shared/PLATFORM.md`).
 //!
 //! ## Known artifacts
-//! - The far level's widened blades are coarser: beyond the hand-over, four times fewer
-//!   blades four times wider show as larger patches of colour; inside the band, tile edges
-//!   show where neighbouring tiles stand at different stages of the hand-over (everywhere
-//!   between a near and a far tile without transitions).
-//! - Distance culling thins the far field without compensation (the paper's): far grass is
-//!   sparser and more of the ground shows through than in `reference`.
-//! - The draw list's order changes from frame to frame (atomics), so blades at exactly equal
-//!   depth may swap which one shows; images are otherwise the same run to run.
+//! - The far level's widened blades are coarser: beyond the hand-over, four times fewer blades four
+//!   times wider show as larger patches of colour; inside the band, tile edges show where
+//!   neighbouring tiles stand at different stages of the hand-over (everywhere between a near and a
+//!   far tile without transitions).
+//! - Distance culling thins the far field without compensation (the paper's): far grass is sparser
+//!   and more of the ground shows through than in `reference`.
+//! - The draw list's order changes from frame to frame (atomics), so blades at exactly equal depth
+//!   may swap which one shows; images are otherwise the same run to run.
 //! - Counts are one frame late (see above).
-//! - Blades outside the view are not simulated: their state waits where it was when their
-//!   tile left the view, and resumes from there when it comes back. The recovery is implicit
-//!   with `stiffness · dt` = 1 at 30 fps (blade stiffness 1), so each step halves what stands
-//!   between a blade and its forced pose: a returning tile's stale bend (at most the wind's
-//!   bend, a few centimetres at the tip) is down to 1/8 in three frames and 1/32 in five, and
-//!   the tile's box, grown by the curve margin, usually enters the frustum a little before
-//!   its blades show. The sphere does not push blades out of view until they come back.
-//! - The thinning's widened blades are coarser with distance (at 200 m about 25 times the
-//!   far level's width, ~1 px at 480x270); FLIP against no thinning 0.0015 / 0.0035 / 0.013 on
-//!   the meadow / football field / prairie fly-over (`gpu_jahrmann.rs`).
+//! - Blades outside the view are not simulated: their state waits where it was when their tile left
+//!   the view, and resumes from there when it comes back. The recovery is implicit with `stiffness
+//!   · dt` = 1 at 30 fps (blade stiffness 1), so each step halves what stands between a blade and
+//!   its forced pose: a returning tile's stale bend (at most the wind's bend, a few centimetres at
+//!   the tip) is down to 1/8 in three frames and 1/32 in five, and the tile's box, grown by the
+//!   curve margin, usually enters the frustum a little before its blades show. The sphere does not
+//!   push blades out of view until they come back.
+//! - The thinning's widened blades are coarser with distance (at 200 m about 25 times the far
+//!   level's width, ~1 px at 480x270); FLIP against no thinning 0.0015 / 0.0035 / 0.013 on the
+//!   meadow / football field / prairie fly-over (`gpu_jahrmann.rs`).
 //!
 //! ## Departures from the sources
 //! - Up is the world's vertical for every blade, as `reference`'s blades (the paper uses the
-//!   surface normal: general 3D scenes; here a height field). The ground test checks the
-//!   height field under the tip (the prelude's `terrain_height`), before and after the length
-//!   correction, rather than the plane through `v0`.
+//!   surface normal: general 3D scenes; here a height field). The ground test checks the height
+//!   field under the tip (the prelude's `terrain_height`), before and after the length correction,
+//!   rather than the plane through `v0`.
 //! - The rest pose is the tip `reference` gives the blade's rest lean (its segment walk), not
 //!   straight up, so the two techniques stand alike in calm air.
-//! - Recovery is integrated implicitly (same rest state, stable for stiff blades); the model
-//!   is first order (no mass), so gravity is a displacement rate whose only effect is a droop
-//!   of `g / s`: the default 0.6 m/s² droops a blade of stiffness 1 by 2 cm, where 9.81 would
-//!   lay the scenes' blades flat at any recovery that keeps them responsive.
-//! - The wind force is scaled by the blade's height (`wind_response · h · w · θ`), so bend
-//!   angles depend on stiffness as `reference`'s do; `wind_response` defaults to what gives the
+//! - Recovery is integrated implicitly (same rest state, stable for stiff blades); the model is
+//!   first order (no mass), so gravity is a displacement rate whose only effect is a droop of `g /
+//!   s`: the default 0.6 m/s² droops a blade of stiffness 1 by 2 cm, where 9.81 would lay the
+//!   scenes' blades flat at any recovery that keeps them responsive.
+//! - The wind force is scaled by the blade's height (`wind_response · h · w · θ`), so bend angles
+//!   depend on stiffness as `reference`'s do; `wind_response` defaults to what gives the
 //!   reference's bend for small winds (`0.12 rad per m/s`, tip displacement `≈ 0.048·h·v /
 //!   stiffness`).
-//! - Collisions have no memory: the sphere pushes the tip (and midpoint) out each frame and
-//!   the recovery brings the blade back as soon as it has passed. (A) says only that
-//!   collisions push `v2` and the midpoint out; any lasting trampling the paper adds is not
-//!   reproduced.
-//! - A tip pushed within half the blade's height of its root is moved out along the ground
-//!   first ([`sim::keep_chord`]), so the blade folds over instead of into a hairpin, whose
-//!   length the paper's estimate gets 50 % wrong.
-//! - Distance buckets and the far level's survivors come from hashes of the blade's index
-//!   (the paper uses the index modulo `n`, which stripes a field generated row by row).
-//! - Hand-over blending for the paper's distance and orientation tests (they switch blades
-//!   off at once in the paper); off with `transitions = false`.
+//! - Collisions have no memory: the sphere pushes the tip (and midpoint) out each frame and the
+//!   recovery brings the blade back as soon as it has passed. (A) says only that collisions push
+//!   `v2` and the midpoint out; any lasting trampling the paper adds is not reproduced.
+//! - A tip pushed within half the blade's height of its root is moved out along the ground first
+//!   ([`sim::keep_chord`]), so the blade folds over instead of into a hairpin, whose length the
+//!   paper's estimate gets 50 % wrong.
+//! - Distance buckets and the far level's survivors come from hashes of the blade's index (the
+//!   paper uses the index modulo `n`, which stripes a field generated row by row).
+//! - Hand-over blending for the paper's distance and orientation tests (they switch blades off at
+//!   once in the paper); off with `transitions = false`.
 //! - The compute pass runs only over the tiles in view and the blades within reach there
-//!   (`dispatch_tile`; 0 = the paper's every blade every frame), and the distance test also
-//!   thins as `(D / d)²` beyond `thin_distance` (0 = the paper's buckets alone). Both keep
-//!   the far field's cost bounded as the terrain grows. Measured on `experiments/scaling.toml`'s
-//!   meadow at 80 m and 400 m (jahrmann alone, 4 repetitions, 480x270, lavapipe on a 2-core
-//!   host that other processes kept 1.1-1.5 cores busy, so times are noisy): GPU wall ms,
-//!   median of the repetitions' medians, 82.5 → 565.5 (6.9x) with both off, 70.5 → 99.0
-//!   (1.40x) with both on (the least of the four: 72.3 → 523.2, 7.2x; 50.3 → 58.2, 1.16x);
-//!   the cost model's prediction 48.1 → 141.1 ms (2.9x) and 44.0 → 58.1 ms (1.32x), what
-//!   still grows with both on being mostly the core's ground mesh (its vertex and primitive
-//!   terms: the blades' triangles grow 5 %). Tiles alone took the 400 m frame from 2.26 M
-//!   blades simulated to 79 k (triangles unchanged at 239 k: the far level then dominates);
-//!   the thinning alone took triangles to 79 k (simulated unchanged). The CPU's pass over the
-//!   tiles grows with the terrain: `update` 0.05 ms at 80 m, 0.5 ms at 400 m.
+//!   (`dispatch_tile`; 0 = the paper's every blade every frame), and the distance test also thins
+//!   as `(D / d)²` beyond `thin_distance` (0 = the paper's buckets alone). Both keep the far
+//!   field's cost bounded as the terrain grows. Measured on `experiments/scaling.toml`'s meadow at
+//!   80 m and 400 m (jahrmann alone, 4 repetitions, 480x270, lavapipe on a 2-core host that other
+//!   processes kept 1.1-1.5 cores busy, so times are noisy): GPU wall ms, median of the
+//!   repetitions' medians, 82.5 → 565.5 (6.9x) with both off, 70.5 → 99.0 (1.40x) with both on (the
+//!   least of the four: 72.3 → 523.2, 7.2x; 50.3 → 58.2, 1.16x); the cost model's prediction 48.1 →
+//!   141.1 ms (2.9x) and 44.0 → 58.1 ms (1.32x), what still grows with both on being mostly the
+//!   core's ground mesh (its vertex and primitive terms: the blades' triangles grow 5 %). Tiles
+//!   alone took the 400 m frame from 2.26 M blades simulated to 79 k (triangles unchanged at 239 k:
+//!   the far level then dominates); the thinning alone took triangles to 79 k (simulated
+//!   unchanged). The CPU's pass over the tiles grows with the terrain: `update` 0.05 ms at 80 m,
+//!   0.5 ms at 400 m.
 //!
 //! ## Parameters
 //! See [`Params`]. Defaults and where they come from: `stiffness` 30/s (a 33 ms response at
-//! stiffness 1: a frame at 30 fps), `gravity` 0.6 (a 2 cm droop), `wind_response` 1.44
-//! (= 0.048 × 30: the reference's bend for small winds); the paper's orientation threshold
-//! 0.9; a 0.1 m frustum tolerance (about a blade's width); `cull_distance` 240 m in 8 buckets
-//! (the first 30 m keep every blade: at 640x360 a blade there is under a pixel wide);
-//! `dispatch_tile` 8 m (about 1 300 blades a tile at 20 blades/m²; 2 500 tiles at 400 m); `thin_distance` 40 m (beyond the
-//! hand-over and the first distance bucket); `lod_distance` 15 m with a 5 m band (a 0.5 m blade is about 14 px tall at 15 m, where 3
-//! segments follow its curve); `far_widen` 4 = `far_keep`: measured against the reference on
-//! the comparison suite's meadow and prairie (coverage per screen tile), widening 2x leaves
-//! 0.031 / 0.035 of the tiles' coverage off, 3x 0.021 / 0.024, 4x 0.015 / 0.017.
+//! stiffness 1: a frame at 30 fps), `gravity` 0.6 (a 2 cm droop), `wind_response` 1.44 (= 0.048 ×
+//! 30: the reference's bend for small winds); the paper's orientation threshold 0.9; a 0.1 m
+//! frustum tolerance (about a blade's width); `cull_distance` 240 m in 8 buckets (the first 30 m
+//! keep every blade: at 640x360 a blade there is under a pixel wide); `dispatch_tile` 8 m (about 1
+//! 300 blades a tile at 20 blades/m²; 2 500 tiles at 400 m); `thin_distance` 40 m (beyond the
+//! hand-over and the first distance bucket); `lod_distance` 15 m with a 5 m band (a 0.5 m blade is
+//! about 14 px tall at 15 m, where 3 segments follow its curve); `far_widen` 4 = `far_keep`:
+//! measured against the reference on the comparison suite's meadow and prairie (coverage per screen
+//! tile), widening 2x leaves 0.031 / 0.035 of the tiles' coverage off, 3x 0.021 / 0.024, 4x 0.015 /
+//! 0.017.
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
