@@ -115,8 +115,8 @@
 //! of detail and 467 → 1 117 ms without, while the core's background pass, the same for every
 //! technique, grows 25 → 64 ms (its ground mesh was then drawn whole; the core now draws it
 //! in chunks culled to the view, coarser far away, and in the quiet sweep of
-//! `results/scaling/` that pass goes 5.4 → 9.5 ms and bakay's frame 105 → 121 ms, 1.15x). The picture: mean FLIP 0.0001-0.0003 between the two (frames
-//! 2 and 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
+//! `results/scaling/` that pass goes 6.6 → 7.8 ms and bakay's frame 106 → 120 ms, 1.13x).
+//! The picture: mean FLIP 0.0001-0.0003 between the two (frames 2 and 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
 //! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
 //! 147 k → 123 k triangles.
 //!
