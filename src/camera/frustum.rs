@@ -12,6 +12,16 @@ pub struct Aabb {
     pub max: Vec3,
 }
 
+impl Aabb {
+    /// The smallest box holding every point of `points`; `None` when there is none.
+    pub fn around(points: impl IntoIterator<Item = Vec3>) -> Option<Self> {
+        let mut points = points.into_iter();
+        let first = points.next()?;
+        let (min, max) = points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
+        Some(Self { min, max })
+    }
+}
+
 /// Six planes `(n, d)` with `n·p + d >= 0` inside: left, right, bottom, top, near, far.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frustum {
@@ -203,5 +213,18 @@ mod tests {
         }
         // The bound is tighter than the nearest corner's depth for many boxes.
         assert!(beside > 30, "{beside}");
+    }
+
+    #[test]
+    fn around_holds_every_point_and_no_more() {
+        assert_eq!(Aabb::around(std::iter::empty()), None);
+        let points = [
+            Vec3::new(1.0, -2.0, 3.0),
+            Vec3::new(-4.0, 5.0, 0.5),
+            Vec3::new(2.0, 0.0, -6.0),
+        ];
+        let b = Aabb::around(points).unwrap();
+        assert_eq!(b.min, Vec3::new(-4.0, -2.0, -6.0));
+        assert_eq!(b.max, Vec3::new(2.0, 5.0, 3.0));
     }
 }

@@ -273,16 +273,17 @@ impl GroundChunks {
                         }
                     }
                 }
-                let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-                for j in origin.1..=last.1 {
-                    for i in origin.0..=last.0 {
-                        lo = lo.min(position(i, j));
-                        hi = hi.max(position(i, j));
-                    }
-                }
+                let points = (origin.1..=last.1)
+                    .flat_map(|j| (origin.0..=last.0).map(move |i| (i, j)))
+                    .map(|(i, j)| position(i, j));
+                // A chunk holds at least one vertex.
+                let corner = Aabb {
+                    min: position(origin.0, origin.1),
+                    max: position(origin.0, origin.1),
+                };
                 errors.push(err);
                 edge_errors.push(edge);
-                corners.push((lo, hi));
+                corners.push(Aabb::around(points).unwrap_or(corner));
             }
         }
         // A skirt hangs at most two edge errors and the margin below its chunk's lowest point.
@@ -293,9 +294,9 @@ impl GroundChunks {
             .fold(0.0f32, |a, &b| a.max(b));
         let bounds = corners
             .into_iter()
-            .map(|(lo, hi)| Aabb {
-                min: lo - Vec3::Y * (2.0 * worst + SKIRT_MARGIN * spacing),
-                max: hi,
+            .map(|b: Aabb| Aabb {
+                min: b.min - Vec3::Y * (2.0 * worst + SKIRT_MARGIN * spacing),
+                max: b.max,
             })
             .collect();
         Self {

@@ -1298,23 +1298,7 @@ fn jahrmann_cull_is_cull_verdict_and_keeps_what_the_frustum_sees() -> anyhow::Re
     );
     let result = runner.run(&(any::<u64>(), any::<[bool; 5]>()), |(seed, switches)| {
         let mut rng = grassbench::rng::Rng::new(seed);
-        let params = Params {
-            orientation_culling: switches[0],
-            frustum_culling: switches[1],
-            distance_culling: switches[2],
-            lod: switches[3],
-            transitions: switches[4],
-            cull_distance: rng.range(20.0, 300.0),
-            buckets: 1 + (rng.next_u64() % 12) as u32,
-            lod_distance: rng.range(0.0, 40.0),
-            tile_size: if rng.next_f32() < 0.3 {
-                0.0
-            } else {
-                rng.range(1.0, 8.0)
-            },
-            frustum_tolerance: rng.range(0.0, 0.5),
-            ..Params::default()
-        };
+        let params = Params::random_culling(&mut rng, switches);
         let eye = Vec3::new(
             rng.range(-50.0, 50.0),
             rng.range(0.5, 40.0),

@@ -135,6 +135,32 @@ pub const VARIANTS: Variants = Variants {
     }],
 };
 
+impl Params {
+    /// Culling settings drawn from `rng` over the ranges the property tests sweep (the cull
+    /// distance, buckets, hand-over distance, tile size and frustum tolerance), with the
+    /// tests `switches` turns on: orientation, frustum, distance, levels, transitions. For the
+    /// crate's tests and the GPU twins (`tests/tests/twins.rs`), which must draw alike.
+    pub fn random_culling(rng: &mut grassbench::rng::Rng, switches: [bool; 5]) -> Self {
+        Self {
+            orientation_culling: switches[0],
+            frustum_culling: switches[1],
+            distance_culling: switches[2],
+            lod: switches[3],
+            transitions: switches[4],
+            cull_distance: rng.range(20.0, 300.0),
+            buckets: 1 + (rng.next_u64() % 12) as u32,
+            lod_distance: rng.range(0.0, 40.0),
+            tile_size: if rng.next_f32() < 0.3 {
+                0.0
+            } else {
+                rng.range(1.0, 8.0)
+            },
+            frustum_tolerance: rng.range(0.0, 0.5),
+            ..Self::default()
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

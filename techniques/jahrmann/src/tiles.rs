@@ -329,22 +329,14 @@ mod tests {
         for case in 0..60 {
             let side = rng.range(20.0, 150.0);
             let scene = blades(&mut rng, 6000, side);
-            let params = Params {
-                frustum_culling: rng.next_f32() < 0.8,
-                distance_culling: rng.next_f32() < 0.8,
-                lod: rng.next_f32() < 0.8,
-                transitions: rng.next_f32() < 0.5,
-                cull_distance: rng.range(20.0, 300.0),
-                buckets: 1 + (rng.next_u64() % 12) as u32,
-                lod_distance: rng.range(0.0, 40.0),
-                tile_size: if rng.next_f32() < 0.3 {
-                    0.0
-                } else {
-                    rng.range(1.0, 8.0)
-                },
-                frustum_tolerance: rng.range(0.0, 0.5),
-                ..Params::default()
-            };
+            let switches = [
+                Params::default().orientation_culling,
+                rng.next_f32() < 0.8,
+                rng.next_f32() < 0.8,
+                rng.next_f32() < 0.8,
+                rng.next_f32() < 0.5,
+            ];
+            let params = Params::random_culling(&mut rng, switches);
             let s = CullSettings::of(&params);
             let grid = TileGrid::new(&scene, rng.range(2.0, 16.0), &s);
             let eye = Vec3::new(

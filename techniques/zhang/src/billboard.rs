@@ -263,7 +263,6 @@ impl Billboards {
             let layer = steps.len();
             steps.push(step);
             let grown = Grown::new(layout, &coarse, planted);
-            let first = anchors.len();
             let cells: Vec<GridLevel> = world
                 .levels(&coarse, &[step], (layer, true), &grown, &mut anchors)
                 .into_iter()
@@ -273,20 +272,10 @@ impl Billboards {
             let bounds = cells
                 .iter()
                 .map(|c| {
-                    let mut points = anchors[c.anchors.start as usize..c.anchors.end as usize]
-                        .iter()
-                        .map(|p| p.root);
-                    let first = points.next()?;
-                    let r = Vec3::new(reach, 0.0, reach);
-                    let (lo, hi) =
-                        points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
-                    Some(Aabb {
-                        min: lo - r,
-                        max: hi + r + Vec3::Y * reach,
-                    })
+                    let plants = &anchors[c.anchors.start as usize..c.anchors.end as usize];
+                    crate::culling::plants_box(plants, reach)
                 })
                 .collect();
-            debug_assert!(anchors.len() >= first);
             groups.push(GroupLevel {
                 size: 1 << k,
                 count: coarse.grids,

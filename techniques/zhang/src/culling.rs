@@ -63,6 +63,17 @@ impl Visible {
     }
 }
 
+/// A box holding `plants` standing up to `reach` high and leaning up to `reach` sideways (a
+/// blade bent flat by the wind reaches at most its height from its root); `None` for none.
+pub fn plants_box(plants: &[Planted], reach: f32) -> Option<Aabb> {
+    let roots = Aabb::around(plants.iter().map(|p| p.root))?;
+    let r = Vec3::new(reach, 0.0, reach);
+    Some(Aabb {
+        min: roots.min - r,
+        max: roots.max + r + Vec3::Y * reach,
+    })
+}
+
 impl GridIndex {
     /// Index of `planted`, which must be grid by grid (as `plant` returns it).
     pub fn new(planted: &[Planted]) -> Self {
@@ -78,15 +89,15 @@ impl GridIndex {
             let blades = &planted[start..start + len];
             let flowers = blades.iter().filter(|p| p.flower.is_some()).count() as u32;
             let tallest = blades.iter().map(|p| p.height).fold(0.0f32, f32::max);
-            let (lo, hi) = blades.iter().fold(
-                (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-                |(lo, hi), p| (lo.min(p.root), hi.max(p.root)),
-            );
-            let reach = Vec3::new(tallest, 0.0, tallest);
-            index.bounds.push(Aabb {
-                min: lo - reach,
-                max: hi + reach + Vec3::Y * tallest,
-            });
+            // `len ≥ 1`: a grid's first plant starts it, so the box always exists.
+            let root = planted[start].root;
+            let at_root = Aabb {
+                min: root,
+                max: root,
+            };
+            index
+                .bounds
+                .push(plants_box(blades, tallest).unwrap_or(at_root));
             index.ids.push(grid);
             index.blades.push(start as u32..(start + len) as u32);
             index.flowers.push(flower..flower + flowers);
