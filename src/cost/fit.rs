@@ -249,9 +249,10 @@ mod tests {
 
     /// Lavapipe-like costs in ms per unit, in the order of `Term::ALL`: fixed 0.5 ms,
     /// vertex 20 ns, primitive 100 ns, fragments 5 / 8 / 6 ns, draw 5 µs, compute 20 ns,
-    /// upload 2 ms per MB, texel load 3 ns, texture sample 10 ns.
+    /// upload 2 ms per MB, texel load 3 ns, texture sample 10 ns, transcendentals 2 / 0.6 /
+    /// 0.6 ns (vertex, fragment, compute).
     const TRUE_MS: [f64; Term::ALL.len()] = [
-        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 1e-5,
+        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 1e-5, 2e-6, 6e-7, 6e-7,
     ];
 
     fn time(costs: &[f64; Term::ALL.len()], w: &Work) -> f64 {
@@ -292,8 +293,8 @@ mod tests {
             assert!((got / want - 1.0).abs() < 1e-9, "{t}: {got} against {want}");
         }
         assert!(c.fit.relative_rms_residual < 1e-12, "{:?}", c.fit);
-        assert_eq!(c.fit.samples, 44);
-        assert_eq!(c.fit.workloads.len(), 11);
+        assert_eq!(c.fit.samples, 56);
+        assert_eq!(c.fit.workloads.len(), 14);
         assert_eq!(c.size, "640x360");
     }
 
@@ -306,21 +307,28 @@ mod tests {
             let c = fit(&samples, "640x360", "synthetic").unwrap();
             for (t, (got, want)) in Term::ALL.iter().zip(fitted_ms(&c).iter().zip(TRUE_MS)) {
                 let se = c.get(*t).standard_error * t.ms_per_stored_unit();
-                // Within 5 standard errors: the largest error over 200 seeds (2200 costs)
-                // was 4.5 SE.
+                // Within 5 standard errors: the largest error over 200 seeds (2800 costs)
+                // was 4.1 SE.
                 assert!(
                     (got - want).abs() < 5.0 * se,
                     "seed {seed}, {t}: {got} against {want}, SE {se}"
                 );
-                // And each cost is back within 20%: the worst over 200 seeds was 11.0% (the
-                // primitive's), 7.4-9.3% for the others.
+                // And each cost is back within 20%, the compute transcendental's within 25%:
+                // the worst over 200 seeds was 19.7% for it (its workload's time is half
+                // the spring update's here, a quarter on lavapipe), 12.9% (the primitive's
+                // and the vertex transcendental's), 7.9-11.9% for the others.
+                let bound = if *t == Term::ComputeTranscendental {
+                    0.25
+                } else {
+                    0.20
+                };
                 assert!(
-                    (got / want - 1.0).abs() < 0.20,
+                    (got / want - 1.0).abs() < bound,
                     "seed {seed}, {t}: {got} against {want}"
                 );
             }
             // The residual reports the noise: its RMS is 5.8%, of which the fit absorbs
-            // some (11 costs from 44 samples); over 200 seeds it read 3.4% to 6.0%.
+            // some (14 costs from 56 samples); over 200 seeds it read 3.7% to 6.0%.
             let r = c.fit.relative_rms_residual;
             assert!((0.02..0.08).contains(&r), "seed {seed}: residual {r}");
         }
@@ -329,8 +337,9 @@ mod tests {
     #[test]
     fn a_held_out_mix_is_predicted_from_noisy_costs() {
         // A grass-like frame: 100k blades of 11 vertices (9 triangles), 2 M fragments of
-        // each kind, 20 draws, 500k compute invocations, 2 MB uploaded, 8 M texel loads and
-        // 6 M texture samples.
+        // each kind, 20 draws, 500k compute invocations, 2 MB uploaded, 8 M texel loads,
+        // 6 M texture samples, 10 transcendentals a vertex, 1 a fragment and 4 a compute
+        // invocation.
         let mix = Work {
             vertex_invocations: 1.1e6,
             primitives: 9e5,
@@ -342,12 +351,15 @@ mod tests {
             upload_bytes: 2e6,
             texture_loads: 8e6,
             texture_samples: 6e6,
+            vertex_transcendentals: 1.1e7,
+            fragment_transcendentals: 6e6,
+            compute_transcendentals: 2e6,
         };
         let truth = time(&TRUE_MS, &mix);
         for seed in 1..=20 {
             let c = fit(&synthetic(&TRUE_MS, 0.10, seed), "640x360", "synthetic").unwrap();
             let p = c.predict(&mix);
-            // Within 10%: the worst over 200 seeds was 5.1%, against ±10% noise on each
+            // Within 10%: the worst over 200 seeds was 4.5%, against ±10% noise on each
             // sample (the costs' errors partly cancel in a mix).
             assert!(
                 (p.total_ms / truth - 1.0).abs() < 0.10,
@@ -382,16 +394,20 @@ mod tests {
     fn a_term_no_sample_exercises_is_named_not_nan() {
         let samples: Vec<Sample> = synthetic(&TRUE_MS, 0.0, 1)
             .into_iter()
-            .filter(|s| s.workload != "compute")
+            .filter(|s| !s.workload.ends_with("compute"))
             .collect();
         match fit(&samples, "640x360", "synthetic") {
             Err(Error::CostFit {
                 unidentifiable,
                 message,
             }) => {
-                assert_eq!(unidentifiable, ["compute"]);
+                assert_eq!(unidentifiable, ["compute", "compute_transcendental"]);
                 assert!(
                     message.contains("`compute` is never exercised"),
+                    "{message}"
+                );
+                assert!(
+                    message.contains("`compute_transcendental` is never exercised"),
                     "{message}"
                 );
             }

@@ -78,9 +78,9 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches are the counted invocations
-/// times the fetches of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 8] = [
+/// construction: draws, uploads, submissions). Texture fetches and transcendentals are the
+/// counted invocations times those of the shaders' entry points.
+pub const COUNTED_TERMS: [Term; 11] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -89,6 +89,9 @@ pub const COUNTED_TERMS: [Term; 8] = [
     Term::Compute,
     Term::TextureLoad,
     Term::TextureSample,
+    Term::VertexTranscendental,
+    Term::FragmentTranscendental,
+    Term::ComputeTranscendental,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -33,7 +33,11 @@ pub(super) struct Rig<'g> {
     layers: [crate::shaders::RenderPipeline; 3],
     /// Opaque layers fetching texels: loads, then samples.
     fetch_layers: [crate::shaders::RenderPipeline; 2],
-    springs: wgpu::ComputePipeline,
+    /// The `transcendentals_*` workloads': off-screen strips, opaque layers.
+    math: [crate::shaders::RenderPipeline; 2],
+    springs: crate::shaders::ComputePipeline,
+    /// The `transcendentals_compute` workload's.
+    springs_math: crate::shaders::ComputePipeline,
     upload: wgpu::Buffer,
     upload_data: Vec<u8>,
 }
@@ -237,14 +241,36 @@ impl<'g> Rig<'g> {
                     pipeline("unit costs: loads", "vs_layer", "fs_loads", true, None),
                     pipeline("unit costs: samples", "vs_layer", "fs_samples", true, None),
                 ],
-                springs: device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("unit costs: compute"),
-                    layout: Some(&layout),
-                    module: &module,
-                    entry_point: Some("cs_springs"),
-                    compilation_options: Default::default(),
-                    cache: None,
-                }),
+                math: [
+                    pipeline(
+                        "unit costs: vertex transcendentals",
+                        "vs_math",
+                        "fs_opaque",
+                        true,
+                        None,
+                    ),
+                    pipeline(
+                        "unit costs: fragment transcendentals",
+                        "vs_layer",
+                        "fs_math",
+                        true,
+                        None,
+                    ),
+                ],
+                springs: shaders::compute_pipeline(
+                    device,
+                    "unit costs: compute",
+                    &layout,
+                    &module,
+                    "cs_springs",
+                ),
+                springs_math: shaders::compute_pipeline(
+                    device,
+                    "unit costs: compute transcendentals",
+                    &layout,
+                    &module,
+                    "cs_math",
+                ),
                 upload: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("unit costs upload"),
                     size: UPLOAD_CAPACITY,
@@ -362,10 +388,14 @@ impl<'g> Rig<'g> {
                 }
                 pass.set_pipeline(pipeline);
                 match w.shape {
-                    Shape::OffscreenStrips { instances } | Shape::SubpixelStrips { instances } => {
+                    Shape::OffscreenStrips { instances }
+                    | Shape::SubpixelStrips { instances }
+                    | Shape::MathStrips { instances } => {
                         pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
                     }
-                    Shape::Layers { layers, .. } | Shape::FetchLayers { layers, .. } => {
+                    Shape::Layers { layers, .. }
+                    | Shape::FetchLayers { layers, .. }
+                    | Shape::MathLayers { layers } => {
                         let end = layer_base.saturating_add(layers);
                         pass.draw(0..workloads::LAYER_VERTICES, layer_base..end);
                         layer_base = end;
@@ -382,10 +412,10 @@ impl<'g> Rig<'g> {
                 }
             }
         }
-        let dispatches: Vec<(&Workload, u32)> = mix
+        let dispatches: Vec<(&Workload, u32, bool)> = mix
             .iter()
             .filter_map(|w| match w.shape {
-                Shape::Compute { groups } => Some((w, groups)),
+                Shape::Compute { groups, math } => Some((w, groups, math)),
                 _ => None,
             })
             .collect();
@@ -394,16 +424,21 @@ impl<'g> Rig<'g> {
                 label: Some("unit costs: compute"),
                 timestamp_writes: None,
             });
-            pass.set_pipeline(&self.springs);
             pass.set_bind_group(0, &self.group0, &[]);
             pass.set_bind_group(1, &self.group1, &[]);
-            for (w, groups) in dispatches {
-                let query = counter
-                    .as_deref_mut()
-                    .and_then(|c| c.next(w.name.to_owned(), PassKind::Compute, None));
+            for (w, groups, math) in dispatches {
+                let pipeline = if math {
+                    &self.springs_math
+                } else {
+                    &self.springs
+                };
+                pass.set_pipeline(pipeline);
+                let query = counter.as_deref_mut().and_then(|c| {
+                    c.next(w.name.to_owned(), PassKind::Compute, Some(pipeline.cost()))
+                });
                 if let Some((set, index)) = &query {
                     pass.begin_pipeline_statistics_query(set, *index);
-                    costs.push(PipelineCost::default());
+                    costs.push(pipeline.cost());
                 }
                 let (x, y) = dispatch_grid(groups);
                 pass.dispatch_workgroups(x, y, 1);
@@ -428,6 +463,8 @@ impl<'g> Rig<'g> {
                 }],
             ),
             Shape::FetchLayers { sample, .. } => Some(&self.fetch_layers[usize::from(sample)]),
+            Shape::MathStrips { .. } => Some(&self.math[0]),
+            Shape::MathLayers { .. } => Some(&self.math[1]),
             Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => None,
         }
     }

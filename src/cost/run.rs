@@ -21,11 +21,16 @@ impl Work {
             draw_calls: r.draw_calls as f64 + f(r.background_draw_calls)?,
             compute_invocations: f(r.compute_invocations)?,
             upload_bytes: f(r.upload_bytes)?,
-            // Older records have no fetch counts: none priced.
+            // Older records have no operation counts: none priced.
             texture_loads: f(r.texture_loads).unwrap_or(0.0)
                 + f(r.background_texture_loads).unwrap_or(0.0),
             texture_samples: f(r.texture_samples).unwrap_or(0.0)
                 + f(r.background_texture_samples).unwrap_or(0.0),
+            vertex_transcendentals: f(r.vertex_transcendentals).unwrap_or(0.0)
+                + f(r.background_vertex_transcendentals).unwrap_or(0.0),
+            fragment_transcendentals: f(r.fragment_transcendentals).unwrap_or(0.0)
+                + f(r.background_fragment_transcendentals).unwrap_or(0.0),
+            compute_transcendentals: f(r.compute_transcendentals).unwrap_or(0.0),
         })
     }
 
@@ -65,6 +70,9 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_upload_ms = p.map(|p| p.upload_ms);
     run.model_texture_load_ms = p.map(|p| p.texture_load_ms);
     run.model_texture_sample_ms = p.map(|p| p.texture_sample_ms);
+    run.model_vertex_transcendental_ms = p.map(|p| p.vertex_transcendental_ms);
+    run.model_fragment_transcendental_ms = p.map(|p| p.fragment_transcendental_ms);
+    run.model_compute_transcendental_ms = p.map(|p| p.compute_transcendental_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

@@ -31,17 +31,31 @@ pub enum Term {
     /// submission.
     Upload,
     /// A texel read with `textureLoad` by a vertex or fragment shader invocation (on top of the
-    /// invocation's own cost; counted from the shader, `crate::shaders::TextureFetches`).
+    /// invocation's own cost; counted from the shader, `crate::shaders::ShaderOps`).
     TextureLoad,
     /// A filtered texture sample (`textureSample*`) by a vertex or fragment shader invocation:
     /// on a software rasteriser the filtering (mip level, bilinear or trilinear taps) is code
     /// run per sample, several times a plain fragment's cost.
     TextureSample,
+    /// A transcendental built-in (`sin`, `cos`, `pow`, `exp`, ...) evaluated by a vertex
+    /// shader invocation (counted from the shader, `crate::shaders::ShaderOps`). Not among
+    /// the units issue 20 lists: the vertex term is calibrated on one vertex shader, and a
+    /// blade's vertex shader that bends it segment by segment, a `pow`, `sin` and `cos` a
+    /// segment, costs several times that one on a software rasteriser (lavapipe: 30 more
+    /// transcendentals a vertex raised the vertex workload's fitted cost from 19 to 75 ns).
+    VertexTranscendental,
+    /// A transcendental built-in evaluated by a fragment shader invocation: priced apart from
+    /// the vertex stage's, as the stages run their shaders differently (lavapipe: a
+    /// fragment's cost a fraction of a vertex's; one term for both left the vertex
+    /// workload 43 % under its fit).
+    FragmentTranscendental,
+    /// A transcendental built-in evaluated by a compute shader invocation.
+    ComputeTranscendental,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 14] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -53,6 +67,9 @@ impl Term {
         Self::Upload,
         Self::TextureLoad,
         Self::TextureSample,
+        Self::VertexTranscendental,
+        Self::FragmentTranscendental,
+        Self::ComputeTranscendental,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -69,6 +86,9 @@ impl Term {
             Self::Upload => "upload",
             Self::TextureLoad => "texture_load",
             Self::TextureSample => "texture_sample",
+            Self::VertexTranscendental => "vertex_transcendental",
+            Self::FragmentTranscendental => "fragment_transcendental",
+            Self::ComputeTranscendental => "compute_transcendental",
         }
     }
 
@@ -86,6 +106,9 @@ impl Term {
             Self::Upload => "MB",
             Self::TextureLoad => "texel load",
             Self::TextureSample => "texture sample",
+            Self::VertexTranscendental
+            | Self::FragmentTranscendental
+            | Self::ComputeTranscendental => "transcendental",
         }
     }
 

@@ -56,6 +56,16 @@ pub struct UnitCosts {
     /// Per filtered texture sample, ns (0 in calibrations made before the term).
     #[serde(default)]
     pub texture_sample_ns: UnitCost,
+    /// Per transcendental built-in evaluated by a vertex shader, ns (0 in calibrations made
+    /// before the term).
+    #[serde(default)]
+    pub vertex_transcendental_ns: UnitCost,
+    /// Per transcendental built-in evaluated by a fragment shader, ns (0 before the term).
+    #[serde(default)]
+    pub fragment_transcendental_ns: UnitCost,
+    /// Per transcendental built-in evaluated by a compute shader, ns (0 before the term).
+    #[serde(default)]
+    pub compute_transcendental_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -89,6 +99,15 @@ pub struct Prediction {
     /// Texture samples, ms.
     #[serde(default)]
     pub texture_sample_ms: f64,
+    /// Vertex shaders' transcendental built-ins, ms.
+    #[serde(default)]
+    pub vertex_transcendental_ms: f64,
+    /// Fragment shaders' transcendental built-ins, ms.
+    #[serde(default)]
+    pub fragment_transcendental_ms: f64,
+    /// Compute shaders' transcendental built-ins, ms.
+    #[serde(default)]
+    pub compute_transcendental_ms: f64,
 }
 
 impl UnitCosts {
@@ -124,6 +143,9 @@ impl UnitCosts {
             upload_ms_per_mb: stored(Term::Upload),
             texture_load_ns: stored(Term::TextureLoad),
             texture_sample_ns: stored(Term::TextureSample),
+            vertex_transcendental_ns: stored(Term::VertexTranscendental),
+            fragment_transcendental_ns: stored(Term::FragmentTranscendental),
+            compute_transcendental_ns: stored(Term::ComputeTranscendental),
             fit,
         }
     }
@@ -142,6 +164,9 @@ impl UnitCosts {
             Term::Upload => self.upload_ms_per_mb,
             Term::TextureLoad => self.texture_load_ns,
             Term::TextureSample => self.texture_sample_ns,
+            Term::VertexTranscendental => self.vertex_transcendental_ns,
+            Term::FragmentTranscendental => self.fragment_transcendental_ns,
+            Term::ComputeTranscendental => self.compute_transcendental_ns,
         }
     }
 
@@ -166,6 +191,9 @@ impl UnitCosts {
             upload_ms: ms(Term::Upload),
             texture_load_ms: ms(Term::TextureLoad),
             texture_sample_ms: ms(Term::TextureSample),
+            vertex_transcendental_ms: ms(Term::VertexTranscendental),
+            fragment_transcendental_ms: ms(Term::FragmentTranscendental),
+            compute_transcendental_ms: ms(Term::ComputeTranscendental),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -237,6 +265,9 @@ impl Prediction {
             Term::Upload => self.upload_ms,
             Term::TextureLoad => self.texture_load_ms,
             Term::TextureSample => self.texture_sample_ms,
+            Term::VertexTranscendental => self.vertex_transcendental_ms,
+            Term::FragmentTranscendental => self.fragment_transcendental_ms,
+            Term::ComputeTranscendental => self.compute_transcendental_ms,
         }
     }
 
@@ -265,9 +296,10 @@ mod tests {
     #[test]
     fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
         // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
-        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns, sample 6 ns.
+        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns, sample 6 ns,
+        // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute).
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 2e-6, 5e-7, 1e-6,
         ]
         .map(cost);
         let costs = UnitCosts::from_ms_per_unit(
@@ -290,14 +322,19 @@ mod tests {
             upload_bytes: 4e6,
             texture_loads: 5e5,
             texture_samples: 2e5,
+            vertex_transcendentals: 1e6,
+            fragment_transcendentals: 4e6,
+            compute_transcendentals: 0.0,
         };
         let p = costs.predict(&work);
-        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1.2 ms.
-        let expected = [1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.2];
+        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1.2 + 2 + 2 + 0 ms.
+        let expected = [
+            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.2, 2.0, 2.0, 0.0,
+        ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 10.11).abs() < 1e-9);
+        assert!((p.total_ms - 14.11).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -316,7 +353,7 @@ mod tests {
     #[test]
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 2e-6, 5e-7, 1e-6,
         ]
         .map(cost);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -328,13 +365,13 @@ mod tests {
         costs.host_other_cores = Some(0.5);
         let text = toml::to_string_pretty(&costs).unwrap();
         assert_eq!(toml::from_str::<UnitCosts>(&text).unwrap(), costs);
-        // Without the fields that may be absent (the host's load, `at_zero`, the texture
-        // terms of calibrations made before them).
+        // Without the fields that may be absent (the host's load, `at_zero`, the texture and
+        // transcendental terms of calibrations made before them).
         let mut older = String::new();
         let mut skipping = false;
         for l in text.lines() {
             if l.starts_with('[') {
-                skipping = l.starts_with("[texture_");
+                skipping = l.starts_with("[texture_") || l.contains("_transcendental_ns]");
             }
             if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
                 older.push_str(l);
@@ -347,6 +384,8 @@ mod tests {
             (None, false)
         );
         assert_eq!(read.texture_sample_ns, UnitCost::default());
+        assert_eq!(read.vertex_transcendental_ns, UnitCost::default());
         assert!(!older.contains("texture_sample_ns"), "{older}");
+        assert!(!older.contains("transcendental_ns"), "{older}");
     }
 }

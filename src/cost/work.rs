@@ -36,6 +36,15 @@ pub struct Work {
     /// Filtered texture samples (vertex and fragment stages).
     #[serde(default)]
     pub texture_samples: f64,
+    /// Transcendental built-ins evaluated by vertex shaders ([`crate::shaders::ShaderOps`]).
+    #[serde(default)]
+    pub vertex_transcendentals: f64,
+    /// Transcendental built-ins evaluated by fragment shaders.
+    #[serde(default)]
+    pub fragment_transcendentals: f64,
+    /// Transcendental built-ins evaluated by compute shaders.
+    #[serde(default)]
+    pub compute_transcendentals: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -43,13 +52,13 @@ use crate::shaders::PipelineCost;
 
 impl Work {
     /// The work the GPU's pipeline-statistics counters measured over some passes, all drawn
-    /// with pipelines of `pipeline`'s cost: fragments of its kind, texture fetches its shaders'
-    /// per invocation times the invocations counted. Draw calls and uploads are not among the
+    /// with pipelines of `pipeline`'s cost: fragments of its kind, texture fetches and
+    /// transcendentals its shaders' per invocation times the invocations counted. Draw calls and uploads are not among the
     /// counters: they are 0 here, for the caller to set from the harness's counts.
     pub fn from_counters(counted: &PassWork, pipeline: PipelineCost) -> Self {
         let f = counted.fragment_invocations as f64;
         let fragments = pipeline.fragments;
-        let fetches = pipeline.fetches(counted);
+        let ops = pipeline.ops(counted);
         Self {
             vertex_invocations: counted.vertex_invocations as f64,
             primitives: counted.clipper_primitives_out as f64,
@@ -71,8 +80,11 @@ impl Work {
             draw_calls: 0.0,
             compute_invocations: counted.compute_invocations as f64,
             upload_bytes: 0.0,
-            texture_loads: fetches.loads as f64,
-            texture_samples: fetches.samples as f64,
+            texture_loads: ops.loads as f64,
+            texture_samples: ops.samples as f64,
+            vertex_transcendentals: ops.vertex_transcendentals as f64,
+            fragment_transcendentals: ops.fragment_transcendentals as f64,
+            compute_transcendentals: ops.compute_transcendentals as f64,
         }
     }
 
@@ -91,6 +103,9 @@ impl Work {
             Term::Upload => self.upload_bytes / BYTES_PER_MB,
             Term::TextureLoad => self.texture_loads,
             Term::TextureSample => self.texture_samples,
+            Term::VertexTranscendental => self.vertex_transcendentals,
+            Term::FragmentTranscendental => self.fragment_transcendentals,
+            Term::ComputeTranscendental => self.compute_transcendentals,
         }
     }
 
@@ -107,6 +122,9 @@ impl Work {
             upload_bytes: self.upload_bytes * k,
             texture_loads: self.texture_loads * k,
             texture_samples: self.texture_samples * k,
+            vertex_transcendentals: self.vertex_transcendentals * k,
+            fragment_transcendentals: self.fragment_transcendentals * k,
+            compute_transcendentals: self.compute_transcendentals * k,
         }
     }
 
@@ -133,6 +151,9 @@ impl std::ops::Add for Work {
             upload_bytes: self.upload_bytes + o.upload_bytes,
             texture_loads: self.texture_loads + o.texture_loads,
             texture_samples: self.texture_samples + o.texture_samples,
+            vertex_transcendentals: self.vertex_transcendentals + o.vertex_transcendentals,
+            fragment_transcendentals: self.fragment_transcendentals + o.fragment_transcendentals,
+            compute_transcendentals: self.compute_transcendentals + o.compute_transcendentals,
         }
     }
 }
@@ -154,11 +175,16 @@ mod tests {
             upload_bytes: 2.5e6,
             texture_loads: 6.0,
             texture_samples: 7.0,
+            vertex_transcendentals: 8.0,
+            fragment_transcendentals: 9.5,
+            compute_transcendentals: 10.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
-            [1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 7.0]
+            [
+                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 7.0, 8.0, 9.5, 10.0
+            ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
         // frame: predict frame by frame).
@@ -182,8 +208,8 @@ mod tests {
     }
 
     #[test]
-    fn counters_fill_the_fragments_of_their_pipelines_kind_and_its_fetches() {
-        use crate::shaders::TextureFetches;
+    fn counters_fill_the_fragments_of_their_pipelines_kind_and_its_ops() {
+        use crate::shaders::ShaderOps;
         let counted = PassWork {
             vertex_invocations: 11,
             clipper_invocations: 9,
@@ -195,21 +221,25 @@ mod tests {
             fragments,
             ..PipelineCost::default()
         };
-        // 11 vertices fetching 8 texels each (a bilinear height and wind), 100 fragments
-        // sampling 3 textures and loading 1 texel, 64 compute invocations loading 4.
+        // 11 vertices fetching 8 texels each (a bilinear height and wind) with 5
+        // transcendentals, 100 fragments sampling 3 textures and loading 1 texel with 1
+        // transcendental, 64 compute invocations loading 4 with 2.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
-            vertex_fetches: TextureFetches {
+            vertex_ops: ShaderOps {
                 loads: 8,
                 samples: 0,
+                transcendentals: 5,
             },
-            fragment_fetches: TextureFetches {
+            fragment_ops: ShaderOps {
                 loads: 1,
                 samples: 3,
+                transcendentals: 1,
             },
-            compute_fetches: TextureFetches {
+            compute_ops: ShaderOps {
                 loads: 4,
                 samples: 0,
+                transcendentals: 2,
             },
         };
         assert_eq!(
@@ -221,6 +251,9 @@ mod tests {
                 compute_invocations: 64.0,
                 texture_loads: 88.0 + 100.0 + 256.0,
                 texture_samples: 300.0,
+                vertex_transcendentals: 55.0,
+                fragment_transcendentals: 100.0,
+                compute_transcendentals: 128.0,
                 ..Work::default()
             }
         );

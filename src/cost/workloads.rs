@@ -13,6 +13,7 @@
 //! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² texture per fragment | texel load, texture sample |
+//! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
@@ -45,6 +46,16 @@ pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
 pub const LOADS_PER_FRAGMENT: u32 = 32;
 /// `textureSample`s of one fragment of the `texture_samples` workload.
 pub const SAMPLES_PER_FRAGMENT: u32 = 8;
+/// Transcendental built-ins of the `transcendentals_*` workloads' chain (`math_chain` in the
+/// shader: 10 links of a `sin`, a `cos` and a `pow`, each fed by the last, so none is folded
+/// away), on top of what their shaders do without it.
+pub const MATH_CHAIN: u32 = 30;
+/// Transcendentals of one invocation of the strips' vertex shader (`blade_vertex`: the
+/// facing's `cos` and `sin`, the sway's `sin`).
+pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
+/// Transcendentals of one invocation of the layers' fragment shaders (`lit`: the fog's
+/// `exp`).
+pub const LIT_TRANSCENDENTALS: u32 = 1;
 /// Size ratios of a workload's samples.
 pub const SIZE_STEPS: [u32; 4] = [1, 2, 4, 8];
 
@@ -55,6 +66,12 @@ pub enum Shape {
     Empty,
     /// `instances` off-screen blade strips in one instanced draw.
     OffscreenStrips {
+        /// Instances.
+        instances: u32,
+    },
+    /// `instances` off-screen blade strips whose vertex shader also evaluates
+    /// [`MATH_CHAIN`] transcendentals, in one instanced draw.
+    MathStrips {
         /// Instances.
         instances: u32,
     },
@@ -78,6 +95,12 @@ pub enum Shape {
         /// Layers.
         layers: u32,
     },
+    /// `layers` opaque full-screen triangles whose fragments each also evaluate
+    /// [`MATH_CHAIN`] transcendentals.
+    MathLayers {
+        /// Layers.
+        layers: u32,
+    },
     /// `draws` draw calls of one sub-pixel triangle each.
     Draws {
         /// Draw calls.
@@ -87,6 +110,8 @@ pub enum Shape {
     Compute {
         /// Workgroups wanted (the dispatch may round up, see [`dispatch_grid`]).
         groups: u32,
+        /// Whether each invocation also evaluates [`MATH_CHAIN`] transcendentals.
+        math: bool,
     },
     /// `bytes` written with `queue.write_buffer`.
     Upload {
@@ -123,12 +148,25 @@ impl Workload {
             Shape::OffscreenStrips { instances } => Work {
                 vertex_invocations: f64::from(instances) * f64::from(STRIP_VERTICES),
                 draw_calls: 1.0,
+                vertex_transcendentals: f64::from(instances)
+                    * f64::from(STRIP_VERTICES * STRIP_VERTEX_TRANSCENDENTALS),
                 ..none
+            },
+            Shape::MathStrips { instances } => Work {
+                vertex_transcendentals: f64::from(instances)
+                    * f64::from(STRIP_VERTICES * (STRIP_VERTEX_TRANSCENDENTALS + MATH_CHAIN)),
+                ..Workload {
+                    shape: Shape::OffscreenStrips { instances },
+                    ..*self
+                }
+                .work(size)
             },
             Shape::SubpixelStrips { instances } => Work {
                 vertex_invocations: f64::from(instances) * f64::from(STRIP_VERTICES),
                 primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
                 draw_calls: 1.0,
+                vertex_transcendentals: f64::from(instances)
+                    * f64::from(STRIP_VERTICES * STRIP_VERTEX_TRANSCENDENTALS),
                 ..none
             },
             Shape::Layers { kind, layers } => {
@@ -152,7 +190,23 @@ impl Workload {
                         0.0
                     },
                     draw_calls: 1.0,
+                    fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
                     ..none
+                }
+            }
+            Shape::MathLayers { layers } => {
+                let base = Workload {
+                    shape: Shape::Layers {
+                        kind: FragmentKind::Opaque,
+                        layers,
+                    },
+                    ..*self
+                }
+                .work(size);
+                Work {
+                    fragment_transcendentals: base.fragments_opaque
+                        * f64::from(LIT_TRANSCENDENTALS + MATH_CHAIN),
+                    ..base
                 }
             }
             Shape::FetchLayers { sample, layers } => {
@@ -180,12 +234,20 @@ impl Workload {
                 vertex_invocations: f64::from(draws) * f64::from(DRAW_VERTICES),
                 primitives: f64::from(draws),
                 draw_calls: f64::from(draws),
+                vertex_transcendentals: f64::from(draws)
+                    * f64::from(DRAW_VERTICES * STRIP_VERTEX_TRANSCENDENTALS),
                 ..none
             },
-            Shape::Compute { groups } => {
+            Shape::Compute { groups, math } => {
                 let (x, y) = dispatch_grid(groups);
+                let invocations = f64::from(x) * f64::from(y) * f64::from(WORKGROUP_SIZE);
                 Work {
-                    compute_invocations: f64::from(x) * f64::from(y) * f64::from(WORKGROUP_SIZE),
+                    compute_invocations: invocations,
+                    compute_transcendentals: if math {
+                        invocations * f64::from(MATH_CHAIN)
+                    } else {
+                        0.0
+                    },
                     ..none
                 }
             }
@@ -223,6 +285,12 @@ impl Workload {
             Shape::SubpixelStrips { instances } => Shape::SubpixelStrips {
                 instances: instances.saturating_mul(k),
             },
+            Shape::MathStrips { instances } => Shape::MathStrips {
+                instances: instances.saturating_mul(k),
+            },
+            Shape::MathLayers { layers } => Shape::MathLayers {
+                layers: layers.saturating_mul(k),
+            },
             Shape::Layers { kind, layers } => Shape::Layers {
                 kind,
                 layers: layers.saturating_mul(k),
@@ -234,8 +302,9 @@ impl Workload {
             Shape::Draws { draws } => Shape::Draws {
                 draws: draws.saturating_mul(k),
             },
-            Shape::Compute { groups } => Shape::Compute {
+            Shape::Compute { groups, math } => Shape::Compute {
                 groups: groups.saturating_mul(k),
+                math,
             },
             other @ (Shape::Empty | Shape::Upload { .. }) => other,
         };
@@ -304,6 +373,24 @@ pub fn families() -> Vec<Workload> {
             },
         },
         Workload {
+            name: "transcendentals_vertex",
+            term: Term::VertexTranscendental,
+            shape: Shape::MathStrips { instances: 5_000 },
+        },
+        Workload {
+            name: "transcendentals_fragment",
+            term: Term::FragmentTranscendental,
+            shape: Shape::MathLayers { layers: 1 },
+        },
+        Workload {
+            name: "transcendentals_compute",
+            term: Term::ComputeTranscendental,
+            shape: Shape::Compute {
+                groups: 4_096,
+                math: true,
+            },
+        },
+        Workload {
             name: "draws",
             term: Term::Draw,
             shape: Shape::Draws { draws: 500 },
@@ -311,7 +398,10 @@ pub fn families() -> Vec<Workload> {
         Workload {
             name: "compute",
             term: Term::Compute,
-            shape: Shape::Compute { groups: 4_096 },
+            shape: Shape::Compute {
+                groups: 4_096,
+                math: false,
+            },
         },
         Workload {
             name: "upload",
@@ -380,34 +470,47 @@ mod tests {
                 primitives: 3.0,
                 fragments_blended: 3.0 * 640.0 * 360.0,
                 draw_calls: 1.0,
+                fragment_transcendentals: 3.0 * 640.0 * 360.0 * f64::from(LIT_TRANSCENDENTALS),
                 ..Work::default()
             }
         );
     }
 
     #[test]
-    fn the_fetch_shaders_fetch_what_the_workloads_count() {
-        // The cost model counts a pipeline's fetches from its shader (`shaders::fetches`):
-        // the calibration's own shaders must count to the work known in advance.
+    fn the_shaders_do_what_the_workloads_count() {
+        // The cost model counts a pipeline's fetches and transcendentals from its shader
+        // (`shaders::ops`): the calibration's own shaders must count to the work known in
+        // advance.
         let wgsl = crate::shaders::compose(include_str!("../shaders/unit_costs.wgsl"));
-        let fetches = crate::shaders::entry_fetches(&naga::front::wgsl::parse_str(&wgsl).unwrap());
-        let of = |entry: &str| fetches.iter().find(|(e, _)| e == entry).map(|(_, f)| *f);
-        let count = |loads: u32, samples: u32| {
-            Some(crate::shaders::TextureFetches {
+        let ops = crate::shaders::entry_ops(&naga::front::wgsl::parse_str(&wgsl).unwrap());
+        let of = |entry: &str| ops.iter().find(|(e, _)| e == entry).map(|(_, f)| *f);
+        let count = |loads: u32, samples: u32, transcendentals: u32| {
+            Some(crate::shaders::ShaderOps {
                 loads: u64::from(loads),
                 samples: u64::from(samples),
+                transcendentals: u64::from(transcendentals),
             })
         };
-        assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0));
-        assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT));
-        for entry in [
-            "vs_layer",
-            "vs_subpixel",
-            "vs_offscreen",
-            "fs_opaque",
-            "fs_blended",
-        ] {
-            assert_eq!(of(entry), count(0, 0), "{entry}");
+        let lit = LIT_TRANSCENDENTALS;
+        assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
+        assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
+        assert_eq!(of("fs_math"), count(0, 0, lit + MATH_CHAIN));
+        assert_eq!(
+            of("vs_math"),
+            count(0, 0, STRIP_VERTEX_TRANSCENDENTALS + MATH_CHAIN)
+        );
+        assert_eq!(of("vs_layer"), count(0, 0, 0));
+        assert_eq!(of("cs_springs"), count(0, 0, 0));
+        assert_eq!(of("cs_math"), count(0, 0, MATH_CHAIN));
+        for entry in ["vs_subpixel", "vs_offscreen"] {
+            assert_eq!(
+                of(entry),
+                count(0, 0, STRIP_VERTEX_TRANSCENDENTALS),
+                "{entry}"
+            );
+        }
+        for entry in ["fs_opaque", "fs_alpha_tested", "fs_blended"] {
+            assert_eq!(of(entry), count(0, 0, lit), "{entry}");
         }
     }
 
@@ -421,7 +524,10 @@ mod tests {
         let w = Workload {
             name: "compute",
             term: Term::Compute,
-            shape: Shape::Compute { groups: 200_001 },
+            shape: Shape::Compute {
+                groups: 200_001,
+                math: false,
+            },
         };
         assert_eq!(w.work(SIZE).compute_invocations, 50_001.0 * 4.0 * 64.0);
     }

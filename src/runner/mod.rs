@@ -282,17 +282,18 @@ impl<'g> World<'g> {
                     .sum()
             })
         };
-        // Texture fetches of the technique's (or the core's) segments: invocations times what
-        // one invocation of the segment's pipeline fetches.
-        let fetches_of = |core: bool| -> Option<crate::shaders::TextureFetches> {
+        // Costly operations (texture fetches, transcendentals) of the technique's (or the
+        // core's) segments: invocations times what one invocation of the segment's pipeline
+        // does.
+        let ops_of = |core: bool| -> Option<crate::shaders::PassOps> {
             work.as_ref().map(|w| {
                 w.iter()
                     .filter(|p| p.label.starts_with("core.") == core)
-                    .filter_map(|p| Some(p.pipeline?.fetches(&p.work)))
+                    .filter_map(|p| Some(p.pipeline?.ops(&p.work)))
                     .fold(Default::default(), |a, b| a + b)
             })
         };
-        let (fetches, background_fetches) = (fetches_of(false), fetches_of(true));
+        let (ops, background_ops) = (ops_of(false), ops_of(true));
         let pixels = f64::from(view.target.size.width * view.target.size.height);
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
@@ -330,10 +331,15 @@ impl<'g> World<'g> {
             background_primitives: background.map(|w| w.clipper_primitives_out),
             background_fragment_invocations: background.map(|w| w.fragment_invocations),
             background_draw_calls: Some(core_draws),
-            texture_loads: fetches.map(|f| f.loads),
-            texture_samples: fetches.map(|f| f.samples),
-            background_texture_loads: background_fetches.map(|f| f.loads),
-            background_texture_samples: background_fetches.map(|f| f.samples),
+            texture_loads: ops.map(|f| f.loads),
+            texture_samples: ops.map(|f| f.samples),
+            background_texture_loads: background_ops.map(|f| f.loads),
+            background_texture_samples: background_ops.map(|f| f.samples),
+            vertex_transcendentals: ops.map(|f| f.vertex_transcendentals),
+            fragment_transcendentals: ops.map(|f| f.fragment_transcendentals),
+            compute_transcendentals: ops.map(|f| f.compute_transcendentals),
+            background_vertex_transcendentals: background_ops.map(|f| f.vertex_transcendentals),
+            background_fragment_transcendentals: background_ops.map(|f| f.fragment_transcendentals),
             upload_bytes: Some(upload_bytes),
             overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
             grass_pixels: None,

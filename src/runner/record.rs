@@ -119,6 +119,23 @@ pub struct FrameRecord {
     /// Filtered texture samples the core's background shaders took.
     #[serde(default)]
     pub background_texture_samples: Option<u64>,
+    /// Transcendental built-ins (`sin`, `cos`, `pow`, `exp`, ...) the technique's vertex
+    /// shaders evaluated, counted the same way ([`crate::shaders::ShaderOps`]: a loop's body
+    /// once).
+    #[serde(default)]
+    pub vertex_transcendentals: Option<u64>,
+    /// Transcendental built-ins the technique's fragment shaders evaluated.
+    #[serde(default)]
+    pub fragment_transcendentals: Option<u64>,
+    /// Transcendental built-ins the technique's compute shaders evaluated.
+    #[serde(default)]
+    pub compute_transcendentals: Option<u64>,
+    /// Transcendental built-ins the core's background vertex shaders evaluated.
+    #[serde(default)]
+    pub background_vertex_transcendentals: Option<u64>,
+    /// Transcendental built-ins the core's background fragment shaders evaluated.
+    #[serde(default)]
+    pub background_fragment_transcendentals: Option<u64>,
     /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
     /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
     /// [`crate::GpuContext::write_texture`].
@@ -303,6 +320,15 @@ pub struct RunSummary {
     /// Median filtered texture samples of the technique's shaders.
     #[serde(default)]
     pub texture_samples: Option<u64>,
+    /// Median transcendental built-ins evaluated by the technique's vertex shaders.
+    #[serde(default)]
+    pub vertex_transcendentals: Option<u64>,
+    /// Median transcendental built-ins evaluated by the technique's fragment shaders.
+    #[serde(default)]
+    pub fragment_transcendentals: Option<u64>,
+    /// Median transcendental built-ins evaluated by the technique's compute shaders.
+    #[serde(default)]
+    pub compute_transcendentals: Option<u64>,
     /// Median overdraw: the technique's fragment invocations per target pixel.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -350,6 +376,15 @@ pub struct RunSummary {
     /// The model's time for filtered texture samples, ms.
     #[serde(default)]
     pub model_texture_sample_ms: Option<f64>,
+    /// Predicted ms of vertex shaders' transcendental built-ins.
+    #[serde(default)]
+    pub model_vertex_transcendental_ms: Option<f64>,
+    /// Predicted ms of fragment shaders' transcendental built-ins.
+    #[serde(default)]
+    pub model_fragment_transcendental_ms: Option<f64>,
+    /// Predicted ms of compute shaders' transcendental built-ins.
+    #[serde(default)]
+    pub model_compute_transcendental_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -451,6 +486,9 @@ impl RunSummary {
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
             texture_loads: median_u64(&|r| r.texture_loads),
             texture_samples: median_u64(&|r| r.texture_samples),
+            vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
+            fragment_transcendentals: median_u64(&|r| r.fragment_transcendentals),
+            compute_transcendentals: median_u64(&|r| r.compute_transcendentals),
             overdraw: median(&|r| r.overdraw),
             fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
@@ -472,6 +510,9 @@ impl RunSummary {
             model_upload_ms: None,
             model_texture_load_ms: None,
             model_texture_sample_ms: None,
+            model_vertex_transcendental_ms: None,
+            model_fragment_transcendental_ms: None,
+            model_compute_transcendental_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -670,8 +711,13 @@ mod tests {
             background_draw_calls: None,
             texture_loads: None,
             texture_samples: None,
+            vertex_transcendentals: None,
+            fragment_transcendentals: None,
+            compute_transcendentals: None,
             background_texture_loads: None,
             background_texture_samples: None,
+            background_vertex_transcendentals: None,
+            background_fragment_transcendentals: None,
             upload_bytes: None,
             overdraw: None,
             grass_pixels: None,

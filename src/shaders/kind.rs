@@ -60,7 +60,7 @@ impl FragmentKind {
 pub struct Module {
     pub(super) raw: wgpu::ShaderModule,
     pub(super) discarding: Vec<String>,
-    pub(super) fetches: Vec<(String, super::TextureFetches)>,
+    pub(super) ops: Vec<(String, super::ShaderOps)>,
 }
 
 impl std::ops::Deref for Module {
@@ -77,10 +77,11 @@ impl Module {
         self.discarding.iter().any(|e| e == entry)
     }
 
-    /// The texture fetches of one invocation of entry point `entry` (none for an unknown
-    /// entry: the device reports it when the pipeline is created).
-    pub fn fetches(&self, entry: &str) -> super::TextureFetches {
-        self.fetches
+    /// The costly operations (texture fetches, transcendentals) of one invocation of entry
+    /// point `entry` (none for an unknown entry: the device reports it when the pipeline is
+    /// created).
+    pub fn ops(&self, entry: &str) -> super::ShaderOps {
+        self.ops
             .iter()
             .find(|(e, _)| e == entry)
             .map(|(_, f)| *f)

@@ -5,17 +5,17 @@
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
 
-mod fetches;
 mod kind;
 mod layout;
+mod ops;
 pub mod pipeline;
 
-pub use fetches::{TextureFetches, entry_fetches};
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
+pub use ops::{ShaderOps, entry_ops, is_transcendental};
 pub use pipeline::{
-    ComputePipeline, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline, depth_less,
-    depth_test, render_pipeline,
+    ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,
+    depth_less, depth_test, render_pipeline,
 };
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,
@@ -35,26 +35,27 @@ pub fn compose(source: &str) -> String {
 
 /// Creates a shader module from a technique's WGSL (composed with the prelude), noting which
 /// of its fragment entry points can `discard` (what makes a pipeline's fragments alpha-tested,
-/// [`FragmentKind`]) and what each entry point fetches from textures ([`TextureFetches`]).
+/// [`FragmentKind`]) and what each entry point does beyond its invocation (texture fetches, transcendentals:
+/// [`ShaderOps`]).
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
     let composed = compose(source);
-    let (discarding, fetches) = analyse(&composed);
+    let (discarding, ops) = analyse(&composed);
     Module {
         raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
             source: wgpu::ShaderSource::Wgsl(composed.into()),
         }),
         discarding,
-        fetches,
+        ops,
     }
 }
 
 /// What [`module`] reads off a composed shader, naga parsing it once: the fragment entry points
-/// that can discard and every entry point's texture fetches. A source naga cannot parse has
+/// that can discard and every entry point's costly operations. A source naga cannot parse has
 /// neither: the device reports its errors when the module is created.
-fn analyse(wgsl: &str) -> (Vec<String>, Vec<(String, TextureFetches)>) {
+fn analyse(wgsl: &str) -> (Vec<String>, Vec<(String, ShaderOps)>) {
     match naga::front::wgsl::parse_str(wgsl) {
-        Ok(parsed) => (discarding_fragment_entries(&parsed), entry_fetches(&parsed)),
+        Ok(parsed) => (discarding_fragment_entries(&parsed), entry_ops(&parsed)),
         Err(_) => (Vec::new(), Vec::new()),
     }
 }
@@ -64,22 +65,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_shader_is_read_once_for_discards_and_fetches() {
-        let (discarding, fetches) = analyse(&compose(
+    fn a_shader_is_read_once_for_discards_and_ops() {
+        let (discarding, ops) = analyse(&compose(
             "@group(1) @binding(0) var t: texture_2d<f32>;
              @fragment fn cut(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
-                 let c = textureLoad(t, vec2<i32>(p.xy), 0);
+                 let c = textureLoad(t, vec2<i32>(p.xy), 0) * exp(p.x);
                  if (c.a < 0.5) { discard; }
                  return c;
              }",
         ));
         assert_eq!(discarding, ["cut"]);
-        let cut = fetches.iter().find(|(e, _)| e == "cut").map(|(_, f)| *f);
+        let cut = ops.iter().find(|(e, _)| e == "cut").map(|(_, f)| *f);
         assert_eq!(
             cut,
-            Some(TextureFetches {
+            Some(ShaderOps {
                 loads: 1,
-                samples: 0
+                samples: 0,
+                transcendentals: 1,
             })
         );
         // An unparsable source has neither.

@@ -3,7 +3,7 @@
 //! gives the common case (a triangle strip without culling, depth test `Less` with writes, the
 //! harness's colour target and sample count); techniques change the fields that differ.
 
-use super::{FragmentKind, TextureFetches};
+use super::{FragmentKind, ShaderOps};
 use crate::target;
 
 /// What differs between the technique's render pipelines.
@@ -31,8 +31,8 @@ pub struct PipelineSpec<'a> {
 }
 
 /// What one invocation of each stage of a pipeline does beyond what the pipeline statistics
-/// count: how its fragments reach the target, and the texture fetches of its vertex and
-/// fragment entry points (a render pipeline) or of its compute entry point (a compute
+/// count: how its fragments reach the target, and the costly operations (texture fetches,
+/// transcendentals: [`ShaderOps`]) of its vertex and fragment entry points (a render pipeline) or of its compute entry point (a compute
 /// pipeline). Read off the pipeline and its shader, never declared by a technique; the work
 /// counters ([`crate::technique::work`]) keep a pipeline's invocations apart from those of
 /// pipelines that cost otherwise.
@@ -40,17 +40,17 @@ pub struct PipelineSpec<'a> {
 pub struct PipelineCost {
     /// How its fragments reach the target.
     pub fragments: FragmentKind,
-    /// Texture fetches of one vertex shader invocation.
-    pub vertex_fetches: TextureFetches,
-    /// Texture fetches of one fragment shader invocation.
-    pub fragment_fetches: TextureFetches,
-    /// Texture fetches of one compute shader invocation.
-    pub compute_fetches: TextureFetches,
+    /// Costly operations of one vertex shader invocation.
+    pub vertex_ops: ShaderOps,
+    /// Costly operations of one fragment shader invocation.
+    pub fragment_ops: ShaderOps,
+    /// Costly operations of one compute shader invocation.
+    pub compute_ops: ShaderOps,
 }
 
 impl PipelineCost {
-    /// The cost of a pipeline whose fragments are of `fragments`' kind, with the fetches of
-    /// `module`'s entry points `vertex` and `fragment`.
+    /// The cost of a pipeline whose fragments are of `fragments`' kind, with the operations
+    /// of `module`'s entry points `vertex` and `fragment`.
     pub fn of(
         fragments: FragmentKind,
         module: &super::Module,
@@ -59,34 +59,69 @@ impl PipelineCost {
     ) -> Self {
         Self {
             fragments,
-            vertex_fetches: module.fetches(vertex),
-            fragment_fetches: module.fetches(fragment),
-            compute_fetches: TextureFetches::default(),
+            vertex_ops: module.ops(vertex),
+            fragment_ops: module.ops(fragment),
+            compute_ops: ShaderOps::default(),
         }
     }
 
     /// The cost of a compute pipeline running `module`'s entry point `entry`.
     pub fn compute(module: &super::Module, entry: &str) -> Self {
         Self {
-            compute_fetches: module.fetches(entry),
+            compute_ops: module.ops(entry),
             ..Self::default()
         }
     }
 
-    /// The texture fetches of `work` done with pipelines of this cost: each stage's
-    /// invocations times what one invocation fetches.
-    pub fn fetches(&self, work: &crate::technique::work::PassWork) -> TextureFetches {
-        let times = |f: TextureFetches, n: u64| TextureFetches {
-            loads: f.loads * n,
-            samples: f.samples * n,
-        };
-        times(self.vertex_fetches, work.vertex_invocations)
-            + times(self.fragment_fetches, work.fragment_invocations)
-            + times(self.compute_fetches, work.compute_invocations)
+    /// The costly operations of `work` done with pipelines of this cost: each stage's
+    /// invocations times what one invocation does.
+    pub fn ops(&self, work: &crate::technique::work::PassWork) -> PassOps {
+        let (v, f, c) = (
+            self.vertex_ops.times(work.vertex_invocations),
+            self.fragment_ops.times(work.fragment_invocations),
+            self.compute_ops.times(work.compute_invocations),
+        );
+        PassOps {
+            loads: v.loads + f.loads + c.loads,
+            samples: v.samples + f.samples + c.samples,
+            vertex_transcendentals: v.transcendentals,
+            fragment_transcendentals: f.transcendentals,
+            compute_transcendentals: c.transcendentals,
+        }
     }
 }
 
-/// A compute pipeline and what its invocations cost (their texture fetches), as the frame
+/// The costly operations of some passes ([`PipelineCost::ops`]): texture fetches of every
+/// stage together, transcendentals by stage (their costs differ by stage).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PassOps {
+    /// `textureLoad`s.
+    pub loads: u64,
+    /// Filtered texture samples.
+    pub samples: u64,
+    /// Transcendentals of vertex shader invocations.
+    pub vertex_transcendentals: u64,
+    /// Transcendentals of fragment shader invocations.
+    pub fragment_transcendentals: u64,
+    /// Transcendentals of compute shader invocations.
+    pub compute_transcendentals: u64,
+}
+
+impl std::ops::Add for PassOps {
+    type Output = Self;
+
+    fn add(self, o: Self) -> Self {
+        Self {
+            loads: self.loads + o.loads,
+            samples: self.samples + o.samples,
+            vertex_transcendentals: self.vertex_transcendentals + o.vertex_transcendentals,
+            fragment_transcendentals: self.fragment_transcendentals + o.fragment_transcendentals,
+            compute_transcendentals: self.compute_transcendentals + o.compute_transcendentals,
+        }
+    }
+}
+
+/// A compute pipeline and what its invocations cost (their costly operations), as the frame
 /// encoder's compute passes take it, so the work of every dispatch is counted by
 /// [`PipelineCost`] ([`crate::technique::work`]).
 #[derive(Debug)]

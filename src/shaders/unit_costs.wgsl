@@ -55,13 +55,38 @@ fn pixel_to_clip(p: vec2<f32>) -> vec2<f32> {
     return vec2(p.x * params.size.z * 2.0 - 1.0, 1.0 - p.y * params.size.w * 2.0);
 }
 
-// Vertices without primitives: the blade strip far to the right of the screen, so the clipper
-// rejects all its triangles.
-@vertex
-fn vs_offscreen(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+// Vertex `v` of blade strip `i` far to the right of the screen, so the clipper rejects all
+// its triangles.
+fn offscreen_vertex(v: u32, i: u32) -> VsOut {
     var out = blade_vertex(v, i);
     let corner = vec2(f32(v & 1u), f32(v / 2u));
     out.position = vec4(vec2(3.0, 0.0) + corner * 0.01, out.position.z, 1.0);
+    return out;
+}
+
+// Vertices without primitives.
+@vertex
+fn vs_offscreen(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    return offscreen_vertex(v, i);
+}
+
+// 30 transcendentals (MATH_CHAIN): 10 links of a `sin`, a `cos` and a `pow`, each link fed
+// by the last, so none can be folded away or left as dead code.
+fn math_link(x: f32) -> f32 {
+    return sin(x * 1.3 + 0.1) + cos(x * 0.7) + pow(abs(x) + 0.5, 0.9);
+}
+
+fn math_chain(x: f32) -> f32 {
+    return math_link(math_link(math_link(math_link(math_link(
+        math_link(math_link(math_link(math_link(math_link(x))))))))));
+}
+
+// The off-screen strips with a heavier vertex shader: the same vertex plus the chain, whose
+// result sets the depth (clamped into the clip volume: still off screen, still rejected).
+@vertex
+fn vs_math(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    var out = offscreen_vertex(v, i);
+    out.position.z = clamp(math_chain(out.position.z + f32(v) * 1e-3) * 0.01, 0.0, 1.0);
     return out;
 }
 
@@ -122,6 +147,14 @@ fn fs_blended(in: VsOut) -> @location(0) vec4<f32> {
     return vec4(lit(in), 0.5);
 }
 
+// An opaque fragment with the chain of 30 transcendentals, fed by its position, added to the
+// lit colour.
+@fragment
+fn fs_math(in: VsOut) -> @location(0) vec4<f32> {
+    let x = math_chain(in.position.x * 0.01 + in.position.y * 1e-4);
+    return vec4(lit(in) + 0.001 * x, 1.0);
+}
+
 // Texel loads: 32 `textureLoad`s per fragment (LOADS_PER_FRAGMENT, each its own call site: the
 // cost model counts fetches per call site), at the pixel's texel and neighbours of level 0,
 // added to the lit colour so none is dead code.
@@ -165,5 +198,15 @@ fn cs_springs(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgro
     let k = i % arrayLength(&springs);
     let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
     let p = springs[k];
+    springs[k] = p + (rest - p) * 0.1;
+}
+
+// The spring step with the chain of 30 transcendentals, fed by the element, in its rest state.
+@compute @workgroup_size(64)
+fn cs_math(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    let k = i % arrayLength(&springs);
+    let p = springs[k];
+    let rest = vec4(hash_f32(i), math_chain(p.x) * 0.01, 0.0, 1.0);
     springs[k] = p + (rest - p) * 0.1;
 }

@@ -118,12 +118,14 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             // seams between the clipped pieces shade twice: 1.25% more than the pixels at
             // 640x360 (2 columns of blocks per layer). No fragment from the sub-pixel or
             // off-screen triangles.
-            // Texture fetches are the fragments times the shader's fetches: the same.
+            // Texture fetches and fragment transcendentals are the fragments times the
+            // shader's: the same.
             Term::FragmentOpaque
             | Term::FragmentAlphaTested
             | Term::FragmentBlended
             | Term::TextureLoad
-            | Term::TextureSample => {
+            | Term::TextureSample
+            | Term::FragmentTranscendental => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
             }
             // Vertex and compute invocations exactly.
@@ -133,7 +135,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 }
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
-/// fragment kind, a layer loading 32 texels a fragment and one sampling 8 times, 300 draws, 1M
+/// fragment kind, a layer loading 32 texels a fragment and one sampling 8 times, 5k strips, a
+/// layer and 65k compute invocations with 30 more transcendentals each, 300 draws, 1M
 /// compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
     let w = |name, term, shape| Workload { name, term, shape };
@@ -176,8 +179,33 @@ fn held_out_mix() -> Vec<Workload> {
                 layers: 1,
             },
         ),
+        w(
+            "vertex transcendentals",
+            Term::VertexTranscendental,
+            Shape::MathStrips { instances: 5_000 },
+        ),
+        w(
+            "fragment transcendentals",
+            Term::FragmentTranscendental,
+            Shape::MathLayers { layers: 1 },
+        ),
+        w(
+            "compute transcendentals",
+            Term::ComputeTranscendental,
+            Shape::Compute {
+                groups: 1_024,
+                math: true,
+            },
+        ),
         w("draws", Term::Draw, Shape::Draws { draws: 300 }),
-        w("compute", Term::Compute, Shape::Compute { groups: 16_384 }),
+        w(
+            "compute",
+            Term::Compute,
+            Shape::Compute {
+                groups: 16_384,
+                math: false,
+            },
+        ),
         w("upload", Term::Upload, Shape::Upload { bytes: 8 << 20 }),
     ]
 }

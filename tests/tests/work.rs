@@ -72,7 +72,7 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
 fn compute_shaders_texture_fetches_are_counted() -> anyhow::Result<()> {
     let gpu = gpu()?;
     let module = grassbench::shaders::module(&gpu.device, "jahrmann", grassbench_jahrmann::SHADER);
-    let per_invocation = module.fetches("cs_simulate").loads;
+    let per_invocation = module.ops("cs_simulate").loads;
     assert!(
         per_invocation >= 4,
         "cs_simulate's wind lookup is bilinear: {per_invocation} loads"

@@ -159,9 +159,12 @@ impl Config {
                 r.model_draw_ms?,
                 r.model_compute_ms?,
                 r.model_upload_ms?,
-                // Runs modelled before the fetch terms priced none.
+                // Runs modelled before the fetch and transcendental terms priced none.
                 r.model_texture_load_ms.unwrap_or(0.0),
                 r.model_texture_sample_ms.unwrap_or(0.0),
+                r.model_vertex_transcendental_ms.unwrap_or(0.0),
+                r.model_fragment_transcendental_ms.unwrap_or(0.0),
+                r.model_compute_transcendental_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

@@ -362,6 +362,9 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU uploads",
     "GPU texel loads",
     "GPU texture samples",
+    "GPU vertex transcendentals",
+    "GPU fragment transcendentals",
+    "GPU compute transcendentals",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
@@ -458,13 +461,16 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
         .draw()
         .map_err(plot_err)?;
     let palette = |k: usize| -> RGBColor {
-        const EXTRA: [RGBColor; 6] = [
+        const EXTRA: [RGBColor; 9] = [
             RGBColor(188, 189, 34),
             RGBColor(23, 190, 207),
             RGBColor(90, 90, 90),
             RGBColor(200, 200, 200),
             RGBColor(255, 187, 120),
             RGBColor(152, 223, 138),
+            RGBColor(197, 176, 213),
+            RGBColor(196, 156, 148),
+            RGBColor(247, 182, 210),
         ];
         if k < COLORS.len() {
             COLORS[k]

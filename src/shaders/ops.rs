@@ -1,0 +1,233 @@
+//! What one shader invocation does that costs more than the invocation itself: its
+//! `textureLoad`s (a texel, unfiltered), its `textureSample*`s (filtered: bilinear or
+//! trilinear, mip level chosen) and its transcendental built-ins (`sin`, `cos`, `pow`, `exp`,
+//! ...), counted in the entry point's naga IR and in every function it calls. On a software
+//! rasteriser each is a stretch of code per invocation (a transcendental is a polynomial
+//! with range reduction, tens of instructions), and the pipeline statistics count
+//! invocations, not what happens inside one; these counts let the cost model price that
+//! (`crate::cost`): a blade's vertex shader that bends it segment by segment costs several
+//! times a vertex that only projects.
+//!
+//! The count is static: a call counts its callee's operations once per call site, a loop's
+//! body once, and both sides of a branch. So it is exact for straight-line shaders (most of
+//! the harness's), an upper bound where a branch skips work (debug views, early returns) and
+//! a lower bound where a loop runs its body more than once (the reference's segment walk).
+
+use std::collections::HashMap;
+
+/// The costly operations of one invocation of a shader entry point.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+pub struct ShaderOps {
+    /// `textureLoad` calls (one texel, no filtering).
+    pub loads: u64,
+    /// `textureSample*` and `textureGather*` calls (filtered).
+    pub samples: u64,
+    /// Calls of transcendental built-ins ([`is_transcendental`]).
+    pub transcendentals: u64,
+}
+
+/// Whether `f` is a transcendental built-in: trigonometric and hyperbolic functions and
+/// their inverses, exponentials, logarithms and `pow`. `sqrt`, `inverseSqrt`, `normalize`
+/// and `length` are not: they are one or two instructions on every processor the harness
+/// targets.
+pub fn is_transcendental(f: naga::MathFunction) -> bool {
+    use naga::MathFunction as M;
+    matches!(
+        f,
+        M::Cos
+            | M::Cosh
+            | M::Sin
+            | M::Sinh
+            | M::Tan
+            | M::Tanh
+            | M::Acos
+            | M::Asin
+            | M::Atan
+            | M::Atan2
+            | M::Asinh
+            | M::Acosh
+            | M::Atanh
+            | M::Exp
+            | M::Exp2
+            | M::Log
+            | M::Log2
+            | M::Pow
+    )
+}
+
+impl ShaderOps {
+    /// What `n` invocations do.
+    pub fn times(self, n: u64) -> Self {
+        Self {
+            loads: self.loads * n,
+            samples: self.samples * n,
+            transcendentals: self.transcendentals * n,
+        }
+    }
+}
+
+impl std::ops::Add for ShaderOps {
+    type Output = Self;
+
+    fn add(self, o: Self) -> Self {
+        Self {
+            loads: self.loads + o.loads,
+            samples: self.samples + o.samples,
+            transcendentals: self.transcendentals + o.transcendentals,
+        }
+    }
+}
+
+/// The costly operations of every entry point of `module` (a parsed, composed shader), by name.
+pub fn entry_ops(module: &naga::Module) -> Vec<(String, ShaderOps)> {
+    let mut memo = HashMap::new();
+    module
+        .entry_points
+        .iter()
+        .map(|e| {
+            (
+                e.name.clone(),
+                function_ops(module, &e.function, &mut memo, 0),
+            )
+        })
+        .collect()
+}
+
+/// Deepest call chain followed (WGSL forbids recursion; this only bounds a malformed IR).
+const MAX_CALL_DEPTH: u32 = 64;
+
+/// The operations of `function`: its own image and math expressions plus its callees', once
+/// per call site.
+fn function_ops(
+    module: &naga::Module,
+    function: &naga::Function,
+    memo: &mut HashMap<naga::Handle<naga::Function>, ShaderOps>,
+    depth: u32,
+) -> ShaderOps {
+    let own = function
+        .expressions
+        .iter()
+        .fold(ShaderOps::default(), |acc, (_, e)| match e {
+            naga::Expression::ImageSample { .. } => ShaderOps {
+                samples: acc.samples + 1,
+                ..acc
+            },
+            naga::Expression::ImageLoad { .. } => ShaderOps {
+                loads: acc.loads + 1,
+                ..acc
+            },
+            naga::Expression::Math { fun, .. } if is_transcendental(*fun) => ShaderOps {
+                transcendentals: acc.transcendentals + 1,
+                ..acc
+            },
+            _ => acc,
+        });
+    let mut calls = Vec::new();
+    collect_calls(&function.body, &mut calls);
+    calls.into_iter().fold(own, |acc, callee| {
+        let ops = match memo.get(&callee) {
+            Some(f) => *f,
+            None if depth < MAX_CALL_DEPTH => {
+                let f = function_ops(module, &module.functions[callee], memo, depth + 1);
+                memo.insert(callee, f);
+                f
+            }
+            None => ShaderOps::default(),
+        };
+        acc + ops
+    })
+}
+
+/// Every function called in `block`, once per call site, nested blocks included.
+fn collect_calls(block: &naga::Block, out: &mut Vec<naga::Handle<naga::Function>>) {
+    use naga::Statement as S;
+    for statement in block.iter() {
+        match statement {
+            S::Call { function, .. } => out.push(*function),
+            S::Block(b) => collect_calls(b, out),
+            S::If { accept, reject, .. } => {
+                collect_calls(accept, out);
+                collect_calls(reject, out);
+            }
+            S::Switch { cases, .. } => {
+                for c in cases {
+                    collect_calls(&c.body, out);
+                }
+            }
+            S::Loop {
+                body, continuing, ..
+            } => {
+                collect_calls(body, out);
+                collect_calls(continuing, out);
+            }
+            _ => {}
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SOURCE: &str = "
+        @group(0) @binding(0) var t: texture_2d<f32>;
+        @group(0) @binding(1) var s: sampler;
+        fn height(p: vec2<i32>) -> f32 {
+            return textureLoad(t, p, 0).r + textureLoad(t, p + vec2(1, 0), 0).r;
+        }
+        fn tint(uv: vec2<f32>) -> vec4<f32> {
+            return textureSample(t, s, uv) * height(vec2(0, 0)) * pow(uv.x, 2.2);
+        }
+        @vertex fn vs(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+            let h = height(vec2(i32(v), 0)) + height(vec2(0, i32(v)));
+            let a = f32(v);
+            return vec4(h, sin(a), cos(a), sqrt(a) + length(vec2(a)));
+        }
+        @fragment fn fs(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+            var c = tint(uv);
+            if (uv.x > 0.5) {
+                c += textureSampleLevel(t, s, uv, 1.0);
+            }
+            for (var i = 0; i < 4; i++) {
+                c += textureSampleGrad(t, s, uv, vec2(0.1), vec2(0.1)) * exp2(uv.y);
+            }
+            return c;
+        }
+        @fragment fn plain(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+            return vec4(uv, 0.0, 1.0);
+        }
+    ";
+
+    fn of(name: &str) -> ShaderOps {
+        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap())
+            .into_iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, f)| f)
+            .unwrap_or_else(|| panic!("no entry {name}"))
+    }
+
+    #[test]
+    fn calls_count_per_call_site_and_loops_and_branches_once() {
+        // Two calls of a two-load function; `sin` and `cos` (`sqrt` and `length` are not
+        // transcendental).
+        assert_eq!(
+            of("vs"),
+            ShaderOps {
+                loads: 4,
+                samples: 0,
+                transcendentals: 2,
+            }
+        );
+        // tint: 1 sample + height's 2 loads + a `pow`; the branch's sample; the loop body's
+        // sample and `exp2` once.
+        assert_eq!(
+            of("fs"),
+            ShaderOps {
+                loads: 2,
+                samples: 3,
+                transcendentals: 2,
+            }
+        );
+        assert_eq!(of("plain"), ShaderOps::default());
+    }
+}
