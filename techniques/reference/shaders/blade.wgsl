@@ -1,6 +1,9 @@
 // Reference grass: every blade of the scene as a curved strip, built in the vertex shader from
 // a per-blade instance (see `techniques/reference/src/lib.rs`). Composed after the prelude.
 
+// The most segments a blade may have (`Params::segments`' range), plus one: the strip's levels.
+const MAX_LEVELS: u32 = 16u;
+
 struct Params {
     color_root: vec4<f32>,      // rgb; w: colour variation
     color_tip: vec4<f32>,       // rgb; w: translucency
@@ -8,14 +11,19 @@ struct Params {
     shape: vec4<f32>,
     // x: flutter amount; yzw: unused
     motion: vec4<f32>,
+    // Per level L = 0..segments of the strip, s = L / segments its relative height (tabulated
+    // on the CPU, `levels` in lib.rs: they depend on the parameters only): x = s^profile (the
+    // tilt's profile at the level), y = ((L + 0.5) / segments)^profile (at the mid-point of
+    // segment L), z = 0.5 (1 - s)^0.7 (half the width's taper), w = s^0.8 (root-to-tip colour).
+    levels: array<vec4<f32>, MAX_LEVELS>,
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
 
 struct Blade {
-    @location(0) root_facing: vec4<f32>,     // root xyz, facing angle
+    @location(0) root_threshold: vec4<f32>,  // root xyz, density threshold
     @location(1) shape: vec4<f32>,           // height, width, stiffness, colour variation
-    @location(2) lean_threshold: vec4<f32>,  // lean direction, lean amount, density threshold, -
+    @location(2) side_lean: vec4<f32>,       // xy: unit side axis (x, z); zw: rest lean (x, z)
 }
 
 struct VsOut {
@@ -26,11 +34,6 @@ struct VsOut {
     @location(3) ao: f32,
 }
 
-// Tilt from vertical of the blade at relative height s in [0, 1]: grows as s^profile, so a
-// large profile keeps the base stiff and bends the top (Bakay Sec. 3's "stiffness").
-fn tilt(s: f32, bend: f32) -> f32 {
-    return bend * pow(s, params.shape.z);
-}
 
 // Blue (0) through green to red (1), for debug views.
 fn heat(t: f32) -> vec3<f32> {
@@ -41,14 +44,14 @@ fn heat(t: f32) -> vec3<f32> {
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32, blade: Blade) -> VsOut {
     var out: VsOut;
-    let root = blade.root_facing.xyz;
+    let root = blade.root_threshold.xyz;
     let height = blade.shape.x;
     let width = blade.shape.y;
     let stiffness = blade.shape.z;
 
     // The density map (Boulanger Sec. 3.4): a blade grows only where the density exceeds its
     // threshold. Culled blades collapse outside the clip volume.
-    if (blade.lean_threshold.z >= terrain_density(root.xz)) {
+    if (blade.root_threshold.w >= terrain_density(root.xz)) {
         out.position = vec4(0.0, 0.0, 2.0, 1.0);
         return out;
     }
@@ -56,7 +59,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     // Bend: rest lean plus the wind's push, scaled by the blade's stiffness, plus a small
     // per-blade flutter whose speed follows the wind. Time comes from the globals only.
     let wind = wind_at(root.xz);
-    let lean = blade.lean_threshold.y * vec2(cos(blade.lean_threshold.x), sin(blade.lean_threshold.x));
+    let lean = blade.side_lean.zw;
     let speed = length(wind.xz);
     let phase = hash_f32(instance) * 2.0 * PI;
     let flutter = params.motion.x * speed * sin(globals.camera_pos.w * (3.0 + speed) + phase);
@@ -68,23 +71,25 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let dir = vec3(dir2.x, 0.0, dir2.y);
 
     // Walk up the blade segment by segment: each segment keeps its length (height / n), so the
-    // blade never stretches however far it bends.
+    // blade never stretches however far it bends. The tilt from vertical at relative height s
+    // is bend * s^profile: a large profile keeps the base stiff and bends the top (Bakay
+    // Sec. 3's "stiffness"); the powers come from the level table.
     let n = u32(params.shape.x);
-    let level = min(vertex / 2u, n);
+    let level = min(min(vertex / 2u, n), MAX_LEVELS - 1u);
     let seg = height / f32(n);
     var p = root;
     for (var i = 0u; i < level; i++) {
-        let a = tilt((f32(i) + 0.5) / f32(n), bend);
+        let a = bend * params.levels[i].y;
         p += seg * (sin(a) * dir + cos(a) * vec3(0.0, 1.0, 0.0));
     }
     let s = f32(level) / f32(n);
-    let a = tilt(s, bend);
+    let at = params.levels[level];
+    let a = bend * at.x;
     let tangent = sin(a) * dir + cos(a) * vec3(0.0, 1.0, 0.0);
-    let facing = blade.root_facing.w;
-    let side_axis = vec3(cos(facing), 0.0, sin(facing));
+    let side_axis = vec3(blade.side_lean.x, 0.0, blade.side_lean.y);
 
     // Width tapers to a point at the tip; vertices alternate left (even) and right (odd).
-    let half = 0.5 * width * pow(1.0 - s, 0.7);
+    let half = width * at.z;
     let side = select(-1.0, 1.0, (vertex & 1u) == 1u);
     let world = p + side_axis * half * side * f32(level < n);
     // Normal of the blade's face, rounded a little across the width.
@@ -92,7 +97,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let normal = normalize(face + side_axis * side * 0.35);
 
     let variation = blade.shape.w * params.color_root.w;
-    var albedo = mix(params.color_root.rgb, params.color_tip.rgb, pow(s, 0.8));
+    var albedo = mix(params.color_root.rgb, params.color_tip.rgb, at.w);
     albedo *= 1.0 + variation;
     albedo.r *= 1.0 + 0.6 * max(variation, 0.0);
 

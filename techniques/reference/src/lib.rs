@@ -10,8 +10,9 @@
 //! ## Algorithm
 //! - **Start-up.** The blade field (stratified, jittered, seeded; density and covering maps
 //!   applied as in Boulanger Sec. 3.4 and Zhang Sec. 5.5.2) is generated on the CPU once and
-//!   uploaded as one instance buffer of 48 bytes a blade: root and facing; height, width,
-//!   stiffness and colour variation; rest lean, and the density threshold.
+//!   uploaded as one instance buffer of 48 bytes a blade: root and density threshold; height,
+//!   width, stiffness and colour variation; the facing's unit side axis and the rest lean as
+//!   vectors (their sines and cosines taken once here, not at each of the blade's vertices).
 //! - **Vertex shader** (`shaders/blade.wgsl`). One instanced triangle strip per blade with
 //!   `2n + 1` vertices for `n` segments. The blade bends in the plane of the wind: its tilt from
 //!   vertical at relative height `s` is `θ(s) = φ·s^p` (`p` = `bend_profile`, Bakay Sec. 3's
@@ -20,7 +21,9 @@
 //!   [`WindField`](grassbench::wind::WindField) texture, clamped to `max_bend`. Vertices are
 //!   placed by summing `n` segments of equal length `h/n` tilted by `θ` at their mid-points, so
 //!   the blade keeps its length however far it bends (the length-preserving idea of Bakay
-//!   Sec. 3 and of Zhang's length constraints, Sec. 3.2.3). The density threshold is tested
+//!   Sec. 3 and of Zhang's length constraints, Sec. 3.2.3). The powers that depend only on a
+//!   vertex's level (`s^p` at the levels and mid-points, the width's taper `(1 − s)^0.7`, the
+//!   colour's `s^0.8`) come from a table in the uniform ([`levels`]), filled once. The density threshold is tested
 //!   against the density map per blade on the GPU too, so a density map edited at run time is
 //!   honoured.
 //! - **Shading.** Two-sided Lambert with light passing through from behind (the prelude's
@@ -30,8 +33,19 @@
 //!
 //! ## Cost model
 //! `B` blades x `2n − 1` triangles, all submitted every frame in one draw call; vertex work
-//! `B·(2n + 1)·n/2` segment steps; no CPU work per frame. GPU memory: `48·B` bytes. On a
-//! software rasteriser the cost is dominated by triangle setup, i.e. linear in `B·n`.
+//! `B·(2n + 1)·n/2` segment steps, each a `sin` and a `cos`, plus a `sin` and a `cos` of the
+//! vertex's own tilt and the flutter's `sin`: 5 transcendentals in the shader's text (the
+//! cost model's count, `results/cost_model`); no CPU work per frame. GPU memory: `48·B +
+//! 320` bytes. On a software rasteriser the cost is dominated by triangle setup, i.e. linear
+//! in `B·n`; the vertex shader's transcendentals come next (lavapipe: 1.9 ns each, against
+//! 14 ns for the rest of a vertex). Taking the per-level powers from the table and the facing
+//! and lean as vectors brought them from 13 to 5 a vertex and the reference's frames down
+//! 16-20 % on the three canonical scenes at both sizes (two sweeps of
+//! `experiments/cost_model.toml` on the same quiet host, 20 minutes apart, revision `8a00d08`
+//! and the next; the pictures moved by at most one level in 255). On a software rasteriser both sides of a branch run for every
+//! vertex of a SIMD batch, so the density-culled blades' early return saves no time there
+//! (a test of the same early return for blades outside the view measured no gain either,
+//! and was dropped); on a GPU whose lanes of one blade take it together, it does.
 //!
 //! ## Known artifacts
 //! Thin far blades alias into shimmering sub-pixel lines without MSAA (that is what ground
@@ -101,16 +115,58 @@ impl TechniqueParams for Params {
     }
 }
 
-/// One blade on the GPU (vertex buffer, instance step).
+/// One blade on the GPU (vertex buffer, instance step). Its facing and rest lean are stored as
+/// vectors, not angles: the vertex shader would otherwise take their sines and cosines at each
+/// of the blade's vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct BladeInstance {
-    /// Root xyz, facing angle.
-    pub root_facing: [f32; 4],
+    /// Root xyz, density threshold.
+    pub root_threshold: [f32; 4],
     /// Height, width, stiffness, colour variation.
     pub shape: [f32; 4],
-    /// Lean direction, lean amount, density threshold, unused.
-    pub lean_threshold: [f32; 4],
+    /// Unit side axis (x, z: the facing's cosine and sine), rest lean (x, z).
+    pub side_lean: [f32; 4],
+}
+
+impl BladeInstance {
+    /// The instance of blade `b`.
+    pub fn of(b: &grassbench::grass::Blade) -> Self {
+        let (sin_facing, cos_facing) = b.facing.sin_cos();
+        let (sin_lean, cos_lean) = b.lean.x.sin_cos();
+        Self {
+            root_threshold: b.root.extend(b.threshold).to_array(),
+            shape: [b.height, b.width, b.stiffness, b.variation],
+            side_lean: [
+                cos_facing,
+                sin_facing,
+                b.lean.y * cos_lean,
+                b.lean.y * sin_lean,
+            ],
+        }
+    }
+}
+
+/// Levels of a strip the uniform's table holds: the most segments (`Params::segments`' range)
+/// plus one.
+pub const MAX_LEVELS: usize = 16;
+
+/// The shader's per-level table (`Params::levels` in `blade.wgsl`): for each level `L` of a
+/// strip of `segments` segments, at relative height `s = L / segments`, the powers the vertex
+/// shader would otherwise take per vertex: `s^profile`, `((L + 0.5) / segments)^profile`,
+/// `0.5 (1 − s)^0.7` and `s^0.8`. Levels past `segments` repeat the top one.
+pub fn levels(segments: u32, profile: f32) -> [[f32; 4]; MAX_LEVELS] {
+    let n = segments.max(1) as f32;
+    std::array::from_fn(|l| {
+        let s = (l as f32 / n).min(1.0);
+        let mid = ((l as f32 + 0.5) / n).min(1.0);
+        [
+            s.powf(profile),
+            mid.powf(profile),
+            0.5 * (1.0 - s).powf(0.7),
+            s.powf(0.8),
+        ]
+    })
 }
 
 impl BladeInstance {
@@ -133,6 +189,8 @@ pub struct ParamsUniform {
     pub shape: [f32; 4],
     /// Flutter.
     pub motion: [f32; 4],
+    /// Per-level powers ([`levels`]).
+    pub levels: [[f32; 4]; MAX_LEVELS],
 }
 
 /// The reference technique.
@@ -167,14 +225,7 @@ impl Technique for Reference {
         let device = &ctx.gpu.device;
         let scene = ctx.scene;
         let blades = scene.blades.all_blades(&scene.terrain);
-        let instances: Vec<BladeInstance> = blades
-            .iter()
-            .map(|b| BladeInstance {
-                root_facing: b.root.extend(b.facing).to_array(),
-                shape: [b.height, b.width, b.stiffness, b.variation],
-                lean_threshold: [b.lean.x, b.lean.y, b.threshold, 0.0],
-            })
-            .collect();
+        let instances: Vec<BladeInstance> = blades.iter().map(BladeInstance::of).collect();
         let bytes = std::mem::size_of_val(instances.as_slice()) as u64;
         let max = device.limits().max_buffer_size;
         if bytes > max {
@@ -189,9 +240,9 @@ impl Technique for Reference {
         // An empty buffer cannot be bound: keep one zero blade (drawn with 0 instances).
         let contents: &[u8] = if instances.is_empty() {
             bytemuck::bytes_of(&BladeInstance {
-                root_facing: [0.0; 4],
+                root_threshold: [0.0; 4],
                 shape: [0.0; 4],
-                lean_threshold: [0.0; 4],
+                side_lean: [0.0; 4],
             })
         } else {
             bytemuck::cast_slice(&instances)
@@ -216,6 +267,7 @@ impl Technique for Reference {
                 params.max_bend,
             ],
             motion: [params.flutter, 0.0, 0.0, 0.0],
+            levels: levels(params.segments, params.bend_profile),
         };
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("reference params"),
