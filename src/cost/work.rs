@@ -80,11 +80,11 @@ impl Work {
             draw_calls: 0.0,
             compute_invocations: counted.compute_invocations as f64,
             upload_bytes: 0.0,
-            texture_loads: ops.loads as f64,
-            texture_samples: ops.samples as f64,
-            vertex_transcendentals: ops.vertex_transcendentals as f64,
-            fragment_transcendentals: ops.fragment_transcendentals as f64,
-            compute_transcendentals: ops.compute_transcendentals as f64,
+            texture_loads: ops.all().loads as f64,
+            texture_samples: ops.all().samples as f64,
+            vertex_transcendentals: ops.vertex.transcendentals as f64,
+            fragment_transcendentals: ops.fragment.transcendentals as f64,
+            compute_transcendentals: ops.compute.transcendentals as f64,
         }
     }
 

@@ -195,14 +195,7 @@ impl Workload {
                 }
             }
             Shape::MathLayers { layers } => {
-                let base = Workload {
-                    shape: Shape::Layers {
-                        kind: FragmentKind::Opaque,
-                        layers,
-                    },
-                    ..*self
-                }
-                .work(size);
+                let base = self.opaque_layers(layers, size);
                 Work {
                     fragment_transcendentals: base.fragments_opaque
                         * f64::from(LIT_TRANSCENDENTALS + MATH_CHAIN),
@@ -211,14 +204,7 @@ impl Workload {
             }
             Shape::FetchLayers { sample, layers } => {
                 // The opaque layers' work, plus each fragment's fetches.
-                let base = Workload {
-                    shape: Shape::Layers {
-                        kind: FragmentKind::Opaque,
-                        layers,
-                    },
-                    ..*self
-                }
-                .work(size);
+                let base = self.opaque_layers(layers, size);
                 let per = |n: u32| base.fragments_opaque * f64::from(n);
                 Work {
                     texture_loads: if sample { 0.0 } else { per(LOADS_PER_FRAGMENT) },
@@ -256,6 +242,19 @@ impl Workload {
                 ..none
             },
         }
+    }
+
+    /// The work of `layers` opaque layers on a `size` target: what the layers that fetch or
+    /// evaluate more per fragment add to.
+    fn opaque_layers(&self, layers: u32, size: Size) -> Work {
+        Workload {
+            shape: Shape::Layers {
+                kind: FragmentKind::Opaque,
+                layers,
+            },
+            ..*self
+        }
+        .work(size)
     }
 
     /// The largest factor [`Self::scaled`] may apply. Uploads do not scale (64 MB is already

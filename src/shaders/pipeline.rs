@@ -76,35 +76,32 @@ impl PipelineCost {
     /// The costly operations of `work` done with pipelines of this cost: each stage's
     /// invocations times what one invocation does.
     pub fn ops(&self, work: &crate::technique::work::PassWork) -> PassOps {
-        let (v, f, c) = (
-            self.vertex_ops.times(work.vertex_invocations),
-            self.fragment_ops.times(work.fragment_invocations),
-            self.compute_ops.times(work.compute_invocations),
-        );
         PassOps {
-            loads: v.loads + f.loads + c.loads,
-            samples: v.samples + f.samples + c.samples,
-            vertex_transcendentals: v.transcendentals,
-            fragment_transcendentals: f.transcendentals,
-            compute_transcendentals: c.transcendentals,
+            vertex: self.vertex_ops.times(work.vertex_invocations),
+            fragment: self.fragment_ops.times(work.fragment_invocations),
+            compute: self.compute_ops.times(work.compute_invocations),
         }
     }
 }
 
-/// The costly operations of some passes ([`PipelineCost::ops`]): texture fetches of every
-/// stage together, transcendentals by stage (their costs differ by stage).
+/// The costly operations of some passes ([`PipelineCost::ops`]), by stage: the cost model
+/// prices texture fetches alike in every stage ([`PassOps::all`]) and transcendentals by
+/// stage (their costs differ by stage).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PassOps {
-    /// `textureLoad`s.
-    pub loads: u64,
-    /// Filtered texture samples.
-    pub samples: u64,
-    /// Transcendentals of vertex shader invocations.
-    pub vertex_transcendentals: u64,
-    /// Transcendentals of fragment shader invocations.
-    pub fragment_transcendentals: u64,
-    /// Transcendentals of compute shader invocations.
-    pub compute_transcendentals: u64,
+    /// Of the vertex shader invocations.
+    pub vertex: ShaderOps,
+    /// Of the fragment shader invocations.
+    pub fragment: ShaderOps,
+    /// Of the compute shader invocations.
+    pub compute: ShaderOps,
+}
+
+impl PassOps {
+    /// Every stage's together.
+    pub fn all(&self) -> ShaderOps {
+        self.vertex + self.fragment + self.compute
+    }
 }
 
 impl std::ops::Add for PassOps {
@@ -112,11 +109,9 @@ impl std::ops::Add for PassOps {
 
     fn add(self, o: Self) -> Self {
         Self {
-            loads: self.loads + o.loads,
-            samples: self.samples + o.samples,
-            vertex_transcendentals: self.vertex_transcendentals + o.vertex_transcendentals,
-            fragment_transcendentals: self.fragment_transcendentals + o.fragment_transcendentals,
-            compute_transcendentals: self.compute_transcendentals + o.compute_transcendentals,
+            vertex: self.vertex + o.vertex,
+            fragment: self.fragment + o.fragment,
+            compute: self.compute + o.compute,
         }
     }
 }
