@@ -12,6 +12,9 @@
 //! body once, and both sides of a branch. So it is exact for straight-line shaders (most of
 //! the harness's), an upper bound where a branch skips work (debug views, early returns) and
 //! a lower bound where a loop runs its body more than once (the reference's segment walk).
+//! On lavapipe, whose SIMD shaders run both sides of a branch for a whole batch, a branch's
+//! both sides are what is paid (the reference's early return for culled blades saved
+//! nothing: `techniques/reference/src/lib.rs`), so there the bound is the cost.
 
 use std::collections::HashMap;
 
