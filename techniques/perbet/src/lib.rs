@@ -98,8 +98,9 @@
 //! strip layers, not triangles, set the frame time); 2D `2 · 4²` triangles a block. Memory:
 //! the variants' blades and textures (about 7 MB, mostly the 32 strip layers and twelve 2D
 //! layers with their mip chains) plus per-frame entries and receivers: 8 MB on the meadow
-//! (`results/perbet_quality/`). Measured on the meadow with the medium preset: 54 ms a frame
-//! against the reference's 672 ms (12.4x), 0.7 ms of it CPU; pre-computation 136 ms.
+//! (`results/perbet_quality/`). Measured on the meadow with the medium preset (the default
+//! comparison, `results/default/`, revision `a4b32a7`): 59 ms a frame against the
+//! reference's 539 ms (9.2x), 1.1 ms of it CPU; pre-computation 136 ms.
 //!
 //! The 2D level drawn patch by patch grew with the terrain where the view was already full
 //! (`results/scaling/`: 34 → 91 ms from 80 m to 400 m, 42 k → 249 k triangles). With the
