@@ -59,6 +59,7 @@ impl Work {
         let f = counted.fragment_invocations as f64;
         let fragments = pipeline.fragments;
         let ops = pipeline.ops(counted);
+        let fetches = ops.all();
         Self {
             vertex_invocations: counted.vertex_invocations as f64,
             primitives: counted.clipper_primitives_out as f64,
@@ -80,8 +81,8 @@ impl Work {
             draw_calls: 0.0,
             compute_invocations: counted.compute_invocations as f64,
             upload_bytes: 0.0,
-            texture_loads: ops.all().loads as f64,
-            texture_samples: ops.all().samples as f64,
+            texture_loads: fetches.loads as f64,
+            texture_samples: fetches.samples as f64,
             vertex_transcendentals: ops.vertex.transcendentals as f64,
             fragment_transcendentals: ops.fragment.transcendentals as f64,
             compute_transcendentals: ops.compute.transcendentals as f64,

@@ -294,6 +294,8 @@ impl<'g> World<'g> {
             })
         };
         let (ops, background_ops) = (ops_of(false), ops_of(true));
+        // Texture fetches are priced alike in every stage: summed once.
+        let (fetches, background_fetches) = (ops.map(|o| o.all()), background_ops.map(|o| o.all()));
         let pixels = f64::from(view.target.size.width * view.target.size.height);
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
         let stats = technique.stats();
@@ -331,10 +333,10 @@ impl<'g> World<'g> {
             background_primitives: background.map(|w| w.clipper_primitives_out),
             background_fragment_invocations: background.map(|w| w.fragment_invocations),
             background_draw_calls: Some(core_draws),
-            texture_loads: ops.map(|f| f.all().loads),
-            texture_samples: ops.map(|f| f.all().samples),
-            background_texture_loads: background_ops.map(|f| f.all().loads),
-            background_texture_samples: background_ops.map(|f| f.all().samples),
+            texture_loads: fetches.map(|f| f.loads),
+            texture_samples: fetches.map(|f| f.samples),
+            background_texture_loads: background_fetches.map(|f| f.loads),
+            background_texture_samples: background_fetches.map(|f| f.samples),
             vertex_transcendentals: ops.map(|f| f.vertex.transcendentals),
             fragment_transcendentals: ops.map(|f| f.fragment.transcendentals),
             compute_transcendentals: ops.map(|f| f.compute.transcendentals),

@@ -12,7 +12,7 @@ pub mod pipeline;
 
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
-pub use ops::{ShaderOps, entry_ops, is_transcendental};
+pub use ops::{ShaderOps, entry_ops};
 pub use pipeline::{
     ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,
     depth_less, depth_test, render_pipeline,

@@ -33,7 +33,7 @@ pub struct ShaderOps {
 /// their inverses, exponentials, logarithms and `pow`. `sqrt`, `inverseSqrt`, `normalize`
 /// and `length` are not: they are one or two instructions on every processor the harness
 /// targets.
-pub fn is_transcendental(f: naga::MathFunction) -> bool {
+fn is_transcendental(f: naga::MathFunction) -> bool {
     use naga::MathFunction as M;
     matches!(
         f,

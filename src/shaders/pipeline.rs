@@ -32,8 +32,8 @@ pub struct PipelineSpec<'a> {
 
 /// What one invocation of each stage of a pipeline does beyond what the pipeline statistics
 /// count: how its fragments reach the target, and the costly operations (texture fetches,
-/// transcendentals: [`ShaderOps`]) of its vertex and fragment entry points (a render pipeline) or of its compute entry point (a compute
-/// pipeline). Read off the pipeline and its shader, never declared by a technique; the work
+/// transcendentals: [`ShaderOps`]) of its vertex and fragment entry points (a render
+/// pipeline) or of its compute entry point (a compute pipeline). Read off the pipeline and its shader, never declared by a technique; the work
 /// counters ([`crate::technique::work`]) keep a pipeline's invocations apart from those of
 /// pipelines that cost otherwise.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]

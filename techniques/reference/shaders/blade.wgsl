@@ -34,7 +34,6 @@ struct VsOut {
     @location(3) ao: f32,
 }
 
-
 // Blue (0) through green to red (1), for debug views.
 fn heat(t: f32) -> vec3<f32> {
     let x = clamp(t, 0.0, 1.0);
