@@ -201,6 +201,7 @@ impl<'g> Rig<'g> {
                             blend,
                             write_mask: wgpu::ColorWrites::ALL,
                         })],
+                        constants: &[],
                     },
                 )
             };
@@ -263,6 +264,7 @@ impl<'g> Rig<'g> {
                     &layout,
                     &module,
                     "cs_springs",
+                    &[],
                 ),
                 springs_math: shaders::compute_pipeline(
                     device,
@@ -270,6 +272,7 @@ impl<'g> Rig<'g> {
                     &layout,
                     &module,
                     "cs_math",
+                    &[],
                 ),
                 upload: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("unit costs upload"),

@@ -7,11 +7,13 @@
 
 mod kind;
 mod layout;
+mod loops;
 mod ops;
 pub mod pipeline;
 
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
+pub use loops::uniform_bound_loops;
 pub use ops::{ShaderOps, entry_ops};
 pub use pipeline::{
     ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,

@@ -28,6 +28,10 @@ pub struct PipelineSpec<'a> {
     pub multisample: wgpu::MultisampleState,
     /// Colour targets.
     pub targets: &'a [Option<wgpu::ColorTargetState>],
+    /// Values of the module's pipeline-overridable constants (WGSL `override`), by name: the
+    /// counts fixed when the technique is created that its loops run to, so no driver
+    /// re-specialises the shader when a uniform changes ([`super::uniform_bound_loops`]).
+    pub constants: &'a [(&'a str, f64)],
 }
 
 /// What one invocation of each stage of a pipeline does beyond what the pipeline statistics
@@ -141,21 +145,26 @@ impl std::ops::Deref for ComputePipeline {
     }
 }
 
-/// Creates the compute pipeline running `module`'s entry point `entry` with `layout`, its
-/// cost read off the shader.
+/// Creates the compute pipeline running `module`'s entry point `entry` with `layout` and the
+/// pipeline-overridable `constants` (as [`PipelineSpec::constants`]), its cost read off the
+/// shader.
 pub fn compute_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::PipelineLayout,
     module: &super::Module,
     entry: &str,
+    constants: &[(&str, f64)],
 ) -> ComputePipeline {
     let raw = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout: Some(layout),
         module,
         entry_point: Some(entry),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            ..Default::default()
+        },
         cache: None,
     });
     ComputePipeline {
@@ -212,7 +221,10 @@ pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> Render
         vertex: wgpu::VertexState {
             module: spec.module,
             entry_point: Some(spec.vertex),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: spec.constants,
+                ..Default::default()
+            },
             buffers: spec.buffers,
         },
         primitive: spec.primitive,
@@ -221,7 +233,10 @@ pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> Render
         fragment: Some(wgpu::FragmentState {
             module: spec.module,
             entry_point: Some(spec.fragment),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: spec.constants,
+                ..Default::default()
+            },
             targets: spec.targets,
         }),
         multiview_mask: None,
@@ -290,6 +305,7 @@ impl<'a> PipelineSpec<'a> {
                 ..Default::default()
             },
             targets: COLOR_TARGETS,
+            constants: &[],
         }
     }
 }

@@ -48,11 +48,12 @@ pub enum Resource<'a> {
 }
 
 /// What a dispatch binds: optionally the scene's bind group 0, and resources at groups 1 and
-/// up.
+/// up; and the values of the shader's pipeline-overridable constants.
 #[derive(Default)]
 pub struct Bindings<'a> {
     scene: Option<&'a SceneGpu>,
     entries: Vec<(u32, u32, Resource<'a>)>,
+    constants: Vec<(&'a str, f64)>,
 }
 
 impl<'a> Bindings<'a> {
@@ -64,6 +65,12 @@ impl<'a> Bindings<'a> {
     /// Binds the scene's bind group 0 (globals, terrain maps, wind texture).
     pub fn scene(mut self, scene: &'a SceneGpu) -> Self {
         self.scene = Some(scene);
+        self
+    }
+
+    /// Sets the pipeline-overridable constant `name` (WGSL `override`) to `value`.
+    pub fn constant(mut self, name: &'a str, value: f64) -> Self {
+        self.constants.push((name, value));
         self
     }
 
@@ -228,7 +235,10 @@ pub fn dispatch(
             layout: Some(&pipeline_layout),
             module: &module,
             entry_point: Some(entry),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &bindings.constants,
+                ..Default::default()
+            },
             cache: None,
         });
         let mut encoder =

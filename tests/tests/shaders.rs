@@ -54,3 +54,26 @@ fn every_shader_validates() {
         module_of(f);
     }
 }
+
+/// No shader loops as many times as a uniform buffer says: lavapipe re-specialises such a
+/// shader every time its pipeline is bound, on the CPU and outside every timestamped pass
+/// (5-6 ms a frame for bakay's bend pass; `grassbench::shaders::uniform_bound_loops`), a cost
+/// no GPU pays and the cost model cannot see.
+#[test]
+fn no_loop_is_bounded_by_a_uniform() {
+    let offenders: Vec<String> = all_shaders()
+        .iter()
+        .flat_map(|f| {
+            let name = f.file_name().map(|n| n.to_string_lossy().into_owned());
+            shaders::uniform_bound_loops(&module_of(f))
+                .into_iter()
+                .map(move |function| format!("{}: `{function}`", name.clone().unwrap_or_default()))
+        })
+        .collect();
+    assert!(
+        offenders.is_empty(),
+        "loops bounded by a uniform-buffer value: {offenders:?}; make a count fixed at \
+         creation a pipeline-overridable constant (`override`, `PipelineSpec::constants`) and \
+         one that changes every frame a storage-buffer value"
+    );
+}

@@ -350,7 +350,9 @@ fn bakay_tilt_and_segment_are_bend_tilt_and_segment() -> anyhow::Result<()> {
             &gpu,
             &shader,
             body,
-            Bindings::new().uniform(1, 0, &uniform),
+            Bindings::new()
+                .constant("SHELLS", f64::from(shells))
+                .uniform(1, 0, &uniform),
             &inputs,
         )?;
         for (x, o) in inputs.iter().zip(&out) {
@@ -414,7 +416,9 @@ fn bakay_level_shell_is_shell_lod_shell() -> anyhow::Result<()> {
             &gpu,
             &shader,
             body,
-            Bindings::new().uniform(1, 0, &uniform),
+            Bindings::new()
+                .constant("SHELLS", f64::from(shells))
+                .uniform(1, 0, &uniform),
             &inputs,
         )?;
         for (x, o) in inputs.iter().zip(&out) {
@@ -550,6 +554,7 @@ fn bakay_cs_bend_is_the_wind_and_bend_twins() -> anyhow::Result<()> {
         let spacing = uniform.shape[0];
         let shells = case.shells as usize;
         let bindings = Bindings::new()
+            .constant("SHELLS", f64::from(case.shells))
             .scene(&scene_gpu)
             .uniform(1, 0, &uniform)
             .storage(1, 1, &vertices)
@@ -881,6 +886,7 @@ fn perbet_posture_lookup_is_receiver_angles_at() -> anyhow::Result<()> {
     }
     let body = "    y.v[0] = vec4(bend_angle(u32(x.v[0].x), x.v[0].y, u32(x.v[0].z)), segment_direction(x.v[1].xy));";
     let bindings = Bindings::new()
+        .constant("SEGMENTS", f64::from(uniform.counts[1]))
         .uniform(1, 0, &uniform)
         .storage(1, 5, &arrays.postures);
     let out: Vec<[[f32; 4]; 1]> = twin::map(
@@ -997,6 +1003,7 @@ fn perbet_morph_is_the_morph_twin() -> anyhow::Result<()> {
     e.link = u32(x.v[1].w);
     y.v[0] = vec4(morphed(x.v[0].xyz, e, u32(x.v[1].x), u32(x.v[1].y)), 0.0);";
     let bindings = Bindings::new()
+        .constant("SEGMENTS", f64::from(uniform.counts[1]))
         .scene(&scene_gpu)
         .uniform(1, 0, &uniform)
         .storage(1, 1, &entries)

@@ -10,7 +10,7 @@
 //   against the lowest shell it stands for.
 
 struct Params {
-    // x: shells N; y: ground vertices; z: wind mode (0 = scene, 1 = point source);
+    // x: shells N (the shader reads `SHELLS`); y: ground vertices; z: wind mode (0 = scene, 1 = point source);
     // w: level of detail (0 = the sampler's, 1 = the footprint's minor axis)
     counts: vec4<u32>,
     // x: inter-shell distance S (m); y: stiffness exponent p; z: max |I|; w: reference speed (m/s)
@@ -24,6 +24,11 @@ struct Params {
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
+
+// Shells N, set when the pipelines are created: the bend pass loops over them, and a loop
+// bounded by a uniform is re-specialised by lavapipe every time its pipeline is bound (5-6 ms
+// a frame here; `grassbench::shaders::uniform_bound_loops`).
+override SHELLS: u32;
 
 // Instance indices per level of detail (`lod::LEVEL_INSTANCES`).
 const LEVEL_INSTANCES: u32 = 128u;
@@ -42,7 +47,7 @@ const LEVEL_INSTANCES: u32 = 128u;
 // Tilt of segment j: θ_j = I·(π/2)·(j/N)^p (Sec. 3: a constant increment per shell for p = 1;
 // twin of `bend::tilt`).
 fn tilt(j: u32, intensity: f32) -> f32 {
-    let x = f32(j) / f32(params.counts.x);
+    let x = f32(j) / f32(SHELLS);
     let profile = select(pow(x, params.shape.y), 0.0, x <= 0.0);
     return intensity * 0.5 * PI * profile;
 }
@@ -100,7 +105,7 @@ fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
     wind_out[v] = wind;
     // Running totals up the blade, one segment of length S per shell (`bend::offsets`).
     var nw = vec2(0.0);
-    for (var k = 0u; k < params.counts.x; k++) {
+    for (var k = 0u; k < SHELLS; k++) {
         offsets_out[k * params.counts.y + v] = nw;
         nw += shell_segment(k, wind.w);
     }
@@ -121,7 +126,7 @@ struct ShellOut {
 // and the lowest shell it stands for: every 2^L-th shell down from the top one, each standing
 // for the 2^L - 1 below it too (twin of `lod::ShellLod::shell`).
 fn level_shell(instance: u32) -> vec2<u32> {
-    let n = params.counts.x;
+    let n = SHELLS;
     let m = 1u << (instance / LEVEL_INSTANCES);
     let i = instance % LEVEL_INSTANCES;
     let drawn = (n - 1u) / m + 1u;
@@ -178,8 +183,8 @@ fn fs_shell(in: ShellOut) -> @location(0) vec4<f32> {
     // draws: here it keeps the blades' roots only (alpha > 0). Grass grows only where the
     // covering map says so. Tested first: most fragments of a shell end here, before the
     // second lookup and the shading.
-    let height = f32(in.shell.x) / f32(params.counts.x);
-    let lowest = f32(in.shell.y) / f32(params.counts.x);
+    let height = f32(in.shell.x) / f32(SHELLS);
+    let lowest = f32(in.shell.y) / f32(SHELLS);
     if (texel.a < max(lowest, 1.0 / 255.0) || in.grows.y < 0.5) {
         discard;
     }

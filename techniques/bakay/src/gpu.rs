@@ -177,6 +177,7 @@ impl ShellGpu {
         });
 
         let module = shaders::module(device, "bakay", SHADER);
+        let constants = [("SHELLS", f64::from(shells))];
         let bend = shaders::compute_pipeline(
             device,
             "bakay bend",
@@ -184,6 +185,7 @@ impl ShellGpu {
                 .pipeline_layout(device, "bakay bend", &[&bend_layout]),
             &module,
             "cs_bend",
+            &constants,
         );
         let shell_pipeline_layout =
             ctx.scene_gpu
@@ -204,6 +206,7 @@ impl ShellGpu {
                     wgpu::CompareFunction::LessEqual,
                     true,
                 ),
+                constants: &constants,
                 ..shaders::PipelineSpec::new(
                     "bakay shells",
                     &shell_pipeline_layout,

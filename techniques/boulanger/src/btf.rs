@@ -417,6 +417,7 @@ impl MipPipeline {
                 depth: None,
                 multisample: Default::default(),
                 targets: &targets,
+                constants: &[],
             },
         );
         Self {

@@ -163,6 +163,7 @@ impl Pipelines {
             depth: depth_less(target::DEPTH_FORMAT, true),
             multisample,
             targets: &color_target,
+            constants: &[],
         };
         let blades = render_pipeline(
             device,

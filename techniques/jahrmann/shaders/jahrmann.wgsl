@@ -26,8 +26,8 @@ struct Params {
     thin: vec4<f32>,
     // x: switches (FLAG_*); y: distance buckets; z: far level keeps one blade in z; w: unused
     flags: vec4<u32>,
-    // x: blades; y: workgroups along x; z: dispatched ranges (tiles.rs); w: 1 when the pass
-    // runs over the ranges, 0 when over every blade
+    // x: blades; y: workgroups along x; z: unused (the dispatched ranges are counted in
+    // `block`); w: 1 when the pass runs over the ranges, 0 when over every blade
     counts: vec4<u32>,
 }
 
@@ -162,7 +162,9 @@ struct Counters {
     skipped: u32,
     // Of those, far non-survivors counted as represented (tiles.rs).
     represented_untested: u32,
-    pad: u32,
+    // The frame's dispatched ranges (written by the CPU, tiles.rs): a storage value, as a
+    // loop bound in a uniform is re-specialised by lavapipe at every bind.
+    ranges: u32,
 }
 
 // The counters, then the frame's dispatched ranges of blades (tiles.rs: first invocation,
@@ -323,7 +325,7 @@ fn blade_of(w: u32, lid: u32) -> vec2<u32> {
         return vec2(g, u32(g < params.counts.x));
     }
     var lo = 0u;
-    var hi = params.counts.z;
+    var hi = block.counts.ranges;
     if (hi == 0u) {
         return vec2(0u, 0u);
     }

@@ -37,8 +37,10 @@ pub struct GpuCounts {
     /// Of the skipped blades, those counted as represented: far tiles' non-survivors that no
     /// per-blade test saw (some would have been culled by orientation or the frustum).
     pub represented_untested: u32,
-    /// Unused.
-    pub pad: u32,
+    /// The frame's dispatched ranges (`tiles.rs`), set by the CPU: what the compute pass's
+    /// binary search runs over. A storage value, not a uniform, so lavapipe does not
+    /// re-specialise the shader every frame (`grassbench::shaders::uniform_bound_loops`).
+    pub ranges: u32,
 }
 
 impl GpuCounts {

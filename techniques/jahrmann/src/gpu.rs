@@ -63,8 +63,9 @@ pub struct ParamsUniform {
     pub thin: [f32; 4],
     /// Switches ([`flags`]), distance buckets, far keep, unused.
     pub flags: [u32; 4],
-    /// Blades, workgroups along x, dispatched ranges, 1 when the pass runs over the ranges
-    /// (`tiles.rs`) and 0 when over every blade.
+    /// Blades, workgroups along x, unused (the dispatched ranges are counted in the storage
+    /// block: [`GpuCounts::ranges`]), 1 when the pass runs over the ranges (`tiles.rs`) and 0
+    /// when over every blade.
     pub counts: [u32; 4],
 }
 
@@ -345,6 +346,7 @@ impl BladeGpu {
                 .pipeline_layout(device, "jahrmann simulate", &[&simulate_layout]),
             &module,
             "cs_simulate",
+            &[],
         );
         let draw_pipeline_layout =
             ctx.scene_gpu

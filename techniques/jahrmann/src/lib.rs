@@ -413,7 +413,6 @@ impl GrassTechnique for Jahrmann {
             self.blades,
             self.groups.0,
         );
-        self.uniform.counts[2] = u32::try_from(self.selection.ranges.len()).unwrap_or(u32::MAX);
         self.uniform.counts[3] = u32::from(tiled);
         let sel = &self.selection;
         let count = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
@@ -423,6 +422,7 @@ impl GrassTechnique for Jahrmann {
         start.verdicts[Verdict::Represented as usize] = count(sel.represented);
         start.skipped = count(sel.frustum + sel.distance + sel.represented);
         start.represented_untested = count(sel.represented);
+        start.ranges = u32::try_from(sel.ranges.len()).unwrap_or(u32::MAX);
         self.start = start;
         Ok(())
     }

@@ -7,8 +7,8 @@ struct Params {
     // x: patch size (m); y: strip height (m); z: strip margin (fraction of the patch);
     // w: height of the 2D surface above the ground (m)
     sizes: vec4<f32>,
-    // x: blades per patch; y: segments per blade (= strip rows); z: strips per orientation;
-    // w: polygons along a strip
+    // x: blades per patch; y: segments per blade (= strip rows; the shader reads `SEGMENTS`);
+    // z: strips per orientation; w: polygons along a strip
     counts: vec4<u32>,
     // x: postures K per kind; y: variants; z: 2D grid cells per patch side; w: the kind strip
     // edges bend as
@@ -22,6 +22,11 @@ struct Params {
     // x, y: patches of the tiling along x and z (its corner is the terrain's, `globals.terrain.xy`)
     tiling: vec4<u32>,
 }
+
+// Segments per blade (= strip rows), set when the pipelines are created: the blades' and the
+// strip edges' walks loop over them, and a loop bounded by a uniform is re-specialised by
+// lavapipe every time its pipeline is bound (`grassbench::shaders::uniform_bound_loops`).
+override SEGMENTS: u32;
 
 // One drawn patch in one representation (`Entry` in `src/frame.rs`).
 struct Entry {
@@ -84,7 +89,7 @@ struct VsOut {
 // nearest pre-computed postures of its kind (twin of `receiver::angles_at`).
 fn bend_angle(kind: u32, index: f32, i: u32) -> f32 {
     let k = params.more.x;
-    let n = params.counts.y;
+    let n = SEGMENTS;
     let u = (clamp(index, -1.0, 1.0) + 1.0) * f32(k - 1u) * 0.5;
     let row = min(u32(floor(u)), k - 2u);
     let at = (kind * k + row) * n + i;
@@ -131,7 +136,7 @@ fn strip_xz(e: Entry, k: u32, u: f32) -> vec2<f32> {
 // entry `e`, the `slot`-th strips entry: the edge's receiver bends it like a blade (twin of
 // `morph::edge_point`).
 fn edge_point(e: Entry, slot: u32, k: u32, j: u32, level: f32) -> vec3<f32> {
-    let n = params.counts.y;
+    let n = SEGMENTS;
     let xz = strip_xz(e, k, f32(j) / f32(params.counts.w));
     let r = edge_receivers[(slot * params.counts.z + k) * (params.counts.w + 1u) + j];
     let d = vec3(r.x, 0.0, r.y);
@@ -152,7 +157,7 @@ fn strip_surface(e: Entry, slot: u32, k: u32, uv: vec2<f32>) -> vec3<f32> {
     let c = params.counts.w;
     let x = clamp(uv.x, 0.0, 1.0) * f32(c);
     let j = min(u32(floor(x)), c - 1u);
-    let level = clamp(uv.y, 0.0, 1.0) * f32(params.counts.y);
+    let level = clamp(uv.y, 0.0, 1.0) * f32(SEGMENTS);
     return mix(edge_point(e, slot, k, j, level), edge_point(e, slot, k, j + 1u, level), x - f32(j));
 }
 
@@ -191,7 +196,7 @@ fn vs_strip(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     out.density = grass_density(strip_xz(e, k, f32(j) / f32(c)));
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;
-    out.uv = vec2(f32(j) / f32(c), 1.0 - f32(row) / f32(params.counts.y));
+    out.uv = vec2(f32(j) / f32(c), 1.0 - f32(row) / f32(SEGMENTS));
     out.opacity = e.opacity;
     out.layer = (e.variant * 2u + o) * s + k;
     out.albedo = lod_tint(vec3(1.0), vec3(0.0, 1.0, 0.0));
@@ -290,7 +295,7 @@ fn morphed(p: vec3<f32>, e: Entry, b: u32, level: u32) -> vec3<f32> {
         return p;
     }
     let o = e.flags & 1u;
-    let uv = painted[(b * 2u + o) * (params.counts.y + 1u) + level];
+    let uv = painted[(b * 2u + o) * (SEGMENTS + 1u) + level];
     let strips = entries[e.link];
     let painted_at = strip_surface(strips, e.link - params.bases.x, blades[b].strips[o], uv);
     return mix(p, painted_at, e.morph);
@@ -300,7 +305,7 @@ fn morphed(p: vec3<f32>, e: Entry, b: u32, level: u32) -> vec3<f32> {
 fn vs_blade(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> VsOut {
     var out: VsOut;
     let count = params.counts.x;
-    let n = params.counts.y;
+    let n = SEGMENTS;
     let e = entries[instance / count];
     let b = e.variant * count + instance % count;
     let blade = blades[b];

@@ -65,6 +65,8 @@ pub struct Statics<'a> {
     pub flat_layers: &'a [Vec<Image>],
     /// The variant each patch of the tiling shows, row-major.
     pub variants: &'a [u32],
+    /// Segments per blade (strip rows): the shader's `SEGMENTS`, which its loops run to.
+    pub segments: u32,
 }
 
 /// A storage buffer that grows to what a frame needs.
@@ -217,6 +219,7 @@ impl Gpu {
             blend: Some(wgpu::BlendState::ALPHA_BLENDING),
             write_mask: wgpu::ColorWrites::ALL,
         })];
+        let constants = [("SEGMENTS", f64::from(statics.segments))];
         let pipeline = |label: &str, entry: (&str, &str), topology| {
             let mut spec = shaders::PipelineSpec::new(
                 label,
@@ -228,6 +231,7 @@ impl Gpu {
             );
             spec.primitive.topology = topology;
             spec.targets = &blend;
+            spec.constants = &constants;
             shaders::render_pipeline(device, &spec)
         };
         let blade_pipeline = pipeline(

@@ -282,6 +282,7 @@ impl Technique for Perbet {
                 strip_layers: &strip_layers,
                 flat_layers: &flat_layers,
                 variants: &tiling.variants,
+                segments: layout.segments,
             },
             sizes.capacity,
         );

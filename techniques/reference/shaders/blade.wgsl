@@ -7,7 +7,7 @@ const MAX_LEVELS: u32 = 16u;
 struct Params {
     color_root: vec4<f32>,      // rgb; w: colour variation
     color_tip: vec4<f32>,       // rgb; w: translucency
-    // x: segments; y: wind response (rad per m/s); z: bend profile exponent; w: max bend (rad)
+    // x: segments (the shader reads `SEGMENTS`); y: wind response (rad per m/s); z: bend profile exponent; w: max bend (rad)
     shape: vec4<f32>,
     // x: flutter amount; yzw: unused
     motion: vec4<f32>,
@@ -19,6 +19,11 @@ struct Params {
 }
 
 @group(1) @binding(0) var<uniform> params: Params;
+
+// Segments per blade, set when the pipeline is created: the vertex shader walks up to its
+// vertex's level, and a loop bounded by a uniform is re-specialised by lavapipe every time its
+// pipeline is bound (`grassbench::shaders::uniform_bound_loops`).
+override SEGMENTS: u32;
 
 struct Blade {
     @location(0) root_threshold: vec4<f32>,  // root xyz, density threshold
@@ -73,7 +78,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     // blade never stretches however far it bends. The tilt from vertical at relative height s
     // is bend * s^profile: a large profile keeps the base stiff and bends the top (Bakay
     // Sec. 3's "stiffness"); the powers come from the level table.
-    let n = u32(params.shape.x);
+    let n = SEGMENTS;
     let level = min(min(vertex / 2u, n), MAX_LEVELS - 1u);
     let seg = height / f32(n);
     var p = root;

@@ -300,16 +300,20 @@ impl Technique for Reference {
             .scene_gpu
             .pipeline_layout(device, "reference", &[&layout]);
         let buffers = [Some(BladeInstance::LAYOUT)];
+        let constants = [("SEGMENTS", f64::from(params.segments))];
         let pipeline = shaders::render_pipeline(
             device,
-            &shaders::PipelineSpec::new(
-                "reference blades",
-                &pipeline_layout,
-                &module,
-                ("vs_main", "fs_main"),
-                &buffers,
-                ctx.sample_count,
-            ),
+            &shaders::PipelineSpec {
+                constants: &constants,
+                ..shaders::PipelineSpec::new(
+                    "reference blades",
+                    &pipeline_layout,
+                    &module,
+                    ("vs_main", "fs_main"),
+                    &buffers,
+                    ctx.sample_count,
+                )
+            },
         );
         Ok(Self {
             blade_count: instances.len() as u32,
