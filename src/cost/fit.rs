@@ -250,9 +250,10 @@ mod tests {
     /// Lavapipe-like costs in ms per unit, in the order of `Term::ALL`: fixed 0.5 ms,
     /// vertex 20 ns, primitive 100 ns, fragments 5 / 8 / 6 ns, draw 5 µs, compute 20 ns,
     /// upload 2 ms per MB, texel load 3 ns, texture sample 10 ns, transcendentals 2 / 0.6 /
-    /// 0.6 ns (vertex, fragment, compute).
+    /// 0.6 ns (vertex, fragment, compute), scalar operations 0.2 / 0.03 / 0.1 ns.
     const TRUE_MS: [f64; Term::ALL.len()] = [
-        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 1e-5, 2e-6, 6e-7, 6e-7,
+        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 1e-5, 2e-6, 6e-7, 6e-7, 2e-7,
+        3e-8, 1e-7,
     ];
 
     fn time(costs: &[f64; Term::ALL.len()], w: &Work) -> f64 {
@@ -293,8 +294,8 @@ mod tests {
             assert!((got / want - 1.0).abs() < 1e-9, "{t}: {got} against {want}");
         }
         assert!(c.fit.relative_rms_residual < 1e-12, "{:?}", c.fit);
-        assert_eq!(c.fit.samples, 56);
-        assert_eq!(c.fit.workloads.len(), 14);
+        assert_eq!(c.fit.samples, 68);
+        assert_eq!(c.fit.workloads.len(), 17);
         assert_eq!(c.size, "640x360");
     }
 
@@ -307,20 +308,22 @@ mod tests {
             let c = fit(&samples, "640x360", "synthetic").unwrap();
             for (t, (got, want)) in Term::ALL.iter().zip(fitted_ms(&c).iter().zip(TRUE_MS)) {
                 let se = c.get(*t).standard_error * t.ms_per_stored_unit();
-                // Within 5 standard errors: the largest error over 200 seeds (2800 costs)
-                // was 4.1 SE.
+                // Within 5 standard errors: the largest error over 200 seeds (3400 costs)
+                // was 3.5 SE.
                 assert!(
                     (got - want).abs() < 5.0 * se,
                     "seed {seed}, {t}: {got} against {want}, SE {se}"
                 );
-                // And each cost is back within 20%, the compute transcendental's within 25%:
-                // the worst over 200 seeds was 19.7% for it (its workload's time is half
-                // the spring update's here, a quarter on lavapipe), 12.9% (the primitive's
-                // and the vertex transcendental's), 7.9-11.9% for the others.
-                let bound = if *t == Term::ComputeTranscendental {
-                    0.25
+                // And each cost is back within 25%, the vertex's and the compute
+                // transcendental's within 35%: the worst over 200 seeds was 31.0% for the
+                // vertex (every vertex workload's arithmetic moves with its vertices but the
+                // chain's), 29.0% for the compute transcendental (its workload's time is half
+                // the spring update's here, a quarter on lavapipe), 22.1% for the opaque
+                // fragment, 7.4-20.9% for the others.
+                let bound = if matches!(*t, Term::Vertex | Term::ComputeTranscendental) {
+                    0.35
                 } else {
-                    0.20
+                    0.25
                 };
                 assert!(
                     (got / want - 1.0).abs() < bound,
@@ -328,7 +331,7 @@ mod tests {
                 );
             }
             // The residual reports the noise: its RMS is 5.8%, of which the fit absorbs
-            // some (14 costs from 56 samples); over 200 seeds it read 3.7% to 6.0%.
+            // some (17 costs from 68 samples); over 200 seeds it read 3.9% to 5.9%.
             let r = c.fit.relative_rms_residual;
             assert!((0.02..0.08).contains(&r), "seed {seed}: residual {r}");
         }
@@ -339,6 +342,7 @@ mod tests {
         // A grass-like frame: 100k blades of 11 vertices (9 triangles), 2 M fragments of
         // each kind, 20 draws, 500k compute invocations, 2 MB uploaded, 8 M texel loads,
         // 6 M texture samples, 10 transcendentals a vertex, 1 a fragment and 4 a compute
+        // invocation, 200 scalar operations a vertex, 100 a fragment and 500 a compute
         // invocation.
         let mix = Work {
             vertex_invocations: 1.1e6,
@@ -354,12 +358,15 @@ mod tests {
             vertex_transcendentals: 1.1e7,
             fragment_transcendentals: 6e6,
             compute_transcendentals: 2e6,
+            vertex_arithmetic: 2.2e8,
+            fragment_arithmetic: 6e8,
+            compute_arithmetic: 2.5e8,
         };
         let truth = time(&TRUE_MS, &mix);
         for seed in 1..=20 {
             let c = fit(&synthetic(&TRUE_MS, 0.10, seed), "640x360", "synthetic").unwrap();
             let p = c.predict(&mix);
-            // Within 10%: the worst over 200 seeds was 4.5%, against ±10% noise on each
+            // Within 10%: the worst over 200 seeds was 4.0%, against ±10% noise on each
             // sample (the costs' errors partly cancel in a mix).
             assert!(
                 (p.total_ms / truth - 1.0).abs() < 0.10,
@@ -401,7 +408,10 @@ mod tests {
                 unidentifiable,
                 message,
             }) => {
-                assert_eq!(unidentifiable, ["compute", "compute_transcendental"]);
+                assert_eq!(
+                    unidentifiable,
+                    ["compute", "compute_transcendental", "compute_arithmetic"]
+                );
                 assert!(
                     message.contains("`compute` is never exercised"),
                     "{message}"
@@ -427,6 +437,12 @@ mod tests {
                 synthetic(&TRUE_MS, 0.0, 2)
                     .into_iter()
                     .filter(|s| s.workload == "primitives" || s.workload == "upload"),
+            )
+            // More samples than the 17 costs.
+            .chain(
+                synthetic(&TRUE_MS, 0.0, 3)
+                    .into_iter()
+                    .filter(|s| s.workload == "primitives"),
             )
             .collect();
         match fit(&samples, "640x360", "synthetic") {

@@ -78,9 +78,9 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches and transcendentals are the
+/// construction: draws, uploads, submissions). Texture fetches, transcendentals and arithmetic are the
 /// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 11] = [
+pub const COUNTED_TERMS: [Term; 14] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -92,6 +92,9 @@ pub const COUNTED_TERMS: [Term; 11] = [
     Term::VertexTranscendental,
     Term::FragmentTranscendental,
     Term::ComputeTranscendental,
+    Term::VertexArithmetic,
+    Term::FragmentArithmetic,
+    Term::ComputeArithmetic,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -35,9 +35,13 @@ pub(super) struct Rig<'g> {
     fetch_layers: [crate::shaders::RenderPipeline; 2],
     /// The `transcendentals_*` workloads': off-screen strips, opaque layers.
     math: [crate::shaders::RenderPipeline; 2],
+    /// The `arithmetic_*` workloads': off-screen strips, opaque layers.
+    arithmetic: [crate::shaders::RenderPipeline; 2],
     springs: crate::shaders::ComputePipeline,
     /// The `transcendentals_compute` workload's.
     springs_math: crate::shaders::ComputePipeline,
+    /// The `arithmetic_compute` workload's.
+    springs_arithmetic: crate::shaders::ComputePipeline,
     upload: wgpu::Buffer,
     upload_data: Vec<u8>,
 }
@@ -48,11 +52,7 @@ impl<'g> Rig<'g> {
         let target = RenderTarget::new(gpu, size, false)?;
         let device = &gpu.device;
         gpu.scoped("building the unit-cost workloads", || {
-            let module = shaders::module(
-                device,
-                "unit costs",
-                include_str!("../shaders/unit_costs.wgsl"),
-            );
+            let module = shaders::module(device, "unit costs", workloads::SHADER);
             let uniform_entry = |binding, visibility| wgpu::BindGroupLayoutEntry {
                 binding,
                 visibility,
@@ -258,6 +258,30 @@ impl<'g> Rig<'g> {
                         None,
                     ),
                 ],
+                arithmetic: [
+                    pipeline(
+                        "unit costs: vertex arithmetic",
+                        "vs_arithmetic",
+                        "fs_opaque",
+                        true,
+                        None,
+                    ),
+                    pipeline(
+                        "unit costs: fragment arithmetic",
+                        "vs_layer",
+                        "fs_arithmetic",
+                        true,
+                        None,
+                    ),
+                ],
+                springs_arithmetic: shaders::compute_pipeline(
+                    device,
+                    "unit costs: compute arithmetic",
+                    &layout,
+                    &module,
+                    "cs_arithmetic",
+                    &[],
+                ),
                 springs: shaders::compute_pipeline(
                     device,
                     "unit costs: compute",
@@ -393,12 +417,14 @@ impl<'g> Rig<'g> {
                 match w.shape {
                     Shape::OffscreenStrips { instances }
                     | Shape::SubpixelStrips { instances }
-                    | Shape::MathStrips { instances } => {
+                    | Shape::MathStrips { instances }
+                    | Shape::ArithmeticStrips { instances } => {
                         pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
                     }
                     Shape::Layers { layers, .. }
                     | Shape::FetchLayers { layers, .. }
-                    | Shape::MathLayers { layers } => {
+                    | Shape::MathLayers { layers }
+                    | Shape::ArithmeticLayers { layers } => {
                         let end = layer_base.saturating_add(layers);
                         pass.draw(0..workloads::LAYER_VERTICES, layer_base..end);
                         layer_base = end;
@@ -415,10 +441,10 @@ impl<'g> Rig<'g> {
                 }
             }
         }
-        let dispatches: Vec<(&Workload, u32, bool)> = mix
+        let dispatches: Vec<(&Workload, u32, workloads::Chain)> = mix
             .iter()
             .filter_map(|w| match w.shape {
-                Shape::Compute { groups, math } => Some((w, groups, math)),
+                Shape::Compute { groups, chain } => Some((w, groups, chain)),
                 _ => None,
             })
             .collect();
@@ -429,11 +455,11 @@ impl<'g> Rig<'g> {
             });
             pass.set_bind_group(0, &self.group0, &[]);
             pass.set_bind_group(1, &self.group1, &[]);
-            for (w, groups, math) in dispatches {
-                let pipeline = if math {
-                    &self.springs_math
-                } else {
-                    &self.springs
+            for (w, groups, chain) in dispatches {
+                let pipeline = match chain {
+                    workloads::Chain::None => &self.springs,
+                    workloads::Chain::Transcendental => &self.springs_math,
+                    workloads::Chain::Arithmetic => &self.springs_arithmetic,
                 };
                 pass.set_pipeline(pipeline);
                 let query = counter.as_deref_mut().and_then(|c| {
@@ -468,6 +494,8 @@ impl<'g> Rig<'g> {
             Shape::FetchLayers { sample, .. } => Some(&self.fetch_layers[usize::from(sample)]),
             Shape::MathStrips { .. } => Some(&self.math[0]),
             Shape::MathLayers { .. } => Some(&self.math[1]),
+            Shape::ArithmeticStrips { .. } => Some(&self.arithmetic[0]),
+            Shape::ArithmeticLayers { .. } => Some(&self.arithmetic[1]),
             Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => None,
         }
     }

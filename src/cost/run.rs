@@ -31,6 +31,11 @@ impl Work {
             fragment_transcendentals: f(r.fragment_transcendentals).unwrap_or(0.0)
                 + f(r.background_fragment_transcendentals).unwrap_or(0.0),
             compute_transcendentals: f(r.compute_transcendentals).unwrap_or(0.0),
+            vertex_arithmetic: f(r.vertex_arithmetic).unwrap_or(0.0)
+                + f(r.background_vertex_arithmetic).unwrap_or(0.0),
+            fragment_arithmetic: f(r.fragment_arithmetic).unwrap_or(0.0)
+                + f(r.background_fragment_arithmetic).unwrap_or(0.0),
+            compute_arithmetic: f(r.compute_arithmetic).unwrap_or(0.0),
         })
     }
 
@@ -73,6 +78,9 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_vertex_transcendental_ms = p.map(|p| p.vertex_transcendental_ms);
     run.model_fragment_transcendental_ms = p.map(|p| p.fragment_transcendental_ms);
     run.model_compute_transcendental_ms = p.map(|p| p.compute_transcendental_ms);
+    run.model_vertex_arithmetic_ms = p.map(|p| p.vertex_arithmetic_ms);
+    run.model_fragment_arithmetic_ms = p.map(|p| p.fragment_arithmetic_ms);
+    run.model_compute_arithmetic_ms = p.map(|p| p.compute_arithmetic_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

@@ -66,6 +66,16 @@ pub struct UnitCosts {
     /// Per transcendental built-in evaluated by a compute shader, ns (0 before the term).
     #[serde(default)]
     pub compute_transcendental_ns: UnitCost,
+    /// Per scalar arithmetic operation of a vertex shader, ns (0 in calibrations made before
+    /// the term).
+    #[serde(default)]
+    pub vertex_arithmetic_ns: UnitCost,
+    /// Per scalar arithmetic operation of a fragment shader, ns (0 before the term).
+    #[serde(default)]
+    pub fragment_arithmetic_ns: UnitCost,
+    /// Per scalar arithmetic operation of a compute shader, ns (0 before the term).
+    #[serde(default)]
+    pub compute_arithmetic_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -108,6 +118,15 @@ pub struct Prediction {
     /// Compute shaders' transcendental built-ins, ms.
     #[serde(default)]
     pub compute_transcendental_ms: f64,
+    /// Vertex shaders' scalar arithmetic, ms.
+    #[serde(default)]
+    pub vertex_arithmetic_ms: f64,
+    /// Fragment shaders' scalar arithmetic, ms.
+    #[serde(default)]
+    pub fragment_arithmetic_ms: f64,
+    /// Compute shaders' scalar arithmetic, ms.
+    #[serde(default)]
+    pub compute_arithmetic_ms: f64,
 }
 
 impl UnitCosts {
@@ -146,6 +165,9 @@ impl UnitCosts {
             vertex_transcendental_ns: stored(Term::VertexTranscendental),
             fragment_transcendental_ns: stored(Term::FragmentTranscendental),
             compute_transcendental_ns: stored(Term::ComputeTranscendental),
+            vertex_arithmetic_ns: stored(Term::VertexArithmetic),
+            fragment_arithmetic_ns: stored(Term::FragmentArithmetic),
+            compute_arithmetic_ns: stored(Term::ComputeArithmetic),
             fit,
         }
     }
@@ -167,6 +189,9 @@ impl UnitCosts {
             Term::VertexTranscendental => self.vertex_transcendental_ns,
             Term::FragmentTranscendental => self.fragment_transcendental_ns,
             Term::ComputeTranscendental => self.compute_transcendental_ns,
+            Term::VertexArithmetic => self.vertex_arithmetic_ns,
+            Term::FragmentArithmetic => self.fragment_arithmetic_ns,
+            Term::ComputeArithmetic => self.compute_arithmetic_ns,
         }
     }
 
@@ -194,6 +219,9 @@ impl UnitCosts {
             vertex_transcendental_ms: ms(Term::VertexTranscendental),
             fragment_transcendental_ms: ms(Term::FragmentTranscendental),
             compute_transcendental_ms: ms(Term::ComputeTranscendental),
+            vertex_arithmetic_ms: ms(Term::VertexArithmetic),
+            fragment_arithmetic_ms: ms(Term::FragmentArithmetic),
+            compute_arithmetic_ms: ms(Term::ComputeArithmetic),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -268,6 +296,9 @@ impl Prediction {
             Term::VertexTranscendental => self.vertex_transcendental_ms,
             Term::FragmentTranscendental => self.fragment_transcendental_ms,
             Term::ComputeTranscendental => self.compute_transcendental_ms,
+            Term::VertexArithmetic => self.vertex_arithmetic_ms,
+            Term::FragmentArithmetic => self.fragment_arithmetic_ms,
+            Term::ComputeArithmetic => self.compute_arithmetic_ms,
         }
     }
 
@@ -297,9 +328,11 @@ mod tests {
     fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
         // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
         // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns, sample 6 ns,
-        // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute).
+        // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
+        // 0.05 / 0.1 ns.
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 2e-6, 5e-7, 1e-6,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 2e-6, 5e-7, 1e-6, 2e-7,
+            5e-8, 1e-7,
         ]
         .map(cost);
         let costs = UnitCosts::from_ms_per_unit(
@@ -325,16 +358,19 @@ mod tests {
             vertex_transcendentals: 1e6,
             fragment_transcendentals: 4e6,
             compute_transcendentals: 0.0,
+            vertex_arithmetic: 5e6,
+            fragment_arithmetic: 2e7,
+            compute_arithmetic: 0.0,
         };
         let p = costs.predict(&work);
-        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1.2 + 2 + 2 + 0 ms.
+        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1.2 + 2 + 2 + 0 + 1 + 1 + 0 ms.
         let expected = [
-            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.2, 2.0, 2.0, 0.0,
+            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.2, 2.0, 2.0, 0.0, 1.0, 1.0, 0.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 14.11).abs() < 1e-9);
+        assert!((p.total_ms - 16.11).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -353,7 +389,8 @@ mod tests {
     #[test]
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 2e-6, 5e-7, 1e-6,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 2e-6, 5e-7, 1e-6, 2e-7,
+            5e-8, 1e-7,
         ]
         .map(cost);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -371,7 +408,9 @@ mod tests {
         let mut skipping = false;
         for l in text.lines() {
             if l.starts_with('[') {
-                skipping = l.starts_with("[texture_") || l.contains("_transcendental_ns]");
+                skipping = l.starts_with("[texture_")
+                    || l.contains("_transcendental_ns]")
+                    || l.contains("_arithmetic_ns]");
             }
             if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
                 older.push_str(l);
@@ -387,5 +426,7 @@ mod tests {
         assert_eq!(read.vertex_transcendental_ns, UnitCost::default());
         assert!(!older.contains("texture_sample_ns"), "{older}");
         assert!(!older.contains("transcendental_ns"), "{older}");
+        assert_eq!(read.compute_arithmetic_ns, UnitCost::default());
+        assert!(!older.contains("arithmetic_ns"), "{older}");
     }
 }

@@ -45,6 +45,15 @@ pub struct Work {
     /// Transcendental built-ins evaluated by compute shaders.
     #[serde(default)]
     pub compute_transcendentals: f64,
+    /// Scalar arithmetic operations of vertex shaders ([`crate::shaders::ShaderOps`]).
+    #[serde(default)]
+    pub vertex_arithmetic: f64,
+    /// Scalar arithmetic operations of fragment shaders.
+    #[serde(default)]
+    pub fragment_arithmetic: f64,
+    /// Scalar arithmetic operations of compute shaders.
+    #[serde(default)]
+    pub compute_arithmetic: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -86,6 +95,9 @@ impl Work {
             vertex_transcendentals: ops.vertex.transcendentals as f64,
             fragment_transcendentals: ops.fragment.transcendentals as f64,
             compute_transcendentals: ops.compute.transcendentals as f64,
+            vertex_arithmetic: ops.vertex.arithmetic as f64,
+            fragment_arithmetic: ops.fragment.arithmetic as f64,
+            compute_arithmetic: ops.compute.arithmetic as f64,
         }
     }
 
@@ -107,6 +119,9 @@ impl Work {
             Term::VertexTranscendental => self.vertex_transcendentals,
             Term::FragmentTranscendental => self.fragment_transcendentals,
             Term::ComputeTranscendental => self.compute_transcendentals,
+            Term::VertexArithmetic => self.vertex_arithmetic,
+            Term::FragmentArithmetic => self.fragment_arithmetic,
+            Term::ComputeArithmetic => self.compute_arithmetic,
         }
     }
 
@@ -126,6 +141,9 @@ impl Work {
             vertex_transcendentals: self.vertex_transcendentals * k,
             fragment_transcendentals: self.fragment_transcendentals * k,
             compute_transcendentals: self.compute_transcendentals * k,
+            vertex_arithmetic: self.vertex_arithmetic * k,
+            fragment_arithmetic: self.fragment_arithmetic * k,
+            compute_arithmetic: self.compute_arithmetic * k,
         }
     }
 
@@ -155,6 +173,9 @@ impl std::ops::Add for Work {
             vertex_transcendentals: self.vertex_transcendentals + o.vertex_transcendentals,
             fragment_transcendentals: self.fragment_transcendentals + o.fragment_transcendentals,
             compute_transcendentals: self.compute_transcendentals + o.compute_transcendentals,
+            vertex_arithmetic: self.vertex_arithmetic + o.vertex_arithmetic,
+            fragment_arithmetic: self.fragment_arithmetic + o.fragment_arithmetic,
+            compute_arithmetic: self.compute_arithmetic + o.compute_arithmetic,
         }
     }
 }
@@ -179,12 +200,16 @@ mod tests {
             vertex_transcendentals: 8.0,
             fragment_transcendentals: 9.5,
             compute_transcendentals: 10.0,
+            vertex_arithmetic: 11.5,
+            fragment_arithmetic: 12.0,
+            compute_arithmetic: 13.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
-                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 7.0, 8.0, 9.5, 10.0
+                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 7.0, 8.0, 9.5, 10.0, 11.5, 12.0,
+                13.0
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -223,24 +248,28 @@ mod tests {
             ..PipelineCost::default()
         };
         // 11 vertices fetching 8 texels each (a bilinear height and wind) with 5
-        // transcendentals, 100 fragments sampling 3 textures and loading 1 texel with 1
-        // transcendental, 64 compute invocations loading 4 with 2.
+        // transcendentals and 40 scalar operations, 100 fragments sampling 3 textures and
+        // loading 1 texel with 1 transcendental and 20 operations, 64 compute invocations
+        // loading 4 with 2 and 3.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
             vertex_ops: ShaderOps {
                 loads: 8,
                 samples: 0,
                 transcendentals: 5,
+                arithmetic: 40,
             },
             fragment_ops: ShaderOps {
                 loads: 1,
                 samples: 3,
                 transcendentals: 1,
+                arithmetic: 20,
             },
             compute_ops: ShaderOps {
                 loads: 4,
                 samples: 0,
                 transcendentals: 2,
+                arithmetic: 3,
             },
         };
         assert_eq!(
@@ -255,6 +284,9 @@ mod tests {
                 vertex_transcendentals: 55.0,
                 fragment_transcendentals: 100.0,
                 compute_transcendentals: 128.0,
+                vertex_arithmetic: 440.0,
+                fragment_arithmetic: 2000.0,
+                compute_arithmetic: 192.0,
                 ..Work::default()
             }
         );

@@ -14,15 +14,47 @@
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² texture per fragment | texel load, texture sample |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
+//! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
 //!
 //! Every sample is one submission holding one render pass that clears the target, plus the
 //! workload: the fixed term is what a frame with nothing in it costs at this size.
+//!
+//! The transcendentals of each shader are constants checked against the shader; its scalar
+//! arithmetic, a few dozen to a few hundred operations an entry point, is read off the
+//! shader itself ([`SHADER`], `crate::shaders::entry_ops`), as the harness reads every
+//! technique's.
+
+use std::sync::OnceLock;
 
 use super::{FragmentKind, Term, Work};
+use crate::shaders::ShaderOps;
 use crate::target::Size;
+
+/// The workloads' shader (composed with the prelude when built).
+pub const SHADER: &str = include_str!("../shaders/unit_costs.wgsl");
+
+/// What one invocation of `entry` of [`SHADER`] does ([`ShaderOps`]; nothing for an entry
+/// point it lacks: `tests` checks every one the workloads use is there).
+pub fn shader_ops(entry: &str) -> ShaderOps {
+    static OPS: OnceLock<Vec<(String, ShaderOps)>> = OnceLock::new();
+    OPS.get_or_init(|| {
+        naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
+            .map(|m| crate::shaders::entry_ops(&m))
+            .unwrap_or_default()
+    })
+    .iter()
+    .find(|(e, _)| e == entry)
+    .map(|(_, o)| *o)
+    .unwrap_or_default()
+}
+
+/// Scalar arithmetic of one invocation of `entry` of [`SHADER`], as a count.
+fn arithmetic(entry: &str) -> f64 {
+    shader_ops(entry).arithmetic as f64
+}
 
 /// Vertices of a blade strip (5 segments: `2 · 5 + 1`).
 pub const STRIP_VERTICES: u32 = 11;
@@ -50,6 +82,10 @@ pub const SAMPLES_PER_FRAGMENT: u32 = 8;
 /// shader: 10 links of a `sin`, a `cos` and a `pow`, each fed by the last, so none is folded
 /// away), on top of what their shaders do without it.
 pub const MATH_CHAIN: u32 = 30;
+/// Scalar operations the `arithmetic_*` workloads' chain adds (`arith_chain` in the shader:
+/// 16 links of a `vec4` multiply-add, a `vec4` scaled and their maximum, 16 operations each,
+/// each link fed by the last and mixing the components, so none is folded away).
+pub const ARITHMETIC_CHAIN: u32 = 256;
 /// Transcendentals of one invocation of the strips' vertex shader (`blade_vertex`: the
 /// facing's `cos` and `sin`, the sway's `sin`).
 pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
@@ -72,6 +108,12 @@ pub enum Shape {
     /// `instances` off-screen blade strips whose vertex shader also evaluates
     /// [`MATH_CHAIN`] transcendentals, in one instanced draw.
     MathStrips {
+        /// Instances.
+        instances: u32,
+    },
+    /// `instances` off-screen blade strips whose vertex shader also does
+    /// [`ARITHMETIC_CHAIN`] scalar operations, in one instanced draw.
+    ArithmeticStrips {
         /// Instances.
         instances: u32,
     },
@@ -101,6 +143,12 @@ pub enum Shape {
         /// Layers.
         layers: u32,
     },
+    /// `layers` opaque full-screen triangles whose fragments each also do
+    /// [`ARITHMETIC_CHAIN`] scalar operations.
+    ArithmeticLayers {
+        /// Layers.
+        layers: u32,
+    },
     /// `draws` draw calls of one sub-pixel triangle each.
     Draws {
         /// Draw calls.
@@ -110,14 +158,25 @@ pub enum Shape {
     Compute {
         /// Workgroups wanted (the dispatch may round up, see [`dispatch_grid`]).
         groups: u32,
-        /// Whether each invocation also evaluates [`MATH_CHAIN`] transcendentals.
-        math: bool,
+        /// What each invocation does beyond the spring update.
+        chain: Chain,
     },
     /// `bytes` written with `queue.write_buffer`.
     Upload {
         /// Bytes.
         bytes: u64,
     },
+}
+
+/// What a workload's shaders do beyond their plain version.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Chain {
+    /// Nothing.
+    None,
+    /// [`MATH_CHAIN`] transcendentals.
+    Transcendental,
+    /// [`ARITHMETIC_CHAIN`] scalar operations.
+    Arithmetic,
 }
 
 /// One sample's workload.
@@ -138,6 +197,17 @@ pub fn dispatch_grid(groups: u32) -> (u32, u32) {
     (groups.div_ceil(y), y)
 }
 
+impl Chain {
+    /// The compute entry point of the spring update with this chain.
+    pub fn compute_entry(self) -> &'static str {
+        match self {
+            Self::None => "cs_springs",
+            Self::Transcendental => "cs_math",
+            Self::Arithmetic => "cs_arithmetic",
+        }
+    }
+}
+
 impl Workload {
     /// The work this workload does on a `size` target, known in advance.
     pub fn work(&self, size: Size) -> Work {
@@ -145,34 +215,53 @@ impl Workload {
         let none = Work::default();
         match self.shape {
             Shape::Empty => none,
-            Shape::OffscreenStrips { instances } => Work {
-                vertex_invocations: f64::from(instances) * f64::from(STRIP_VERTICES),
-                draw_calls: 1.0,
-                vertex_transcendentals: f64::from(instances)
-                    * f64::from(STRIP_VERTICES * STRIP_VERTEX_TRANSCENDENTALS),
-                ..none
-            },
-            Shape::MathStrips { instances } => Work {
-                vertex_transcendentals: f64::from(instances)
-                    * f64::from(STRIP_VERTICES * (STRIP_VERTEX_TRANSCENDENTALS + MATH_CHAIN)),
-                ..Workload {
-                    shape: Shape::OffscreenStrips { instances },
-                    ..*self
+            Shape::OffscreenStrips { instances } => {
+                let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
+                Work {
+                    vertex_invocations: vertices,
+                    draw_calls: 1.0,
+                    vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
+                    vertex_arithmetic: vertices * arithmetic("vs_offscreen"),
+                    ..none
                 }
-                .work(size)
-            },
-            Shape::SubpixelStrips { instances } => Work {
-                vertex_invocations: f64::from(instances) * f64::from(STRIP_VERTICES),
-                primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
-                draw_calls: 1.0,
-                vertex_transcendentals: f64::from(instances)
-                    * f64::from(STRIP_VERTICES * STRIP_VERTEX_TRANSCENDENTALS),
-                ..none
-            },
+            }
+            Shape::MathStrips { instances } => {
+                let base = self.offscreen_strips(instances, size);
+                Work {
+                    vertex_transcendentals: base.vertex_invocations
+                        * f64::from(STRIP_VERTEX_TRANSCENDENTALS + MATH_CHAIN),
+                    vertex_arithmetic: base.vertex_invocations * arithmetic("vs_math"),
+                    ..base
+                }
+            }
+            Shape::ArithmeticStrips { instances } => {
+                let base = self.offscreen_strips(instances, size);
+                Work {
+                    vertex_arithmetic: base.vertex_invocations * arithmetic("vs_arithmetic"),
+                    ..base
+                }
+            }
+            Shape::SubpixelStrips { instances } => {
+                let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
+                Work {
+                    vertex_invocations: vertices,
+                    primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
+                    draw_calls: 1.0,
+                    vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
+                    vertex_arithmetic: vertices * arithmetic("vs_subpixel"),
+                    ..none
+                }
+            }
             Shape::Layers { kind, layers } => {
                 let fragments = pixels * f64::from(layers);
+                let vertices = f64::from(layers) * f64::from(LAYER_VERTICES);
+                let fragment_entry = match kind {
+                    FragmentKind::Opaque => "fs_opaque",
+                    FragmentKind::AlphaTested => "fs_alpha_tested",
+                    FragmentKind::Blended => "fs_blended",
+                };
                 Work {
-                    vertex_invocations: f64::from(layers) * f64::from(LAYER_VERTICES),
+                    vertex_invocations: vertices,
                     primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
                     fragments_opaque: if kind == FragmentKind::Opaque {
                         fragments
@@ -191,6 +280,8 @@ impl Workload {
                     },
                     draw_calls: 1.0,
                     fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
+                    vertex_arithmetic: vertices * arithmetic("vs_layer"),
+                    fragment_arithmetic: fragments * arithmetic(fragment_entry),
                     ..none
                 }
             }
@@ -199,6 +290,14 @@ impl Workload {
                 Work {
                     fragment_transcendentals: base.fragments_opaque
                         * f64::from(LIT_TRANSCENDENTALS + MATH_CHAIN),
+                    fragment_arithmetic: base.fragments_opaque * arithmetic("fs_math"),
+                    ..base
+                }
+            }
+            Shape::ArithmeticLayers { layers } => {
+                let base = self.opaque_layers(layers, size);
+                Work {
+                    fragment_arithmetic: base.fragments_opaque * arithmetic("fs_arithmetic"),
                     ..base
                 }
             }
@@ -206,7 +305,9 @@ impl Workload {
                 // The opaque layers' work, plus each fragment's fetches.
                 let base = self.opaque_layers(layers, size);
                 let per = |n: u32| base.fragments_opaque * f64::from(n);
+                let entry = if sample { "fs_samples" } else { "fs_loads" };
                 Work {
+                    fragment_arithmetic: base.fragments_opaque * arithmetic(entry),
                     texture_loads: if sample { 0.0 } else { per(LOADS_PER_FRAGMENT) },
                     texture_samples: if sample {
                         per(SAMPLES_PER_FRAGMENT)
@@ -216,24 +317,28 @@ impl Workload {
                     ..base
                 }
             }
-            Shape::Draws { draws } => Work {
-                vertex_invocations: f64::from(draws) * f64::from(DRAW_VERTICES),
-                primitives: f64::from(draws),
-                draw_calls: f64::from(draws),
-                vertex_transcendentals: f64::from(draws)
-                    * f64::from(DRAW_VERTICES * STRIP_VERTEX_TRANSCENDENTALS),
-                ..none
-            },
-            Shape::Compute { groups, math } => {
+            Shape::Draws { draws } => {
+                let vertices = f64::from(draws) * f64::from(DRAW_VERTICES);
+                Work {
+                    vertex_invocations: vertices,
+                    primitives: f64::from(draws),
+                    draw_calls: f64::from(draws),
+                    vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
+                    vertex_arithmetic: vertices * arithmetic("vs_subpixel"),
+                    ..none
+                }
+            }
+            Shape::Compute { groups, chain } => {
                 let (x, y) = dispatch_grid(groups);
                 let invocations = f64::from(x) * f64::from(y) * f64::from(WORKGROUP_SIZE);
                 Work {
                     compute_invocations: invocations,
-                    compute_transcendentals: if math {
+                    compute_transcendentals: if chain == Chain::Transcendental {
                         invocations * f64::from(MATH_CHAIN)
                     } else {
                         0.0
                     },
+                    compute_arithmetic: invocations * arithmetic(chain.compute_entry()),
                     ..none
                 }
             }
@@ -242,6 +347,16 @@ impl Workload {
                 ..none
             },
         }
+    }
+
+    /// The work of `instances` off-screen strips: what the strips that evaluate more per
+    /// vertex add to.
+    fn offscreen_strips(&self, instances: u32, size: Size) -> Work {
+        Workload {
+            shape: Shape::OffscreenStrips { instances },
+            ..*self
+        }
+        .work(size)
     }
 
     /// The work of `layers` opaque layers on a `size` target: what the layers that fetch or
@@ -287,7 +402,13 @@ impl Workload {
             Shape::MathStrips { instances } => Shape::MathStrips {
                 instances: instances.saturating_mul(k),
             },
+            Shape::ArithmeticStrips { instances } => Shape::ArithmeticStrips {
+                instances: instances.saturating_mul(k),
+            },
             Shape::MathLayers { layers } => Shape::MathLayers {
+                layers: layers.saturating_mul(k),
+            },
+            Shape::ArithmeticLayers { layers } => Shape::ArithmeticLayers {
                 layers: layers.saturating_mul(k),
             },
             Shape::Layers { kind, layers } => Shape::Layers {
@@ -301,9 +422,9 @@ impl Workload {
             Shape::Draws { draws } => Shape::Draws {
                 draws: draws.saturating_mul(k),
             },
-            Shape::Compute { groups, math } => Shape::Compute {
+            Shape::Compute { groups, chain } => Shape::Compute {
                 groups: groups.saturating_mul(k),
-                math,
+                chain,
             },
             other @ (Shape::Empty | Shape::Upload { .. }) => other,
         };
@@ -386,7 +507,25 @@ pub fn families() -> Vec<Workload> {
             term: Term::ComputeTranscendental,
             shape: Shape::Compute {
                 groups: 4_096,
-                math: true,
+                chain: Chain::Transcendental,
+            },
+        },
+        Workload {
+            name: "arithmetic_vertex",
+            term: Term::VertexArithmetic,
+            shape: Shape::ArithmeticStrips { instances: 5_000 },
+        },
+        Workload {
+            name: "arithmetic_fragment",
+            term: Term::FragmentArithmetic,
+            shape: Shape::ArithmeticLayers { layers: 1 },
+        },
+        Workload {
+            name: "arithmetic_compute",
+            term: Term::ComputeArithmetic,
+            shape: Shape::Compute {
+                groups: 4_096,
+                chain: Chain::Arithmetic,
             },
         },
         Workload {
@@ -399,7 +538,7 @@ pub fn families() -> Vec<Workload> {
             term: Term::Compute,
             shape: Shape::Compute {
                 groups: 4_096,
-                math: false,
+                chain: Chain::None,
             },
         },
         Workload {
@@ -470,6 +609,11 @@ mod tests {
                 fragments_blended: 3.0 * 640.0 * 360.0,
                 draw_calls: 1.0,
                 fragment_transcendentals: 3.0 * 640.0 * 360.0 * f64::from(LIT_TRANSCENDENTALS),
+                vertex_arithmetic: 9.0 * shader_ops("vs_layer").arithmetic as f64,
+                fragment_arithmetic: 3.0
+                    * 640.0
+                    * 360.0
+                    * shader_ops("fs_blended").arithmetic as f64,
                 ..Work::default()
             }
         );
@@ -480,15 +624,20 @@ mod tests {
         // The cost model counts a pipeline's fetches and transcendentals from its shader
         // (`shaders::ops`): the calibration's own shaders must count to the work known in
         // advance.
-        let wgsl = crate::shaders::compose(include_str!("../shaders/unit_costs.wgsl"));
+        let wgsl = crate::shaders::compose(SHADER);
         let ops = crate::shaders::entry_ops(&naga::front::wgsl::parse_str(&wgsl).unwrap());
-        let of = |entry: &str| ops.iter().find(|(e, _)| e == entry).map(|(_, f)| *f);
+        // The fetches and transcendentals (the arithmetic is read off the shader: below).
+        let of = |entry: &str| {
+            ops.iter()
+                .find(|(e, _)| e == entry)
+                .map(|(_, f)| (f.loads, f.samples, f.transcendentals))
+        };
         let count = |loads: u32, samples: u32, transcendentals: u32| {
-            Some(crate::shaders::ShaderOps {
-                loads: u64::from(loads),
-                samples: u64::from(samples),
-                transcendentals: u64::from(transcendentals),
-            })
+            Some((
+                u64::from(loads),
+                u64::from(samples),
+                u64::from(transcendentals),
+            ))
         };
         let lit = LIT_TRANSCENDENTALS;
         assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
@@ -511,6 +660,41 @@ mod tests {
         for entry in ["fs_opaque", "fs_alpha_tested", "fs_blended"] {
             assert_eq!(of(entry), count(0, 0, lit), "{entry}");
         }
+        // The arithmetic chains add what they say, and nothing else costly: the workloads
+        // read the rest of each shader's arithmetic off it (`shader_ops`), so every entry
+        // point they use must be there.
+        assert_eq!(of("vs_arithmetic"), of("vs_offscreen"));
+        assert_eq!(of("fs_arithmetic"), of("fs_opaque"));
+        assert_eq!(of("cs_arithmetic"), of("cs_springs"));
+        for (chain, base) in [
+            ("vs_arithmetic", "vs_offscreen"),
+            ("fs_arithmetic", "fs_opaque"),
+            ("cs_arithmetic", "cs_springs"),
+        ] {
+            // The chain, and the few operations that feed it and use its result.
+            let added = shader_ops(chain).arithmetic - shader_ops(base).arithmetic;
+            let chain_ops = u64::from(ARITHMETIC_CHAIN);
+            assert!(
+                (chain_ops..chain_ops + 16).contains(&added),
+                "{chain}: {added} more operations than {base}"
+            );
+        }
+        for entry in [
+            "vs_offscreen",
+            "vs_subpixel",
+            "vs_math",
+            "vs_layer",
+            "fs_opaque",
+            "fs_alpha_tested",
+            "fs_blended",
+            "fs_math",
+            "fs_loads",
+            "fs_samples",
+            "cs_springs",
+            "cs_math",
+        ] {
+            assert!(shader_ops(entry).arithmetic > 0, "{entry}");
+        }
     }
 
     #[test]
@@ -525,7 +709,7 @@ mod tests {
             term: Term::Compute,
             shape: Shape::Compute {
                 groups: 200_001,
-                math: false,
+                chain: Chain::None,
             },
         };
         assert_eq!(w.work(SIZE).compute_invocations, 50_001.0 * 4.0 * 64.0);

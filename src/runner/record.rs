@@ -136,6 +136,22 @@ pub struct FrameRecord {
     /// Transcendental built-ins the core's background fragment shaders evaluated.
     #[serde(default)]
     pub background_fragment_transcendentals: Option<u64>,
+    /// Scalar arithmetic operations of the technique's vertex shaders, counted the same way
+    /// ([`crate::shaders::ShaderOps::arithmetic`]: a loop's body once).
+    #[serde(default)]
+    pub vertex_arithmetic: Option<u64>,
+    /// Scalar arithmetic operations of the technique's fragment shaders.
+    #[serde(default)]
+    pub fragment_arithmetic: Option<u64>,
+    /// Scalar arithmetic operations of the technique's compute shaders.
+    #[serde(default)]
+    pub compute_arithmetic: Option<u64>,
+    /// Scalar arithmetic operations of the core's background vertex shaders.
+    #[serde(default)]
+    pub background_vertex_arithmetic: Option<u64>,
+    /// Scalar arithmetic operations of the core's background fragment shaders.
+    #[serde(default)]
+    pub background_fragment_arithmetic: Option<u64>,
     /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
     /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
     /// [`crate::GpuContext::write_texture`].
@@ -329,6 +345,15 @@ pub struct RunSummary {
     /// Median transcendental built-ins evaluated by the technique's compute shaders.
     #[serde(default)]
     pub compute_transcendentals: Option<u64>,
+    /// Median scalar arithmetic operations of the technique's vertex shaders.
+    #[serde(default)]
+    pub vertex_arithmetic: Option<u64>,
+    /// Median scalar arithmetic operations of the technique's fragment shaders.
+    #[serde(default)]
+    pub fragment_arithmetic: Option<u64>,
+    /// Median scalar arithmetic operations of the technique's compute shaders.
+    #[serde(default)]
+    pub compute_arithmetic: Option<u64>,
     /// Median overdraw: the technique's fragment invocations per target pixel.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -385,6 +410,15 @@ pub struct RunSummary {
     /// Predicted ms of compute shaders' transcendental built-ins.
     #[serde(default)]
     pub model_compute_transcendental_ms: Option<f64>,
+    /// Predicted ms of vertex shaders' scalar arithmetic.
+    #[serde(default)]
+    pub model_vertex_arithmetic_ms: Option<f64>,
+    /// Predicted ms of fragment shaders' scalar arithmetic.
+    #[serde(default)]
+    pub model_fragment_arithmetic_ms: Option<f64>,
+    /// Predicted ms of compute shaders' scalar arithmetic.
+    #[serde(default)]
+    pub model_compute_arithmetic_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -489,6 +523,9 @@ impl RunSummary {
             vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
             fragment_transcendentals: median_u64(&|r| r.fragment_transcendentals),
             compute_transcendentals: median_u64(&|r| r.compute_transcendentals),
+            vertex_arithmetic: median_u64(&|r| r.vertex_arithmetic),
+            fragment_arithmetic: median_u64(&|r| r.fragment_arithmetic),
+            compute_arithmetic: median_u64(&|r| r.compute_arithmetic),
             overdraw: median(&|r| r.overdraw),
             fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
@@ -513,6 +550,9 @@ impl RunSummary {
             model_vertex_transcendental_ms: None,
             model_fragment_transcendental_ms: None,
             model_compute_transcendental_ms: None,
+            model_vertex_arithmetic_ms: None,
+            model_fragment_arithmetic_ms: None,
+            model_compute_arithmetic_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -718,6 +758,11 @@ mod tests {
             background_texture_samples: None,
             background_vertex_transcendentals: None,
             background_fragment_transcendentals: None,
+            vertex_arithmetic: None,
+            fragment_arithmetic: None,
+            compute_arithmetic: None,
+            background_vertex_arithmetic: None,
+            background_fragment_arithmetic: None,
             upload_bytes: None,
             overdraw: None,
             grass_pixels: None,

@@ -84,6 +84,9 @@ mod tests {
                 loads: 1,
                 samples: 0,
                 transcendentals: 1,
+                // `p.xy`'s conversion to `vec2<i32>` (2), the product with `exp` (4), the
+                // alpha test (1).
+                arithmetic: 7,
             })
         );
         // An unparsable source has neither.

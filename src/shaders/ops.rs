@@ -1,7 +1,8 @@
 //! What one shader invocation does that costs more than the invocation itself: its
 //! `textureLoad`s (a texel, unfiltered), its `textureSample*`s (filtered: bilinear or
-//! trilinear, mip level chosen) and its transcendental built-ins (`sin`, `cos`, `pow`, `exp`,
-//! ...), counted in the entry point's naga IR and in every function it calls. On a software
+//! trilinear, mip level chosen), its transcendental built-ins (`sin`, `cos`, `pow`, `exp`,
+//! ...) and its scalar arithmetic (each operation once per vector component), counted in the
+//! entry point's naga IR and in every function it calls. On a software
 //! rasteriser each is a stretch of code per invocation (a transcendental is a polynomial
 //! with range reduction, tens of instructions), and the pipeline statistics count
 //! invocations, not what happens inside one; these counts let the cost model price that
@@ -27,6 +28,13 @@ pub struct ShaderOps {
     pub samples: u64,
     /// Calls of transcendental built-ins ([`is_transcendental`]).
     pub transcendentals: u64,
+    /// Scalar arithmetic operations: every arithmetic, comparison, logical, selection,
+    /// conversion and non-transcendental built-in expression, once per component of the
+    /// widest of its operands and result (a `vec3` sum is 3, a `mat4x4` times a `vec4` 16, a
+    /// `dot` of two `vec3`s 3). What a SIMD rasteriser runs per invocation, one lane each
+    /// (lavapipe keeps each component of a vector in a register of its own). Loads, stores,
+    /// swizzles and constructors are not counted: they move values.
+    pub arithmetic: u64,
 }
 
 /// Whether `f` is a transcendental built-in: trigonometric and hyperbolic functions and
@@ -65,6 +73,7 @@ impl ShaderOps {
             loads: self.loads * n,
             samples: self.samples * n,
             transcendentals: self.transcendentals * n,
+            arithmetic: self.arithmetic * n,
         }
     }
 }
@@ -77,23 +86,100 @@ impl std::ops::Add for ShaderOps {
             loads: self.loads + o.loads,
             samples: self.samples + o.samples,
             transcendentals: self.transcendentals + o.transcendentals,
+            arithmetic: self.arithmetic + o.arithmetic,
         }
     }
 }
 
 /// The costly operations of every entry point of `module` (a parsed, composed shader), by name.
 pub fn entry_ops(module: &naga::Module) -> Vec<(String, ShaderOps)> {
+    // The expressions' types, which say how many components each operates on; a module the
+    // validator rejects (the device will say why) counts one per expression.
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(module)
+    .ok();
+    let types = Types {
+        module,
+        info: info.as_ref(),
+    };
     let mut memo = HashMap::new();
     module
         .entry_points
         .iter()
-        .map(|e| {
+        .enumerate()
+        .map(|(i, e)| {
+            let function_info = info.as_ref().map(|m| m.get_entry_point(i));
             (
                 e.name.clone(),
-                function_ops(module, &e.function, &mut memo, 0),
+                function_ops(&types, &e.function, function_info, &mut memo, 0),
             )
         })
         .collect()
+}
+
+/// A module and, where it validated, its expressions' types.
+struct Types<'a> {
+    module: &'a naga::Module,
+    info: Option<&'a naga::valid::ModuleInfo>,
+}
+
+/// Scalar components of expression `e`'s value (1 for scalars, and where its type is unknown).
+fn components(
+    types: &Types<'_>,
+    info: Option<&naga::valid::FunctionInfo>,
+    e: naga::Handle<naga::Expression>,
+) -> u64 {
+    let Some(info) = info else { return 1 };
+    match info[e].ty.inner_with(&types.module.types) {
+        naga::TypeInner::Vector { size, .. } => *size as u64,
+        naga::TypeInner::Matrix { columns, rows, .. } => *columns as u64 * *rows as u64,
+        _ => 1,
+    }
+}
+
+/// Scalar operations of expression `e` of `function` ([`ShaderOps::arithmetic`]).
+fn arithmetic_of(
+    types: &Types<'_>,
+    function: &naga::Function,
+    info: Option<&naga::valid::FunctionInfo>,
+    e: naga::Handle<naga::Expression>,
+) -> u64 {
+    use naga::Expression as E;
+    let width = |operands: &[naga::Handle<naga::Expression>]| {
+        operands
+            .iter()
+            .map(|&o| components(types, info, o))
+            .chain([components(types, info, e)])
+            .max()
+            .unwrap_or(1)
+    };
+    match &function.expressions[e] {
+        E::Binary { left, right, .. } => width(&[*left, *right]),
+        E::Unary { expr, .. } | E::As { expr, .. } => width(&[*expr]),
+        E::Select {
+            condition,
+            accept,
+            reject,
+        } => width(&[*condition, *accept, *reject]),
+        E::Relational { argument, .. } => width(&[*argument]),
+        E::Math {
+            fun,
+            arg,
+            arg1,
+            arg2,
+            arg3,
+        } if !is_transcendental(*fun) => {
+            let operands: Vec<_> = [Some(*arg), *arg1, *arg2, *arg3]
+                .into_iter()
+                .flatten()
+                .collect();
+            width(&operands)
+        }
+        _ => 0,
+    }
 }
 
 /// Deepest call chain followed (WGSL forbids recursion; this only bounds a malformed IR).
@@ -102,15 +188,24 @@ const MAX_CALL_DEPTH: u32 = 64;
 /// The operations of `function`: its own image and math expressions plus its callees', once
 /// per call site.
 fn function_ops(
-    module: &naga::Module,
+    types: &Types<'_>,
     function: &naga::Function,
+    info: Option<&naga::valid::FunctionInfo>,
     memo: &mut HashMap<naga::Handle<naga::Function>, ShaderOps>,
     depth: u32,
 ) -> ShaderOps {
-    let own = function
+    let module = types.module;
+    let arithmetic = function
         .expressions
         .iter()
-        .fold(ShaderOps::default(), |acc, (_, e)| match e {
+        .map(|(h, _)| arithmetic_of(types, function, info, h))
+        .sum();
+    let own = function.expressions.iter().fold(
+        ShaderOps {
+            arithmetic,
+            ..ShaderOps::default()
+        },
+        |acc, (_, e)| match e {
             naga::Expression::ImageSample { .. } => ShaderOps {
                 samples: acc.samples + 1,
                 ..acc
@@ -124,14 +219,22 @@ fn function_ops(
                 ..acc
             },
             _ => acc,
-        });
+        },
+    );
     let mut calls = Vec::new();
     collect_calls(&function.body, &mut calls);
     calls.into_iter().fold(own, |acc, callee| {
         let ops = match memo.get(&callee) {
             Some(f) => *f,
             None if depth < MAX_CALL_DEPTH => {
-                let f = function_ops(module, &module.functions[callee], memo, depth + 1);
+                let callee_info = types.info.map(|m| &m[callee]);
+                let f = function_ops(
+                    types,
+                    &module.functions[callee],
+                    callee_info,
+                    memo,
+                    depth + 1,
+                );
                 memo.insert(callee, f);
                 f
             }
@@ -212,23 +315,29 @@ mod tests {
     #[test]
     fn calls_count_per_call_site_and_loops_and_branches_once() {
         // Two calls of a two-load function; `sin` and `cos` (`sqrt` and `length` are not
-        // transcendental).
+        // transcendental). Arithmetic: each `height` call's `vec2<i32>` sum (2) and scalar
+        // sum (1), the two `i32` and one `f32` conversions, the heights' sum, `sqrt`,
+        // `length` of a `vec2` (2) and their sum.
         assert_eq!(
             of("vs"),
             ShaderOps {
                 loads: 4,
                 samples: 0,
                 transcendentals: 2,
+                arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
             }
         );
         // tint: 1 sample + height's 2 loads + a `pow`; the branch's sample; the loop body's
-        // sample and `exp2` once.
+        // sample and `exp2` once. Arithmetic: tint's two `vec4` products (8) and height's 3;
+        // the branch's test (1) and `vec4` sum (4); the loop's test and step (2) and its
+        // body's `vec4` product and sum (8), once.
         assert_eq!(
             of("fs"),
             ShaderOps {
                 loads: 2,
                 samples: 3,
                 transcendentals: 2,
+                arithmetic: 11 + 5 + 2 + 8,
             }
         );
         assert_eq!(of("plain"), ShaderOps::default());

@@ -90,6 +90,32 @@ fn vs_math(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> Vs
     return out;
 }
 
+// 256 scalar operations (ARITHMETIC_CHAIN): 16 links of a `vec4` multiply-add, the `vec4`
+// rotated and scaled, and the maximum of the two (4 + 4 + 4 + 4), each link fed by the last
+// and mixing its components, so none can be folded away. Four call sites of four: the cost
+// model counts a call's operations once per call site, as it runs.
+fn arith_link(v: vec4<f32>) -> vec4<f32> {
+    return max(v * vec4(1.0001, 0.9999, 1.0002, 0.9998) + vec4(0.001, -0.002, 0.003, -0.001), v.yzwx * 0.999);
+}
+
+fn arith4(v: vec4<f32>) -> vec4<f32> {
+    return arith_link(arith_link(arith_link(arith_link(v))));
+}
+
+fn arith_chain(v: vec4<f32>) -> vec4<f32> {
+    return arith4(arith4(arith4(arith4(v))));
+}
+
+// The off-screen strips with the arithmetic chain, whose result sets the depth (clamped into
+// the clip volume: still off screen, still rejected).
+@vertex
+fn vs_arithmetic(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    var out = offscreen_vertex(v, i);
+    let a = arith_chain(vec4(out.position.z, f32(v), 0.5, 0.25));
+    out.position.z = clamp(a.x * 0.01, 0.0, 1.0);
+    return out;
+}
+
 // Primitives without fragments: the strip folded into [0.1, 0.4]^2 of pixel i (in scan
 // order), so its 9 triangles (none degenerate) cover no pixel centre (at 0.5, 0.5).
 @vertex
@@ -155,6 +181,13 @@ fn fs_math(in: VsOut) -> @location(0) vec4<f32> {
     return vec4(lit(in) + 0.001 * x, 1.0);
 }
 
+// The opaque layer with the arithmetic chain, fed by the pixel.
+@fragment
+fn fs_arithmetic(in: VsOut) -> @location(0) vec4<f32> {
+    let a = arith_chain(vec4(in.position.xy * 0.01, 0.5, 0.25));
+    return vec4(lit(in) + 0.001 * a.x, 1.0);
+}
+
 // Texel loads: 32 `textureLoad`s per fragment (LOADS_PER_FRAGMENT, each its own call site: the
 // cost model counts fetches per call site), at the pixel's texel and neighbours of level 0,
 // added to the lit colour so none is dead code.
@@ -208,5 +241,15 @@ fn cs_math(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups
     let k = i % arrayLength(&springs);
     let p = springs[k];
     let rest = vec4(hash_f32(i), math_chain(p.x) * 0.01, 0.0, 1.0);
+    springs[k] = p + (rest - p) * 0.1;
+}
+
+// The spring step with the arithmetic chain, fed by the element, in its rest state.
+@compute @workgroup_size(64)
+fn cs_arithmetic(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    let k = i % arrayLength(&springs);
+    let p = springs[k];
+    let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u) + arith_chain(p).x * 0.01, 0.0, 1.0);
     springs[k] = p + (rest - p) * 0.1;
 }

@@ -11,7 +11,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use anyhow::Context as _;
-use grassbench::cost::workloads::{Shape, Workload};
+use grassbench::cost::workloads::{Chain, Shape, Workload};
 use grassbench::cost::{COUNTED_TERMS, FragmentKind, Options, Term, Work, calibrate_units_with};
 use grassbench::target::Size;
 use grassbench_tests::gpu;
@@ -118,14 +118,15 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             // seams between the clipped pieces shade twice: 1.25% more than the pixels at
             // 640x360 (2 columns of blocks per layer). No fragment from the sub-pixel or
             // off-screen triangles.
-            // Texture fetches and fragment transcendentals are the fragments times the
-            // shader's: the same.
+            // Texture fetches and fragment transcendentals and arithmetic are the fragments
+            // times the shader's: the same.
             Term::FragmentOpaque
             | Term::FragmentAlphaTested
             | Term::FragmentBlended
             | Term::TextureLoad
             | Term::TextureSample
-            | Term::FragmentTranscendental => {
+            | Term::FragmentTranscendental
+            | Term::FragmentArithmetic => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
             }
             // Vertex and compute invocations exactly.
@@ -136,8 +137,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
 /// fragment kind, a layer loading 32 texels a fragment and one sampling 8 times, 5k strips, a
-/// layer and 65k compute invocations with 30 more transcendentals each, 300 draws, 1M
-/// compute invocations, 8 MiB uploaded.
+/// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
+/// more scalar operations each, 300 draws, 1M compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
     let w = |name, term, shape| Workload { name, term, shape };
     let layers = |kind| Shape::Layers { kind, layers: 3 };
@@ -194,7 +195,25 @@ fn held_out_mix() -> Vec<Workload> {
             Term::ComputeTranscendental,
             Shape::Compute {
                 groups: 1_024,
-                math: true,
+                chain: Chain::Transcendental,
+            },
+        ),
+        w(
+            "vertex arithmetic",
+            Term::VertexArithmetic,
+            Shape::ArithmeticStrips { instances: 5_000 },
+        ),
+        w(
+            "fragment arithmetic",
+            Term::FragmentArithmetic,
+            Shape::ArithmeticLayers { layers: 1 },
+        ),
+        w(
+            "compute arithmetic",
+            Term::ComputeArithmetic,
+            Shape::Compute {
+                groups: 1_024,
+                chain: Chain::Arithmetic,
             },
         ),
         w("draws", Term::Draw, Shape::Draws { draws: 300 }),
@@ -203,7 +222,7 @@ fn held_out_mix() -> Vec<Workload> {
             Term::Compute,
             Shape::Compute {
                 groups: 16_384,
-                math: false,
+                chain: Chain::None,
             },
         ),
         w("upload", Term::Upload, Shape::Upload { bytes: 8 << 20 }),

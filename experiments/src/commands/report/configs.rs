@@ -159,12 +159,16 @@ impl Config {
                 r.model_draw_ms?,
                 r.model_compute_ms?,
                 r.model_upload_ms?,
-                // Runs modelled before the fetch and transcendental terms priced none.
+                // Runs modelled before the fetch, transcendental and arithmetic terms priced
+                // none.
                 r.model_texture_load_ms.unwrap_or(0.0),
                 r.model_texture_sample_ms.unwrap_or(0.0),
                 r.model_vertex_transcendental_ms.unwrap_or(0.0),
                 r.model_fragment_transcendental_ms.unwrap_or(0.0),
                 r.model_compute_transcendental_ms.unwrap_or(0.0),
+                r.model_vertex_arithmetic_ms.unwrap_or(0.0),
+                r.model_fragment_arithmetic_ms.unwrap_or(0.0),
+                r.model_compute_arithmetic_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

@@ -365,6 +365,9 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU vertex transcendentals",
     "GPU fragment transcendentals",
     "GPU compute transcendentals",
+    "GPU vertex arithmetic",
+    "GPU fragment arithmetic",
+    "GPU compute arithmetic",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
@@ -461,7 +464,7 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
         .draw()
         .map_err(plot_err)?;
     let palette = |k: usize| -> RGBColor {
-        const EXTRA: [RGBColor; 9] = [
+        const EXTRA: [RGBColor; 12] = [
             RGBColor(188, 189, 34),
             RGBColor(23, 190, 207),
             RGBColor(90, 90, 90),
@@ -471,6 +474,9 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
             RGBColor(197, 176, 213),
             RGBColor(196, 156, 148),
             RGBColor(247, 182, 210),
+            RGBColor(219, 219, 141),
+            RGBColor(158, 218, 229),
+            RGBColor(57, 59, 121),
         ];
         if k < COLORS.len() {
             COLORS[k]
