@@ -37,8 +37,11 @@
 //! vertex's own tilt and the flutter's `sin`: 5 transcendentals in the shader's text (the
 //! cost model's count, `results/cost_model`); no CPU work per frame. GPU memory: `48·B +
 //! 320` bytes. On a software rasteriser the cost is dominated by triangle setup, i.e. linear
-//! in `B·n`; the vertex shader's transcendentals come next (lavapipe: 1.9 ns each, against
-//! 14 ns for the rest of a vertex). Taking the per-level powers from the table and the facing
+//! in `B·n`; the vertex shader's transcendentals and arithmetic come next (lavapipe, at
+//! revision `bf07165`: 1.5 ns a transcendental, 0.04 ns a scalar operation, 238 of them a
+//! vertex, against 7-8 ns for the rest of a vertex). The segment count reaches the shader as
+//! a pipeline constant (`SEGMENTS`), so no driver re-specialises the vertex shader's walk
+//! when the uniform is bound ([`grassbench::shaders::uniform_bound_loops`]). Taking the per-level powers from the table and the facing
 //! and lean as vectors brought them from 13 to 5 a vertex and the reference's frames down
 //! 16-20 % on the three canonical scenes at both sizes (two sweeps of
 //! `experiments/cost_model.toml` on the same quiet host, 20 minutes apart, revision `8a00d08`
