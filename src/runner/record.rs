@@ -650,7 +650,7 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", Some(475.426746))
+            ("reference", Some(454.927483))
         );
         assert_eq!(reference.gpu_wall_ratio_to_reference, Some(1.0));
         assert_eq!(reference.gpu_ts_compute_ms_median, None);

@@ -131,18 +131,18 @@
 //! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
 //! 147 k → 123 k triangles.
 //!
-//! Measured (lavapipe, `results/bakay_table2/`, before issue 19 and the level of detail, with
-//! every shell everywhere and the texture 9 times the scene's density, `density_scale = 9`;
-//! not re-measured since): 8.0 ms of CPU rasteriser work per shell per frame at 640x480 and
-//! 17.3 ms at 1024x768 on average from 1 to 65 shells (the paper: 2.2 and 4.6 ms on a
-//! GeForce3); cost grows with the shells but not in equal steps (12.0, 9.8, 5.0 and 8.1 ms per
-//! added shell between 1, 9, 17, 33 and 65 shells at 640x480), and a little less than in
-//! proportion to pixels, as Sec. 4 found; at 1280x720 with 16 shells 1.7x faster than
-//! `reference`, far from the hoped-for 10x, because a software rasteriser has no cheap fill
-//! rate. With the scene's density most shell fragments fail the
-//! alpha test before the second lookup and the shading, so these figures are likely upper
-//! bounds now. 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not
-//! depend on its blades).
+//! Measured (lavapipe, `results/bakay_table2/`, revision `cfbfa08`, at the `paper` variant:
+//! every shell everywhere, box mipmaps, the point source; the reference in the same group):
+//! (866.9 − 22.3) / 64 = 13.2 ms per added shell at 640x480 and 27.7 ms at 1024x768, 2.1x
+//! for 2.56x the pixels (the paper: 2.2 and 4.6 ms on a GeForce3, 2.1x), every cell of
+//! Table 2 6.0-6.6x the paper's time: the table's shape is reproduced, only its scale is a
+//! software rasteriser's; faster than `reference` up to 17 shells at 640x480 (33 take its
+//! time, 1.01x) and 9 at 1024x768, because a software rasteriser has no cheap fill rate. (Before
+//! issue 19, with the texture 9 times the scene's density, the same table read 8.0 and
+//! 17.3 ms a shell: most shell fragments now fail the alpha test before the second lookup
+//! and the shading.)
+//! 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not depend on its
+//! blades).
 //!
 //! ## Known artifacts
 //! - Shells seen edge-on at grazing angles (the walker's horizon) show as separate layers with
