@@ -37,11 +37,8 @@ pub(super) struct Rig<'g> {
     math: [crate::shaders::RenderPipeline; 2],
     /// The `arithmetic_*` workloads': off-screen strips, opaque layers.
     arithmetic: [crate::shaders::RenderPipeline; 2],
-    springs: crate::shaders::ComputePipeline,
-    /// The `transcendentals_compute` workload's.
-    springs_math: crate::shaders::ComputePipeline,
-    /// The `arithmetic_compute` workload's.
-    springs_arithmetic: crate::shaders::ComputePipeline,
+    /// The spring update, plain and with each chain, in [`workloads::Chain::ALL`]'s order.
+    springs: [crate::shaders::ComputePipeline; workloads::Chain::ALL.len()],
     upload: wgpu::Buffer,
     upload_data: Vec<u8>,
 }
@@ -274,30 +271,11 @@ impl<'g> Rig<'g> {
                         None,
                     ),
                 ],
-                springs_arithmetic: shaders::compute_pipeline(
-                    device,
-                    "unit costs: compute arithmetic",
-                    &layout,
-                    &module,
-                    "cs_arithmetic",
-                    &[],
-                ),
-                springs: shaders::compute_pipeline(
-                    device,
-                    "unit costs: compute",
-                    &layout,
-                    &module,
-                    "cs_springs",
-                    &[],
-                ),
-                springs_math: shaders::compute_pipeline(
-                    device,
-                    "unit costs: compute transcendentals",
-                    &layout,
-                    &module,
-                    "cs_math",
-                    &[],
-                ),
+                springs: workloads::Chain::ALL.map(|chain| {
+                    let entry = chain.compute_entry();
+                    let label = format!("unit costs: {entry}");
+                    shaders::compute_pipeline(device, &label, &layout, &module, entry, &[])
+                }),
                 upload: device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("unit costs upload"),
                     size: UPLOAD_CAPACITY,
@@ -456,11 +434,8 @@ impl<'g> Rig<'g> {
             pass.set_bind_group(0, &self.group0, &[]);
             pass.set_bind_group(1, &self.group1, &[]);
             for (w, groups, chain) in dispatches {
-                let pipeline = match chain {
-                    workloads::Chain::None => &self.springs,
-                    workloads::Chain::Transcendental => &self.springs_math,
-                    workloads::Chain::Arithmetic => &self.springs_arithmetic,
-                };
+                // In bounds: one pipeline per variant (`Chain::ALL`).
+                let pipeline = &self.springs[chain as usize];
                 pass.set_pipeline(pipeline);
                 let query = counter.as_deref_mut().and_then(|c| {
                     c.next(w.name.to_owned(), PassKind::Compute, Some(pipeline.cost()))

@@ -198,6 +198,9 @@ pub fn dispatch_grid(groups: u32) -> (u32, u32) {
 }
 
 impl Chain {
+    /// Every chain, in declaration order (`chain as usize` is its position).
+    pub const ALL: [Self; 3] = [Self::None, Self::Transcendental, Self::Arithmetic];
+
     /// The compute entry point of the spring update with this chain.
     pub fn compute_entry(self) -> &'static str {
         match self {
@@ -694,6 +697,17 @@ mod tests {
             "cs_math",
         ] {
             assert!(shader_ops(entry).arithmetic > 0, "{entry}");
+        }
+    }
+
+    #[test]
+    fn chains_are_listed_in_their_order_with_their_entry_points() {
+        for (i, chain) in Chain::ALL.iter().enumerate() {
+            assert_eq!(*chain as usize, i);
+            assert!(
+                shader_ops(chain.compute_entry()).arithmetic > 0,
+                "{chain:?}"
+            );
         }
     }
 

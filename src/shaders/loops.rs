@@ -51,7 +51,11 @@ impl Taint {
     fn of(module: &naga::Module, function: &naga::Function) -> Self {
         let mut locals = HashSet::new();
         let mut stores = Vec::new();
-        collect_stores(&function.body, &mut stores);
+        super::walk::for_each_statement(&function.body, &mut |s| {
+            if let naga::Statement::Store { pointer, value } = s {
+                stores.push((*pointer, *value));
+            }
+        });
         loop {
             let expressions = expression_taint(module, function, &locals);
             let tainted = |e: naga::Handle<naga::Expression>| expressions[e.index()];
@@ -113,35 +117,6 @@ impl Taint {
                 reject,
             } => self.tainted(*condition) && (breaks(accept) || breaks(reject)),
             _ => false,
-        }
-    }
-}
-
-/// Every `Store` of `block` (nested blocks included): (pointer, value).
-fn collect_stores(
-    block: &naga::Block,
-    out: &mut Vec<(
-        naga::Handle<naga::Expression>,
-        naga::Handle<naga::Expression>,
-    )>,
-) {
-    use naga::Statement as S;
-    for statement in block.iter() {
-        match statement {
-            S::Store { pointer, value } => out.push((*pointer, *value)),
-            S::Block(b) => collect_stores(b, out),
-            S::If { accept, reject, .. } => {
-                collect_stores(accept, out);
-                collect_stores(reject, out);
-            }
-            S::Loop {
-                body, continuing, ..
-            } => {
-                collect_stores(body, out);
-                collect_stores(continuing, out);
-            }
-            S::Switch { cases, .. } => cases.iter().for_each(|c| collect_stores(&c.body, out)),
-            _ => {}
         }
     }
 }

@@ -10,6 +10,7 @@ mod layout;
 mod loops;
 mod ops;
 pub mod pipeline;
+mod walk;
 
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;

@@ -222,7 +222,11 @@ fn function_ops(
         },
     );
     let mut calls = Vec::new();
-    collect_calls(&function.body, &mut calls);
+    super::walk::for_each_statement(&function.body, &mut |s| {
+        if let naga::Statement::Call { function, .. } = s {
+            calls.push(*function);
+        }
+    });
     calls.into_iter().fold(own, |acc, callee| {
         let ops = match memo.get(&callee) {
             Some(f) => *f,
@@ -242,33 +246,6 @@ fn function_ops(
         };
         acc + ops
     })
-}
-
-/// Every function called in `block`, once per call site, nested blocks included.
-fn collect_calls(block: &naga::Block, out: &mut Vec<naga::Handle<naga::Function>>) {
-    use naga::Statement as S;
-    for statement in block.iter() {
-        match statement {
-            S::Call { function, .. } => out.push(*function),
-            S::Block(b) => collect_calls(b, out),
-            S::If { accept, reject, .. } => {
-                collect_calls(accept, out);
-                collect_calls(reject, out);
-            }
-            S::Switch { cases, .. } => {
-                for c in cases {
-                    collect_calls(&c.body, out);
-                }
-            }
-            S::Loop {
-                body, continuing, ..
-            } => {
-                collect_calls(body, out);
-                collect_calls(continuing, out);
-            }
-            _ => {}
-        }
-    }
 }
 
 #[cfg(test)]
