@@ -80,7 +80,7 @@ impl MeasuredSample {
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
 /// construction: draws, uploads, submissions). Texture fetches, transcendentals and arithmetic are the
 /// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 14] = [
+pub const COUNTED_TERMS: [Term; 15] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -89,6 +89,7 @@ pub const COUNTED_TERMS: [Term; 14] = [
     Term::Compute,
     Term::TextureLoad,
     Term::TextureSample,
+    Term::WideTextureSample,
     Term::VertexTranscendental,
     Term::FragmentTranscendental,
     Term::ComputeTranscendental,

@@ -31,8 +31,8 @@ pub(super) struct Rig<'g> {
     offscreen: crate::shaders::RenderPipeline,
     subpixel: crate::shaders::RenderPipeline,
     layers: [crate::shaders::RenderPipeline; 3],
-    /// Opaque layers fetching texels: loads, then samples.
-    fetch_layers: [crate::shaders::RenderPipeline; 2],
+    /// Opaque layers fetching texels, in [`workloads::Fetch::ALL`]'s order.
+    fetch_layers: [crate::shaders::RenderPipeline; workloads::Fetch::ALL.len()],
     /// The `transcendentals_*` workloads': off-screen strips, opaque layers.
     math: [crate::shaders::RenderPipeline; 2],
     /// The `arithmetic_*` workloads': off-screen strips, opaque layers.
@@ -49,7 +49,12 @@ impl<'g> Rig<'g> {
         let target = RenderTarget::new(gpu, size, false)?;
         let device = &gpu.device;
         gpu.scoped("building the unit-cost workloads", || {
-            let module = shaders::module(device, "unit costs", workloads::SHADER);
+            let module = shaders::module_with_formats(
+                device,
+                "unit costs",
+                workloads::SHADER,
+                workloads::TEXTURE_FORMATS,
+            );
             let uniform_entry = |binding, visibility| wgpu::BindGroupLayoutEntry {
                 binding,
                 visibility,
@@ -100,6 +105,16 @@ impl<'g> Rig<'g> {
                         binding: 3,
                         visibility: wgpu::ShaderStages::FRAGMENT,
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                        count: None,
+                    },
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 4,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
                         count: None,
                     },
                 ],
@@ -153,7 +168,8 @@ impl<'g> Rig<'g> {
                     wgpu::BindGroupEntry {
                         binding: 2,
                         resource: wgpu::BindingResource::TextureView(
-                            &fetch_texture(gpu).create_view(&Default::default()),
+                            &fetch_texture(gpu, wgpu::TextureFormat::Rgba8Unorm)
+                                .create_view(&Default::default()),
                         ),
                     },
                     wgpu::BindGroupEntry {
@@ -169,6 +185,13 @@ impl<'g> Rig<'g> {
                                 ..Default::default()
                             },
                         )),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(
+                            &fetch_texture(gpu, workloads::WIDE_FETCH_FORMAT)
+                                .create_view(&Default::default()),
+                        ),
                     },
                 ],
             });
@@ -235,10 +258,15 @@ impl<'g> Rig<'g> {
                         Some(wgpu::BlendState::ALPHA_BLENDING),
                     ),
                 ],
-                fetch_layers: [
-                    pipeline("unit costs: loads", "vs_layer", "fs_loads", true, None),
-                    pipeline("unit costs: samples", "vs_layer", "fs_samples", true, None),
-                ],
+                fetch_layers: workloads::Fetch::ALL.map(|fetch| {
+                    pipeline(
+                        "unit costs: fetches",
+                        "vs_layer",
+                        fetch.fragment_entry(),
+                        true,
+                        None,
+                    )
+                }),
                 math: [
                     pipeline(
                         "unit costs: vertex transcendentals",
@@ -466,7 +494,8 @@ impl<'g> Rig<'g> {
                     FragmentKind::Blended => 2,
                 }],
             ),
-            Shape::FetchLayers { sample, .. } => Some(&self.fetch_layers[usize::from(sample)]),
+            // In bounds: one pipeline per fetch (`Fetch::ALL`).
+            Shape::FetchLayers { fetch, .. } => Some(&self.fetch_layers[fetch as usize]),
             Shape::MathStrips { .. } => Some(&self.math[0]),
             Shape::MathLayers { .. } => Some(&self.math[1]),
             Shape::ArithmeticStrips { .. } => Some(&self.arithmetic[0]),
@@ -476,9 +505,10 @@ impl<'g> Rig<'g> {
     }
 }
 
-/// The `texture_*` workloads' texture: [`FETCH_TEXTURE_SIDE`]² RGBA8 with every mip level,
-/// hashed texels (no level is uniform, so no fetch can be folded away).
-fn fetch_texture(gpu: &GpuContext) -> wgpu::Texture {
+/// A `texture_*` workload's texture: [`FETCH_TEXTURE_SIDE`]² texels of `format` (`Rgba8Unorm`
+/// or `Rgba16Float`) with every mip level, hashed (no level is uniform, so no fetch can be
+/// folded away; the same values in either format).
+fn fetch_texture(gpu: &GpuContext, format: wgpu::TextureFormat) -> wgpu::Texture {
     let levels = FETCH_TEXTURE_SIDE.ilog2() + 1;
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("unit costs fetches"),
@@ -490,14 +520,27 @@ fn fetch_texture(gpu: &GpuContext) -> wgpu::Texture {
         mip_level_count: levels,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
+        format,
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
+    let half = format == wgpu::TextureFormat::Rgba16Float;
+    let texel_bytes = if half { 8 } else { 4 };
     let mut rng = crate::rng::Rng::new(0x7e7e);
     for level in 0..levels {
         let side = (FETCH_TEXTURE_SIDE >> level).max(1);
-        let data: Vec<u8> = (0..side * side * 4).map(|_| rng.next_u64() as u8).collect();
+        let data: Vec<u8> = (0..side * side * 4)
+            .flat_map(|_| {
+                let byte = rng.next_u64() as u8;
+                if half {
+                    half::f16::from_f32(f32::from(byte) / 255.0)
+                        .to_le_bytes()
+                        .to_vec()
+                } else {
+                    vec![byte]
+                }
+            })
+            .collect();
         gpu.queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
@@ -508,7 +551,7 @@ fn fetch_texture(gpu: &GpuContext) -> wgpu::Texture {
             &data,
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
-                bytes_per_row: Some(side * 4),
+                bytes_per_row: Some(side * texel_bytes),
                 rows_per_image: None,
             },
             wgpu::Extent3d {

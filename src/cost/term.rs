@@ -37,6 +37,12 @@ pub enum Term {
     /// on a software rasteriser the filtering (mip level, bilinear or trilinear taps) is code
     /// run per sample, several times a plain fragment's cost.
     TextureSample,
+    /// A filtered sample of a texture of wide texels (8 bytes or more: `Rgba16Float`;
+    /// `crate::shaders::ShaderOps::wide_samples`). Not among the units issue 20 lists: the
+    /// sample term is calibrated on an RGBA8 texture, and filtering wide texels costs more
+    /// (lavapipe: 5.4 ns against 3.2, a conversion per texel outside its 8-bit fast path;
+    /// half-rate filtering on most GPUs). boulanger's slices are `Rgba16Float`.
+    WideTextureSample,
     /// A transcendental built-in (`sin`, `cos`, `pow`, `exp`, ...) evaluated by a vertex
     /// shader invocation (counted from the shader, `crate::shaders::ShaderOps`). Not among
     /// the units issue 20 lists: the vertex term is calibrated on one vertex shader, and a
@@ -66,7 +72,7 @@ pub enum Term {
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 17] = [
+    pub const ALL: [Self; 18] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -78,6 +84,7 @@ impl Term {
         Self::Upload,
         Self::TextureLoad,
         Self::TextureSample,
+        Self::WideTextureSample,
         Self::VertexTranscendental,
         Self::FragmentTranscendental,
         Self::ComputeTranscendental,
@@ -100,6 +107,7 @@ impl Term {
             Self::Upload => "upload",
             Self::TextureLoad => "texture_load",
             Self::TextureSample => "texture_sample",
+            Self::WideTextureSample => "wide_texture_sample",
             Self::VertexTranscendental => "vertex_transcendental",
             Self::FragmentTranscendental => "fragment_transcendental",
             Self::ComputeTranscendental => "compute_transcendental",
@@ -123,6 +131,7 @@ impl Term {
             Self::Upload => "MB",
             Self::TextureLoad => "texel load",
             Self::TextureSample => "texture sample",
+            Self::WideTextureSample => "wide texture sample",
             Self::VertexTranscendental
             | Self::FragmentTranscendental
             | Self::ComputeTranscendental => "transcendental",

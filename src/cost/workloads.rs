@@ -12,7 +12,8 @@
 //! | `vertices` | instanced 11-vertex strips (a 5-segment blade) entirely off screen: the clipper rejects every triangle | vertex |
 //! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
-//! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² texture per fragment | texel load, texture sample |
+//! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
+//! | `wide_texture_samples` | the same samples of the same texels in [`WIDE_FETCH_FORMAT`] | wide texture sample |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
@@ -36,19 +37,39 @@ use crate::target::Size;
 /// The workloads' shader (composed with the prelude when built).
 pub const SHADER: &str = include_str!("../shaders/unit_costs.wgsl");
 
+/// Format of the `wide_texture_samples` workload's texture (the shader's `fetched_wide`): the
+/// format of boulanger's slice textures, 8 bytes a texel ([`crate::shaders::is_wide`]).
+pub const WIDE_FETCH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The shader's sampled textures with the formats bound to them, as its module is created
+/// with ([`crate::shaders::module_with_formats`]).
+pub const TEXTURE_FORMATS: &[(&str, wgpu::TextureFormat)] = &[
+    ("fetched", wgpu::TextureFormat::Rgba8Unorm),
+    ("fetched_wide", WIDE_FETCH_FORMAT),
+];
+
 /// What one invocation of `entry` of [`SHADER`] does ([`ShaderOps`]; nothing for an entry
 /// point it lacks: `tests` checks every one the workloads use is there).
 pub fn shader_ops(entry: &str) -> ShaderOps {
     static OPS: OnceLock<Vec<(String, ShaderOps)>> = OnceLock::new();
     OPS.get_or_init(|| {
         naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
-            .map(|m| crate::shaders::entry_ops(&m))
+            .map(|m| crate::shaders::entry_ops(&m, &wide_textures()))
             .unwrap_or_default()
     })
     .iter()
     .find(|(e, _)| e == entry)
     .map(|(_, o)| *o)
     .unwrap_or_default()
+}
+
+/// The names of [`TEXTURE_FORMATS`]'s textures of wide texels.
+fn wide_textures() -> Vec<&'static str> {
+    TEXTURE_FORMATS
+        .iter()
+        .filter(|(_, f)| crate::shaders::is_wide(*f))
+        .map(|(n, _)| *n)
+        .collect()
 }
 
 /// Scalar arithmetic of one invocation of `entry` of [`SHADER`], as a count.
@@ -76,7 +97,8 @@ pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
 /// tenth of a fragment on lavapipe (1 ns against 8 ns, quiet host), so it takes 32 of them to
 /// stand out of the fragment's own cost by more than the noise.
 pub const LOADS_PER_FRAGMENT: u32 = 32;
-/// `textureSample`s of one fragment of the `texture_samples` workload.
+/// `textureSample`s of one fragment of the `texture_samples` and `wide_texture_samples`
+/// workloads.
 pub const SAMPLES_PER_FRAGMENT: u32 = 8;
 /// Transcendental built-ins of the `transcendentals_*` workloads' chain (`math_chain` in the
 /// shader: 10 links of a `sin`, a `cos` and a `pow`, each fed by the last, so none is folded
@@ -129,11 +151,10 @@ pub enum Shape {
         /// Layers.
         layers: u32,
     },
-    /// `layers` opaque full-screen triangles whose fragments each take
-    /// [`SAMPLES_PER_FRAGMENT`] filtered samples (`sample`) or [`LOADS_PER_FRAGMENT`] loads.
+    /// `layers` opaque full-screen triangles whose fragments each fetch texels ([`Fetch`]).
     FetchLayers {
-        /// Filtered samples (`textureSample`) or plain loads (`textureLoad`).
-        sample: bool,
+        /// What each fragment fetches.
+        fetch: Fetch,
         /// Layers.
         layers: u32,
     },
@@ -166,6 +187,31 @@ pub enum Shape {
         /// Bytes.
         bytes: u64,
     },
+}
+
+/// What each fragment of a [`Shape::FetchLayers`] workload fetches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fetch {
+    /// [`LOADS_PER_FRAGMENT`] plain loads (`textureLoad`) of the RGBA8 texture.
+    Loads,
+    /// [`SAMPLES_PER_FRAGMENT`] trilinear samples (`textureSample`) of the RGBA8 texture.
+    Samples,
+    /// The same samples of the texture of wide texels ([`WIDE_FETCH_FORMAT`]).
+    WideSamples,
+}
+
+impl Fetch {
+    /// Every fetch, in declaration order (`fetch as usize` is its position).
+    pub const ALL: [Self; 3] = [Self::Loads, Self::Samples, Self::WideSamples];
+
+    /// The fragment entry point that fetches so.
+    pub fn fragment_entry(self) -> &'static str {
+        match self {
+            Self::Loads => "fs_loads",
+            Self::Samples => "fs_samples",
+            Self::WideSamples => "fs_wide_samples",
+        }
+    }
 }
 
 /// What a workload's shaders do beyond their plain version.
@@ -304,19 +350,21 @@ impl Workload {
                     ..base
                 }
             }
-            Shape::FetchLayers { sample, layers } => {
+            Shape::FetchLayers { fetch, layers } => {
                 // The opaque layers' work, plus each fragment's fetches.
                 let base = self.opaque_layers(layers, size);
-                let per = |n: u32| base.fragments_opaque * f64::from(n);
-                let entry = if sample { "fs_samples" } else { "fs_loads" };
-                Work {
-                    fragment_arithmetic: base.fragments_opaque * arithmetic(entry),
-                    texture_loads: if sample { 0.0 } else { per(LOADS_PER_FRAGMENT) },
-                    texture_samples: if sample {
-                        per(SAMPLES_PER_FRAGMENT)
+                let per = |n: u32, of: Fetch| {
+                    if fetch == of {
+                        base.fragments_opaque * f64::from(n)
                     } else {
                         0.0
-                    },
+                    }
+                };
+                Work {
+                    fragment_arithmetic: base.fragments_opaque * arithmetic(fetch.fragment_entry()),
+                    texture_loads: per(LOADS_PER_FRAGMENT, Fetch::Loads),
+                    texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::Samples),
+                    wide_texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::WideSamples),
                     ..base
                 }
             }
@@ -418,8 +466,8 @@ impl Workload {
                 kind,
                 layers: layers.saturating_mul(k),
             },
-            Shape::FetchLayers { sample, layers } => Shape::FetchLayers {
-                sample,
+            Shape::FetchLayers { fetch, layers } => Shape::FetchLayers {
+                fetch,
                 layers: layers.saturating_mul(k),
             },
             Shape::Draws { draws } => Shape::Draws {
@@ -483,7 +531,7 @@ pub fn families() -> Vec<Workload> {
             name: "texture_loads",
             term: Term::TextureLoad,
             shape: Shape::FetchLayers {
-                sample: false,
+                fetch: Fetch::Loads,
                 layers: 1,
             },
         },
@@ -491,7 +539,15 @@ pub fn families() -> Vec<Workload> {
             name: "texture_samples",
             term: Term::TextureSample,
             shape: Shape::FetchLayers {
-                sample: true,
+                fetch: Fetch::Samples,
+                layers: 1,
+            },
+        },
+        Workload {
+            name: "wide_texture_samples",
+            term: Term::WideTextureSample,
+            shape: Shape::FetchLayers {
+                fetch: Fetch::WideSamples,
                 layers: 1,
             },
         },
@@ -628,12 +684,15 @@ mod tests {
         // (`shaders::ops`): the calibration's own shaders must count to the work known in
         // advance.
         let wgsl = crate::shaders::compose(SHADER);
-        let ops = crate::shaders::entry_ops(&naga::front::wgsl::parse_str(&wgsl).unwrap());
+        let ops = crate::shaders::entry_ops(
+            &naga::front::wgsl::parse_str(&wgsl).unwrap(),
+            &wide_textures(),
+        );
         // The fetches and transcendentals (the arithmetic is read off the shader: below).
         let of = |entry: &str| {
             ops.iter()
                 .find(|(e, _)| e == entry)
-                .map(|(_, f)| (f.loads, f.samples, f.transcendentals))
+                .map(|(_, f)| (f.loads, f.samples + f.wide_samples, f.transcendentals))
         };
         let count = |loads: u32, samples: u32, transcendentals: u32| {
             Some((
@@ -645,6 +704,18 @@ mod tests {
         let lit = LIT_TRANSCENDENTALS;
         assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
         assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
+        assert_eq!(of("fs_wide_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
+        // Which samples are wide: the texture's, as its format says.
+        let wide = |entry: &str| shader_ops(entry).wide_samples;
+        assert_eq!(wide("fs_samples"), 0);
+        assert_eq!(wide("fs_wide_samples"), u64::from(SAMPLES_PER_FRAGMENT));
+        assert_eq!(
+            shader_ops("fs_wide_samples").arithmetic,
+            shader_ops("fs_samples").arithmetic
+        );
+        for fetch in Fetch::ALL {
+            assert_eq!(Fetch::ALL[fetch as usize], fetch);
+        }
         assert_eq!(of("fs_math"), count(0, 0, lit + MATH_CHAIN));
         assert_eq!(
             of("vs_math"),
@@ -693,6 +764,7 @@ mod tests {
             "fs_math",
             "fs_loads",
             "fs_samples",
+            "fs_wide_samples",
             "cs_springs",
             "cs_math",
         ] {

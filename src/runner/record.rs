@@ -109,16 +109,23 @@ pub struct FrameRecord {
     /// points ([`crate::shaders::PipelineCost`], a static count).
     #[serde(default)]
     pub texture_loads: Option<u64>,
-    /// Filtered texture samples (`textureSample*`) the technique's shaders took, counted the
-    /// same way.
+    /// Filtered texture samples (`textureSample*`) the technique's shaders took of textures
+    /// of narrow texels, counted the same way.
     #[serde(default)]
     pub texture_samples: Option<u64>,
+    /// Filtered texture samples of textures of wide texels (`Rgba16Float`:
+    /// [`crate::shaders::ShaderOps::wide_samples`]), counted the same way.
+    #[serde(default)]
+    pub wide_texture_samples: Option<u64>,
     /// Texels the core's background shaders read with `textureLoad`.
     #[serde(default)]
     pub background_texture_loads: Option<u64>,
     /// Filtered texture samples the core's background shaders took.
     #[serde(default)]
     pub background_texture_samples: Option<u64>,
+    /// Filtered samples of textures of wide texels the core's background shaders took.
+    #[serde(default)]
+    pub background_wide_texture_samples: Option<u64>,
     /// Transcendental built-ins (`sin`, `cos`, `pow`, `exp`, ...) the technique's vertex
     /// shaders evaluated, counted the same way ([`crate::shaders::ShaderOps`]: a loop's body
     /// once).
@@ -333,9 +340,12 @@ pub struct RunSummary {
     /// Median texels read with `textureLoad` by the technique's shaders.
     #[serde(default)]
     pub texture_loads: Option<u64>,
-    /// Median filtered texture samples of the technique's shaders.
+    /// Median filtered texture samples of the technique's shaders (narrow texels).
     #[serde(default)]
     pub texture_samples: Option<u64>,
+    /// Median filtered samples of textures of wide texels of the technique's shaders.
+    #[serde(default)]
+    pub wide_texture_samples: Option<u64>,
     /// Median transcendental built-ins evaluated by the technique's vertex shaders.
     #[serde(default)]
     pub vertex_transcendentals: Option<u64>,
@@ -401,6 +411,9 @@ pub struct RunSummary {
     /// The model's time for filtered texture samples, ms.
     #[serde(default)]
     pub model_texture_sample_ms: Option<f64>,
+    /// The model's time for filtered samples of textures of wide texels, ms.
+    #[serde(default)]
+    pub model_wide_texture_sample_ms: Option<f64>,
     /// Predicted ms of vertex shaders' transcendental built-ins.
     #[serde(default)]
     pub model_vertex_transcendental_ms: Option<f64>,
@@ -520,6 +533,7 @@ impl RunSummary {
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
             texture_loads: median_u64(&|r| r.texture_loads),
             texture_samples: median_u64(&|r| r.texture_samples),
+            wide_texture_samples: median_u64(&|r| r.wide_texture_samples),
             vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
             fragment_transcendentals: median_u64(&|r| r.fragment_transcendentals),
             compute_transcendentals: median_u64(&|r| r.compute_transcendentals),
@@ -547,6 +561,7 @@ impl RunSummary {
             model_upload_ms: None,
             model_texture_load_ms: None,
             model_texture_sample_ms: None,
+            model_wide_texture_sample_ms: None,
             model_vertex_transcendental_ms: None,
             model_fragment_transcendental_ms: None,
             model_compute_transcendental_ms: None,
@@ -751,11 +766,13 @@ mod tests {
             background_draw_calls: None,
             texture_loads: None,
             texture_samples: None,
+            wide_texture_samples: None,
             vertex_transcendentals: None,
             fragment_transcendentals: None,
             compute_transcendentals: None,
             background_texture_loads: None,
             background_texture_samples: None,
+            background_wide_texture_samples: None,
             background_vertex_transcendentals: None,
             background_fragment_transcendentals: None,
             vertex_arithmetic: None,

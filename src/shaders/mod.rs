@@ -15,7 +15,7 @@ mod walk;
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
 pub use loops::uniform_bound_loops;
-pub use ops::{ShaderOps, entry_ops};
+pub use ops::{ShaderOps, entry_ops, is_wide, sampled_textures};
 pub use pipeline::{
     ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,
     depth_less, depth_test, render_pipeline,
@@ -41,8 +41,27 @@ pub fn compose(source: &str) -> String {
 /// [`FragmentKind`]) and what each entry point does beyond its invocation (texture fetches, transcendentals:
 /// [`ShaderOps`]).
 pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
+    module_with_formats(device, label, source, &[])
+}
+
+/// [`module`] for a shader that samples textures of wide texels ([`is_wide`]): `formats`
+/// names the module's sampled texture globals with the format of what is bound to them, so
+/// their samples are counted as [`ShaderOps::wide_samples`] (WGSL's texture types do not say
+/// the format; a texture not named is counted narrow). Name a texture by the same constant
+/// its creation uses, so the count follows a change of format.
+pub fn module_with_formats(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    formats: &[(&str, wgpu::TextureFormat)],
+) -> Module {
     let composed = compose(source);
-    let (discarding, ops) = analyse(&composed);
+    let wide: Vec<&str> = formats
+        .iter()
+        .filter(|(_, f)| is_wide(*f))
+        .map(|(n, _)| *n)
+        .collect();
+    let (discarding, ops) = analyse(&composed, &wide);
     Module {
         raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
@@ -54,11 +73,15 @@ pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
 }
 
 /// What [`module`] reads off a composed shader, naga parsing it once: the fragment entry points
-/// that can discard and every entry point's costly operations. A source naga cannot parse has
+/// that can discard and every entry point's costly operations (the samples of the textures
+/// named in `wide` counted as wide). A source naga cannot parse has
 /// neither: the device reports its errors when the module is created.
-fn analyse(wgsl: &str) -> (Vec<String>, Vec<(String, ShaderOps)>) {
+fn analyse(wgsl: &str, wide: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
     match naga::front::wgsl::parse_str(wgsl) {
-        Ok(parsed) => (discarding_fragment_entries(&parsed), entry_ops(&parsed)),
+        Ok(parsed) => (
+            discarding_fragment_entries(&parsed),
+            entry_ops(&parsed, wide),
+        ),
         Err(_) => (Vec::new(), Vec::new()),
     }
 }
@@ -69,14 +92,17 @@ mod tests {
 
     #[test]
     fn a_shader_is_read_once_for_discards_and_ops() {
-        let (discarding, ops) = analyse(&compose(
-            "@group(1) @binding(0) var t: texture_2d<f32>;
+        let (discarding, ops) = analyse(
+            &compose(
+                "@group(1) @binding(0) var t: texture_2d<f32>;
              @fragment fn cut(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
                  let c = textureLoad(t, vec2<i32>(p.xy), 0) * exp(p.x);
                  if (c.a < 0.5) { discard; }
                  return c;
              }",
-        ));
+            ),
+            &[],
+        );
         assert_eq!(discarding, ["cut"]);
         let cut = ops.iter().find(|(e, _)| e == "cut").map(|(_, f)| *f);
         assert_eq!(
@@ -84,6 +110,7 @@ mod tests {
             Some(ShaderOps {
                 loads: 1,
                 samples: 0,
+                wide_samples: 0,
                 transcendentals: 1,
                 // `p.xy`'s conversion to `vec2<i32>` (2), the product with `exp` (4), the
                 // alpha test (1).
@@ -91,6 +118,6 @@ mod tests {
             })
         );
         // An unparsable source has neither.
-        assert_eq!(analyse("fn broken("), (Vec::new(), Vec::new()));
+        assert_eq!(analyse("fn broken(", &[]), (Vec::new(), Vec::new()));
     }
 }

@@ -1,6 +1,6 @@
 //! What one shader invocation does that costs more than the invocation itself: its
 //! `textureLoad`s (a texel, unfiltered), its `textureSample*`s (filtered: bilinear or
-//! trilinear, mip level chosen), its transcendental built-ins (`sin`, `cos`, `pow`, `exp`,
+//! trilinear, mip level chosen; those of textures with wide texels apart, [`is_wide`]), its transcendental built-ins (`sin`, `cos`, `pow`, `exp`,
 //! ...) and its scalar arithmetic (each operation once per vector component), counted in the
 //! entry point's naga IR and in every function it calls. On a software
 //! rasteriser each is a stretch of code per invocation (a transcendental is a polynomial
@@ -24,8 +24,17 @@ use std::collections::HashMap;
 pub struct ShaderOps {
     /// `textureLoad` calls (one texel, no filtering).
     pub loads: u64,
-    /// `textureSample*` and `textureGather*` calls (filtered).
+    /// `textureSample*` and `textureGather*` calls (filtered) of textures of narrow texels
+    /// (up to 4 bytes: `Rgba8Unorm` and the like).
     pub samples: u64,
+    /// `textureSample*` and `textureGather*` calls of textures of wide texels ([`is_wide`]:
+    /// 8 bytes or more, `Rgba16Float`), which the module's creator names
+    /// ([`super::module_with_formats`]): WGSL's `texture_2d<f32>` is the same type for both,
+    /// and the format is only known where the texture is bound. Filtering them costs more:
+    /// half rate on most GPUs, and on lavapipe a conversion per texel outside its 8-bit fast
+    /// path (an `Rgba16Float` sample 5.4 ns against an `Rgba8Unorm` one's 3.2, a load 0.93
+    /// against 0.13: `grassbench calibrate` at 320x180 with the fetch texture in each format).
+    pub wide_samples: u64,
     /// Calls of transcendental built-ins ([`is_transcendental`]).
     pub transcendentals: u64,
     /// Scalar arithmetic operations: every arithmetic, comparison, logical, selection,
@@ -72,6 +81,7 @@ impl ShaderOps {
         Self {
             loads: self.loads * n,
             samples: self.samples * n,
+            wide_samples: self.wide_samples * n,
             transcendentals: self.transcendentals * n,
             arithmetic: self.arithmetic * n,
         }
@@ -85,14 +95,27 @@ impl std::ops::Add for ShaderOps {
         Self {
             loads: self.loads + o.loads,
             samples: self.samples + o.samples,
+            wide_samples: self.wide_samples + o.wide_samples,
             transcendentals: self.transcendentals + o.transcendentals,
             arithmetic: self.arithmetic + o.arithmetic,
         }
     }
 }
 
-/// The costly operations of every entry point of `module` (a parsed, composed shader), by name.
-pub fn entry_ops(module: &naga::Module) -> Vec<(String, ShaderOps)> {
+/// Whether texels of `format` are wide: 8 bytes a texel or more (`Rgba16Float`,
+/// `Rgba32Float`), whose samples the cost model prices apart ([`ShaderOps::wide_samples`]).
+/// Block-compressed formats are narrow (BC1: half a byte a texel).
+pub fn is_wide(format: wgpu::TextureFormat) -> bool {
+    let (w, h) = format.block_dimensions();
+    format
+        .block_copy_size(None)
+        .is_some_and(|bytes| bytes >= 8 * w * h)
+}
+
+/// The costly operations of every entry point of `module` (a parsed, composed shader), by
+/// name; the samples of the textures named in `wide` (global variables bound to textures of
+/// wide texels, [`is_wide`]) counted as [`ShaderOps::wide_samples`].
+pub fn entry_ops(module: &naga::Module, wide: &[&str]) -> Vec<(String, ShaderOps)> {
     // The expressions' types, which say how many components each operates on; a module the
     // validator rejects (the device will say why) counts one per expression.
     let info = naga::valid::Validator::new(
@@ -104,6 +127,7 @@ pub fn entry_ops(module: &naga::Module) -> Vec<(String, ShaderOps)> {
     let types = Types {
         module,
         info: info.as_ref(),
+        wide,
     };
     let mut memo = HashMap::new();
     module
@@ -120,10 +144,63 @@ pub fn entry_ops(module: &naga::Module) -> Vec<(String, ShaderOps)> {
         .collect()
 }
 
-/// A module and, where it validated, its expressions' types.
+/// The names of the global textures `module`'s functions and entry points sample (filtered:
+/// `textureSample*`, `textureGather*`), sorted, each once: what a module's creator names
+/// with their formats ([`super::module_with_formats`]), for a test to check against.
+pub fn sampled_textures(module: &naga::Module) -> Vec<String> {
+    let functions = module
+        .functions
+        .iter()
+        .map(|(_, f)| f)
+        .chain(module.entry_points.iter().map(|e| &e.function));
+    let mut names: Vec<String> = functions
+        .flat_map(|f| {
+            f.expressions.iter().filter_map(move |(_, e)| match e {
+                naga::Expression::ImageSample { image, .. } => global_of(f, *image),
+                _ => None,
+            })
+        })
+        .filter_map(|g| module.global_variables[g].name.clone())
+        .collect();
+    names.sort();
+    names.dedup();
+    names
+}
+
+/// The global variable image expression `image` of `function` reads: the global itself, or
+/// an element of one (a binding array). `None` for a texture passed as an argument.
+fn global_of(
+    function: &naga::Function,
+    image: naga::Handle<naga::Expression>,
+) -> Option<naga::Handle<naga::GlobalVariable>> {
+    match &function.expressions[image] {
+        naga::Expression::GlobalVariable(g) => Some(*g),
+        naga::Expression::Access { base, .. } | naga::Expression::AccessIndex { base, .. } => {
+            global_of(function, *base)
+        }
+        _ => None,
+    }
+}
+
+/// A module, where it validated its expressions' types, and its textures of wide texels.
 struct Types<'a> {
     module: &'a naga::Module,
     info: Option<&'a naga::valid::ModuleInfo>,
+    wide: &'a [&'a str],
+}
+
+impl Types<'_> {
+    /// Whether image expression `image` of `function` is one of the textures of wide texels:
+    /// a global named in [`Types::wide`], or an element of one (a binding array). A texture
+    /// passed as an argument is counted narrow.
+    fn is_wide(&self, function: &naga::Function, image: naga::Handle<naga::Expression>) -> bool {
+        global_of(function, image).is_some_and(|g| {
+            self.module.global_variables[g]
+                .name
+                .as_deref()
+                .is_some_and(|n| self.wide.contains(&n))
+        })
+    }
 }
 
 /// Scalar components of expression `e`'s value (1 for scalars, and where its type is unknown).
@@ -206,6 +283,12 @@ fn function_ops(
             ..ShaderOps::default()
         },
         |acc, (_, e)| match e {
+            naga::Expression::ImageSample { image, .. } if types.is_wide(function, *image) => {
+                ShaderOps {
+                    wide_samples: acc.wide_samples + 1,
+                    ..acc
+                }
+            }
             naga::Expression::ImageSample { .. } => ShaderOps {
                 samples: acc.samples + 1,
                 ..acc
@@ -282,7 +365,11 @@ mod tests {
     ";
 
     fn of(name: &str) -> ShaderOps {
-        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap())
+        of_with(name, &[])
+    }
+
+    fn of_with(name: &str, wide: &[&str]) -> ShaderOps {
+        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), wide)
             .into_iter()
             .find(|(n, _)| n == name)
             .map(|(_, f)| f)
@@ -300,6 +387,7 @@ mod tests {
             ShaderOps {
                 loads: 4,
                 samples: 0,
+                wide_samples: 0,
                 transcendentals: 2,
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
             }
@@ -313,10 +401,50 @@ mod tests {
             ShaderOps {
                 loads: 2,
                 samples: 3,
+                wide_samples: 0,
                 transcendentals: 2,
                 arithmetic: 11 + 5 + 2 + 8,
             }
         );
         assert_eq!(of("plain"), ShaderOps::default());
+    }
+
+    #[test]
+    fn samples_of_textures_named_wide_are_counted_apart() {
+        // `t` bound to wide texels: its three samples move (in the callee too), its loads
+        // stay loads; a name that is not a global changes nothing.
+        let narrow = of("fs");
+        assert_eq!(
+            of_with("fs", &["t"]),
+            ShaderOps {
+                samples: 0,
+                wide_samples: 3,
+                ..narrow
+            }
+        );
+        assert_eq!(of_with("fs", &["s", "uv"]), narrow);
+        assert_eq!(of_with("vs", &["t"]), of("vs"));
+        // `t` is what the module samples (`s` is a sampler, and `t`'s loads are not samples).
+        let module = naga::front::wgsl::parse_str(SOURCE).unwrap();
+        assert_eq!(sampled_textures(&module), ["t"]);
+    }
+
+    #[test]
+    fn wide_texels_are_eight_bytes_or_more() {
+        use wgpu::TextureFormat as F;
+        for f in [F::Rgba16Float, F::Rgba32Float, F::Rg32Float, F::Rgba16Unorm] {
+            assert!(is_wide(f), "{f:?}");
+        }
+        for f in [
+            F::Rgba8Unorm,
+            F::Rgba8UnormSrgb,
+            F::R32Float,
+            F::Rg16Float,
+            F::R8Uint,
+            F::Bc1RgbaUnorm,
+            F::Bc7RgbaUnorm,
+        ] {
+            assert!(!is_wide(f), "{f:?}");
+        }
     }
 }

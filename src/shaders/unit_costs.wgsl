@@ -13,6 +13,8 @@ struct Params {
 // The texture workloads' mip-mapped 512x512 texture (hashed texels) and a trilinear sampler.
 @group(1) @binding(2) var fetched: texture_2d<f32>;
 @group(1) @binding(3) var trilinear: sampler;
+// The same texels in a format of wide texels (`Rgba16Float`: `WIDE_FETCH_FORMAT`).
+@group(1) @binding(4) var fetched_wide: texture_2d<f32>;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -220,6 +222,20 @@ fn fs_samples(in: VsOut) -> @location(0) vec4<f32> {
     let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
     let t = sample_at(uv, 0.0) + sample_at(uv, 1.0) + sample_at(uv, 2.0) + sample_at(uv, 3.0)
         + sample_at(uv, 4.0) + sample_at(uv, 5.0) + sample_at(uv, 6.0) + sample_at(uv, 7.0);
+    return vec4(lit(in) + 0.01 * t.rgb, 1.0);
+}
+
+// The same samples of the texture of wide texels (the `wide_texture_samples` workload).
+fn wide_sample_at(uv: vec2<f32>, k: f32) -> vec4<f32> {
+    return textureSample(fetched_wide, trilinear, uv + vec2(k * 0.013, k * 0.029));
+}
+
+@fragment
+fn fs_wide_samples(in: VsOut) -> @location(0) vec4<f32> {
+    let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
+    let t = wide_sample_at(uv, 0.0) + wide_sample_at(uv, 1.0) + wide_sample_at(uv, 2.0)
+        + wide_sample_at(uv, 3.0) + wide_sample_at(uv, 4.0) + wide_sample_at(uv, 5.0)
+        + wide_sample_at(uv, 6.0) + wide_sample_at(uv, 7.0);
     return vec4(lit(in) + 0.01 * t.rgb, 1.0);
 }
 

@@ -11,7 +11,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use anyhow::Context as _;
-use grassbench::cost::workloads::{Chain, Shape, Workload};
+use grassbench::cost::workloads::{Chain, Fetch, Shape, Workload};
 use grassbench::cost::{COUNTED_TERMS, FragmentKind, Options, Term, Work, calibrate_units_with};
 use grassbench::target::Size;
 use grassbench_tests::gpu;
@@ -125,6 +125,7 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             | Term::FragmentBlended
             | Term::TextureLoad
             | Term::TextureSample
+            | Term::WideTextureSample
             | Term::FragmentTranscendental
             | Term::FragmentArithmetic => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
@@ -136,7 +137,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 }
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
-/// fragment kind, a layer loading 32 texels a fragment and one sampling 8 times, 5k strips, a
+/// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times and one sampling
+/// a texture of wide texels 8 times, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
 /// more scalar operations each, 300 draws, 1M compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
@@ -168,7 +170,7 @@ fn held_out_mix() -> Vec<Workload> {
             "loads",
             Term::TextureLoad,
             Shape::FetchLayers {
-                sample: false,
+                fetch: Fetch::Loads,
                 layers: 1,
             },
         ),
@@ -176,7 +178,15 @@ fn held_out_mix() -> Vec<Workload> {
             "samples",
             Term::TextureSample,
             Shape::FetchLayers {
-                sample: true,
+                fetch: Fetch::Samples,
+                layers: 1,
+            },
+        ),
+        w(
+            "wide samples",
+            Term::WideTextureSample,
+            Shape::FetchLayers {
+                fetch: Fetch::WideSamples,
                 layers: 1,
             },
         ),

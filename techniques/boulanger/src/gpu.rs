@@ -29,6 +29,9 @@ use crate::tiling::Tiling;
 /// of two).
 pub const INITIAL_QUADS: usize = 256;
 
+/// Format of the ambient occlusion map (one byte a texel).
+pub const AO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
+
 /// The shaders' uniform block.
 pub fn params_uniform(params: &Params, grass: &grassbench::grass::GrassConfig) -> ParamsUniform {
     let a2c = params.transparency == Transparency::AlphaToCoverage;
@@ -459,7 +462,7 @@ fn ao_texture(
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R8Unorm,
+            format: AO_FORMAT,
             usage: wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         },

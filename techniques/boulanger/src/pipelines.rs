@@ -17,6 +17,23 @@ use crate::cells;
 use crate::ground_shadow::GroundShadows;
 use crate::params::{Params, Transparency};
 use crate::shader::{CellRecord, SHADER, SliceQuad};
+use crate::texture;
+
+/// The grass shader's sampled textures and the formats bound to them, for the cost model (a
+/// sample of a texture of wide texels costs more: `grassbench::shaders::module_with_formats`):
+/// the blade texture, the ambient occlusion map, and the BTF bakes (slices and the ground's
+/// shadow mask).
+const TEXTURE_FORMATS: [(&str, wgpu::TextureFormat); 9] = [
+    ("blade_texture", texture::FORMAT),
+    ("ao_map", crate::gpu::AO_FORMAT),
+    ("shadow_mask", btf::FORMAT),
+    ("slice_color", btf::FORMAT),
+    ("slice_diffuse", btf::FORMAT),
+    ("slice_extra", btf::FORMAT),
+    ("vslice_color", btf::FORMAT),
+    ("vslice_diffuse", btf::FORMAT),
+    ("vslice_extra", btf::FORMAT),
+];
 
 /// The bind group layouts of groups 1 to 3.
 pub struct Layouts {
@@ -125,7 +142,8 @@ impl Pipelines {
     pub fn new(ctx: &InitContext<'_>, layouts: &Layouts, params: &Params) -> Self {
         let device = &ctx.gpu.device;
         let a2c = params.transparency == Transparency::AlphaToCoverage;
-        let module = shaders::module(device, "boulanger grass", SHADER);
+        let module =
+            shaders::module_with_formats(device, "boulanger grass", SHADER, &TEXTURE_FORMATS);
         let blade_layout = ctx.scene_gpu.pipeline_layout(
             device,
             "boulanger blades",
@@ -254,5 +272,39 @@ impl Pipelines {
             ground_shadows,
             bake,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_sampled_texture_is_named_with_its_format() {
+        // The cost model prices samples of wide texels apart (the slices' `Rgba16Float`):
+        // a texture missing from the list would be priced as RGBA8, a misspelt one never.
+        let composed = shaders::compose(SHADER);
+        let module = naga::front::wgsl::parse_str(&composed)
+            .map_err(|e| e.emit_to_string(&composed))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let mut named: Vec<&str> = TEXTURE_FORMATS.iter().map(|(n, _)| *n).collect();
+        named.sort_unstable();
+        assert_eq!(shaders::sampled_textures(&module), named);
+        // The slices' samples are the wide ones; both also sample the ambient occlusion map
+        // (one byte a texel).
+        let wide: Vec<&str> = TEXTURE_FORMATS
+            .iter()
+            .filter(|(_, f)| shaders::is_wide(*f))
+            .map(|(n, _)| *n)
+            .collect();
+        let ops = shaders::entry_ops(&module, &wide);
+        let of = |entry: &str| {
+            ops.iter()
+                .find(|(e, _)| e == entry)
+                .map(|(_, o)| (o.samples, o.wide_samples))
+        };
+        assert_eq!(of("fs_slice"), Some((1, 3)));
+        assert_eq!(of("fs_vslice"), Some((1, 3)));
+        assert_eq!(of("fs_blade").map(|(narrow, _)| narrow > 0), Some(true));
     }
 }

@@ -11,6 +11,8 @@ use grassbench::wgpu::util::DeviceExt as _;
 pub const WIDTH: u32 = 32;
 /// Texture height (root to tip), texels.
 pub const HEIGHT: u32 = 128;
+/// The blade texture's format.
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// Half-width of the blade shape at relative height `v` (0 root, 1 tip), in texture widths.
 pub fn half_width(v: f32) -> f32 {
@@ -95,7 +97,7 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue) -> (wgpu::TextureView,
             mip_level_count: levels.len() as u32,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
+            format: FORMAT,
             usage: wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         },

@@ -163,6 +163,7 @@ impl Config {
                 // none.
                 r.model_texture_load_ms.unwrap_or(0.0),
                 r.model_texture_sample_ms.unwrap_or(0.0),
+                r.model_wide_texture_sample_ms.unwrap_or(0.0),
                 r.model_vertex_transcendental_ms.unwrap_or(0.0),
                 r.model_fragment_transcendental_ms.unwrap_or(0.0),
                 r.model_compute_transcendental_ms.unwrap_or(0.0),

@@ -362,6 +362,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU uploads",
     "GPU texel loads",
     "GPU texture samples",
+    "GPU wide texture samples",
     "GPU vertex transcendentals",
     "GPU fragment transcendentals",
     "GPU compute transcendentals",
