@@ -249,12 +249,13 @@ mod tests {
 
     /// Lavapipe-like costs in ms per unit, in the order of `Term::ALL`: fixed 0.5 ms,
     /// vertex 20 ns, primitive 100 ns, fragments 5 / 8 / 6 ns, draw 5 µs, compute 20 ns,
-    /// upload 2 ms per MB, texel load 3 ns, texture sample 10 ns (17 ns of wide texels),
+    /// upload 2 ms per MB, texel load 3 ns (8 ns floating-point), texture sample 10 ns (17 ns
+    /// floating-point),
     /// transcendentals 2 / 0.6 / 0.6 ns (vertex, fragment, compute), scalar operations 0.2 /
     /// 0.03 / 0.1 ns.
     const TRUE_MS: [f64; Term::ALL.len()] = [
-        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 1e-5, 1.7e-5, 2e-6, 6e-7, 6e-7,
-        2e-7, 3e-8, 1e-7,
+        0.5, 2e-5, 1e-4, 5e-6, 8e-6, 6e-6, 5e-3, 2e-5, 2.0, 3e-6, 8e-6, 1e-5, 1.7e-5, 2e-6, 6e-7,
+        6e-7, 2e-7, 3e-8, 1e-7,
     ];
 
     fn time(costs: &[f64; Term::ALL.len()], w: &Work) -> f64 {
@@ -295,8 +296,8 @@ mod tests {
             assert!((got / want - 1.0).abs() < 1e-9, "{t}: {got} against {want}");
         }
         assert!(c.fit.relative_rms_residual < 1e-12, "{:?}", c.fit);
-        assert_eq!(c.fit.samples, 72);
-        assert_eq!(c.fit.workloads.len(), 18);
+        assert_eq!(c.fit.samples, 76);
+        assert_eq!(c.fit.workloads.len(), 19);
         assert_eq!(c.size, "640x360");
     }
 
@@ -332,7 +333,7 @@ mod tests {
                 );
             }
             // The residual reports the noise: its RMS is 5.8%, of which the fit absorbs
-            // some (18 costs from 72 samples); over 200 seeds it read 3.9% to 5.9%.
+            // some (19 costs from 76 samples); over 200 seeds it read 3.9% to 5.9%.
             let r = c.fit.relative_rms_residual;
             assert!((0.02..0.08).contains(&r), "seed {seed}: residual {r}");
         }
@@ -342,7 +343,8 @@ mod tests {
     fn a_held_out_mix_is_predicted_from_noisy_costs() {
         // A grass-like frame: 100k blades of 11 vertices (9 triangles), 2 M fragments of
         // each kind, 20 draws, 500k compute invocations, 2 MB uploaded, 8 M texel loads,
-        // 6 M texture samples and 2 M of wide texels, 10 transcendentals a vertex, 1 a fragment and 4 a compute
+        // 4 M of floating-point texels, 6 M texture samples and 2 M of floating-point texels,
+        // 10 transcendentals a vertex, 1 a fragment and 4 a compute
         // invocation, 200 scalar operations a vertex, 100 a fragment and 500 a compute
         // invocation.
         let mix = Work {
@@ -355,8 +357,9 @@ mod tests {
             compute_invocations: 5e5,
             upload_bytes: 2e6,
             texture_loads: 8e6,
+            float_texture_loads: 4e6,
             texture_samples: 6e6,
-            wide_texture_samples: 2e6,
+            float_texture_samples: 2e6,
             vertex_transcendentals: 1.1e7,
             fragment_transcendentals: 6e6,
             compute_transcendentals: 2e6,
@@ -440,7 +443,7 @@ mod tests {
                     .into_iter()
                     .filter(|s| s.workload == "primitives" || s.workload == "upload"),
             )
-            // More samples than the 18 costs.
+            // More samples than the 19 costs.
             .chain(
                 synthetic(&TRUE_MS, 0.0, 3)
                     .into_iter()

@@ -80,7 +80,7 @@ impl MeasuredSample {
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
 /// construction: draws, uploads, submissions). Texture fetches, transcendentals and arithmetic are the
 /// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 15] = [
+pub const COUNTED_TERMS: [Term; 16] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -88,8 +88,9 @@ pub const COUNTED_TERMS: [Term; 15] = [
     Term::FragmentBlended,
     Term::Compute,
     Term::TextureLoad,
+    Term::FloatTextureLoad,
     Term::TextureSample,
-    Term::WideTextureSample,
+    Term::FloatTextureSample,
     Term::VertexTranscendental,
     Term::FragmentTranscendental,
     Term::ComputeTranscendental,

@@ -117,6 +117,16 @@ impl<'g> Rig<'g> {
                         },
                         count: None,
                     },
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 5,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                        count: None,
+                    },
                 ],
             });
             let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -168,7 +178,7 @@ impl<'g> Rig<'g> {
                     wgpu::BindGroupEntry {
                         binding: 2,
                         resource: wgpu::BindingResource::TextureView(
-                            &fetch_texture(gpu, wgpu::TextureFormat::Rgba8Unorm)
+                            &fetch_texture(gpu, workloads::FETCH_FORMAT)
                                 .create_view(&Default::default()),
                         ),
                     },
@@ -189,7 +199,14 @@ impl<'g> Rig<'g> {
                     wgpu::BindGroupEntry {
                         binding: 4,
                         resource: wgpu::BindingResource::TextureView(
-                            &fetch_texture(gpu, workloads::WIDE_FETCH_FORMAT)
+                            &fetch_texture(gpu, workloads::FLOAT_SAMPLE_FORMAT)
+                                .create_view(&Default::default()),
+                        ),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 5,
+                        resource: wgpu::BindingResource::TextureView(
+                            &fetch_texture(gpu, workloads::FLOAT_LOAD_FORMAT)
                                 .create_view(&Default::default()),
                         ),
                     },
@@ -505,9 +522,10 @@ impl<'g> Rig<'g> {
     }
 }
 
-/// A `texture_*` workload's texture: [`FETCH_TEXTURE_SIDE`]² texels of `format` (`Rgba8Unorm`
-/// or `Rgba16Float`) with every mip level, hashed (no level is uniform, so no fetch can be
-/// folded away; the same values in either format).
+/// A `texture_*` workload's texture: [`FETCH_TEXTURE_SIDE`]² texels of `format`
+/// (`Rgba8Unorm`, `Rgba16Float` or `R32Float`; any other is written as `Rgba8Unorm`) with every
+/// mip level, hashed (no level is uniform, so no fetch can be folded away; the same values,
+/// multiples of 1/255, in every format).
 fn fetch_texture(gpu: &GpuContext, format: wgpu::TextureFormat) -> wgpu::Texture {
     let levels = FETCH_TEXTURE_SIDE.ilog2() + 1;
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -524,22 +542,22 @@ fn fetch_texture(gpu: &GpuContext, format: wgpu::TextureFormat) -> wgpu::Texture
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
-    let half = format == wgpu::TextureFormat::Rgba16Float;
-    let texel_bytes = if half { 8 } else { 4 };
+    // Channels a texel, and one channel's bytes from its byte value.
+    let (channels, encode): (u32, fn(u8) -> Vec<u8>) = match format {
+        wgpu::TextureFormat::Rgba16Float => (4, |b| {
+            half::f16::from_f32(f32::from(b) / 255.0)
+                .to_le_bytes()
+                .to_vec()
+        }),
+        wgpu::TextureFormat::R32Float => (1, |b| (f32::from(b) / 255.0).to_le_bytes().to_vec()),
+        _ => (4, |b| vec![b]),
+    };
+    let texel_bytes = format.block_copy_size(None).unwrap_or(4);
     let mut rng = crate::rng::Rng::new(0x7e7e);
     for level in 0..levels {
         let side = (FETCH_TEXTURE_SIDE >> level).max(1);
-        let data: Vec<u8> = (0..side * side * 4)
-            .flat_map(|_| {
-                let byte = rng.next_u64() as u8;
-                if half {
-                    half::f16::from_f32(f32::from(byte) / 255.0)
-                        .to_le_bytes()
-                        .to_vec()
-                } else {
-                    vec![byte]
-                }
-            })
+        let data: Vec<u8> = (0..side * side * channels)
+            .flat_map(|_| encode(rng.next_u64() as u8))
             .collect();
         gpu.queue.write_texture(
             wgpu::TexelCopyTextureInfo {

@@ -24,10 +24,12 @@ impl Work {
             // Older records have no operation counts: none priced.
             texture_loads: f(r.texture_loads).unwrap_or(0.0)
                 + f(r.background_texture_loads).unwrap_or(0.0),
+            float_texture_loads: f(r.float_texture_loads).unwrap_or(0.0)
+                + f(r.background_float_texture_loads).unwrap_or(0.0),
             texture_samples: f(r.texture_samples).unwrap_or(0.0)
                 + f(r.background_texture_samples).unwrap_or(0.0),
-            wide_texture_samples: f(r.wide_texture_samples).unwrap_or(0.0)
-                + f(r.background_wide_texture_samples).unwrap_or(0.0),
+            float_texture_samples: f(r.float_texture_samples).unwrap_or(0.0)
+                + f(r.background_float_texture_samples).unwrap_or(0.0),
             vertex_transcendentals: f(r.vertex_transcendentals).unwrap_or(0.0)
                 + f(r.background_vertex_transcendentals).unwrap_or(0.0),
             fragment_transcendentals: f(r.fragment_transcendentals).unwrap_or(0.0)
@@ -76,8 +78,9 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_compute_ms = p.map(|p| p.compute_ms);
     run.model_upload_ms = p.map(|p| p.upload_ms);
     run.model_texture_load_ms = p.map(|p| p.texture_load_ms);
+    run.model_float_texture_load_ms = p.map(|p| p.float_texture_load_ms);
     run.model_texture_sample_ms = p.map(|p| p.texture_sample_ms);
-    run.model_wide_texture_sample_ms = p.map(|p| p.wide_texture_sample_ms);
+    run.model_float_texture_sample_ms = p.map(|p| p.float_texture_sample_ms);
     run.model_vertex_transcendental_ms = p.map(|p| p.vertex_transcendental_ms);
     run.model_fragment_transcendental_ms = p.map(|p| p.fragment_transcendental_ms);
     run.model_compute_transcendental_ms = p.map(|p| p.compute_transcendental_ms);

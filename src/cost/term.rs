@@ -33,16 +33,23 @@ pub enum Term {
     /// A texel read with `textureLoad` by a vertex or fragment shader invocation (on top of the
     /// invocation's own cost; counted from the shader, `crate::shaders::ShaderOps`).
     TextureLoad,
+    /// A texel of floating-point format (`R32Float`, `Rgba16Float`, ...) read with
+    /// `textureLoad` (`crate::shaders::ShaderOps::float_loads`): the prelude's terrain and wind
+    /// maps. Not among the units issue 20 lists: the load term is calibrated on an RGBA8
+    /// texture, and lavapipe converts floating-point texels outside its 8-bit fast path (an
+    /// `R32Float` load 0.59-0.63 ns against an `Rgba8Unorm` one's 0.13).
+    FloatTextureLoad,
     /// A filtered texture sample (`textureSample*`) by a vertex or fragment shader invocation:
     /// on a software rasteriser the filtering (mip level, bilinear or trilinear taps) is code
     /// run per sample, several times a plain fragment's cost.
     TextureSample,
-    /// A filtered sample of a texture of wide texels (8 bytes or more: `Rgba16Float`;
-    /// `crate::shaders::ShaderOps::wide_samples`). Not among the units issue 20 lists: the
-    /// sample term is calibrated on an RGBA8 texture, and filtering wide texels costs more
-    /// (lavapipe: 5.4 ns against 3.2, a conversion per texel outside its 8-bit fast path;
-    /// half-rate filtering on most GPUs). boulanger's slices are `Rgba16Float`.
-    WideTextureSample,
+    /// A filtered sample of a texture of floating-point texels (`Rgba16Float`;
+    /// `crate::shaders::ShaderOps::float_samples`). Not among the units issue 20 lists: the
+    /// sample term is calibrated on an RGBA8 texture, and filtering floating-point texels
+    /// costs more (lavapipe: 5.4-5.7 ns against 3.2, a conversion per texel outside its 8-bit
+    /// fast path; half-rate filtering of 64-bit texels on most GPUs). boulanger's slices are
+    /// `Rgba16Float`.
+    FloatTextureSample,
     /// A transcendental built-in (`sin`, `cos`, `pow`, `exp`, ...) evaluated by a vertex
     /// shader invocation (counted from the shader, `crate::shaders::ShaderOps`). Not among
     /// the units issue 20 lists: the vertex term is calibrated on one vertex shader, and a
@@ -72,7 +79,7 @@ pub enum Term {
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 18] = [
+    pub const ALL: [Self; 19] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -83,8 +90,9 @@ impl Term {
         Self::Compute,
         Self::Upload,
         Self::TextureLoad,
+        Self::FloatTextureLoad,
         Self::TextureSample,
-        Self::WideTextureSample,
+        Self::FloatTextureSample,
         Self::VertexTranscendental,
         Self::FragmentTranscendental,
         Self::ComputeTranscendental,
@@ -106,8 +114,9 @@ impl Term {
             Self::Compute => "compute",
             Self::Upload => "upload",
             Self::TextureLoad => "texture_load",
+            Self::FloatTextureLoad => "float_texture_load",
             Self::TextureSample => "texture_sample",
-            Self::WideTextureSample => "wide_texture_sample",
+            Self::FloatTextureSample => "float_texture_sample",
             Self::VertexTranscendental => "vertex_transcendental",
             Self::FragmentTranscendental => "fragment_transcendental",
             Self::ComputeTranscendental => "compute_transcendental",
@@ -130,8 +139,9 @@ impl Term {
             Self::Compute => "compute invocation",
             Self::Upload => "MB",
             Self::TextureLoad => "texel load",
+            Self::FloatTextureLoad => "float texel load",
             Self::TextureSample => "texture sample",
-            Self::WideTextureSample => "wide texture sample",
+            Self::FloatTextureSample => "float texture sample",
             Self::VertexTranscendental
             | Self::FragmentTranscendental
             | Self::ComputeTranscendental => "transcendental",

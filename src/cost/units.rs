@@ -53,13 +53,17 @@ pub struct UnitCosts {
     /// Per texel read with `textureLoad`, ns (0 in calibrations made before the term).
     #[serde(default)]
     pub texture_load_ns: UnitCost,
+    /// Per floating-point texel read with `textureLoad`, ns (0 in calibrations made before
+    /// the term).
+    #[serde(default)]
+    pub float_texture_load_ns: UnitCost,
     /// Per filtered texture sample, ns (0 in calibrations made before the term).
     #[serde(default)]
     pub texture_sample_ns: UnitCost,
-    /// Per filtered sample of a texture of wide texels, ns (0 in calibrations made before the
+    /// Per filtered sample of a texture of floating-point texels, ns (0 in calibrations made before the
     /// term).
     #[serde(default)]
-    pub wide_texture_sample_ns: UnitCost,
+    pub float_texture_sample_ns: UnitCost,
     /// Per transcendental built-in evaluated by a vertex shader, ns (0 in calibrations made
     /// before the term).
     #[serde(default)]
@@ -110,12 +114,15 @@ pub struct Prediction {
     /// Texel loads, ms.
     #[serde(default)]
     pub texture_load_ms: f64,
+    /// Floating-point texel loads, ms.
+    #[serde(default)]
+    pub float_texture_load_ms: f64,
     /// Texture samples, ms.
     #[serde(default)]
     pub texture_sample_ms: f64,
-    /// Samples of textures of wide texels, ms.
+    /// Samples of textures of floating-point texels, ms.
     #[serde(default)]
-    pub wide_texture_sample_ms: f64,
+    pub float_texture_sample_ms: f64,
     /// Vertex shaders' transcendental built-ins, ms.
     #[serde(default)]
     pub vertex_transcendental_ms: f64,
@@ -168,8 +175,9 @@ impl UnitCosts {
             compute_invocation_ns: stored(Term::Compute),
             upload_ms_per_mb: stored(Term::Upload),
             texture_load_ns: stored(Term::TextureLoad),
+            float_texture_load_ns: stored(Term::FloatTextureLoad),
             texture_sample_ns: stored(Term::TextureSample),
-            wide_texture_sample_ns: stored(Term::WideTextureSample),
+            float_texture_sample_ns: stored(Term::FloatTextureSample),
             vertex_transcendental_ns: stored(Term::VertexTranscendental),
             fragment_transcendental_ns: stored(Term::FragmentTranscendental),
             compute_transcendental_ns: stored(Term::ComputeTranscendental),
@@ -193,8 +201,9 @@ impl UnitCosts {
             Term::Compute => self.compute_invocation_ns,
             Term::Upload => self.upload_ms_per_mb,
             Term::TextureLoad => self.texture_load_ns,
+            Term::FloatTextureLoad => self.float_texture_load_ns,
             Term::TextureSample => self.texture_sample_ns,
-            Term::WideTextureSample => self.wide_texture_sample_ns,
+            Term::FloatTextureSample => self.float_texture_sample_ns,
             Term::VertexTranscendental => self.vertex_transcendental_ns,
             Term::FragmentTranscendental => self.fragment_transcendental_ns,
             Term::ComputeTranscendental => self.compute_transcendental_ns,
@@ -224,8 +233,9 @@ impl UnitCosts {
             compute_ms: ms(Term::Compute),
             upload_ms: ms(Term::Upload),
             texture_load_ms: ms(Term::TextureLoad),
+            float_texture_load_ms: ms(Term::FloatTextureLoad),
             texture_sample_ms: ms(Term::TextureSample),
-            wide_texture_sample_ms: ms(Term::WideTextureSample),
+            float_texture_sample_ms: ms(Term::FloatTextureSample),
             vertex_transcendental_ms: ms(Term::VertexTranscendental),
             fragment_transcendental_ms: ms(Term::FragmentTranscendental),
             compute_transcendental_ms: ms(Term::ComputeTranscendental),
@@ -302,8 +312,9 @@ impl Prediction {
             Term::Compute => self.compute_ms,
             Term::Upload => self.upload_ms,
             Term::TextureLoad => self.texture_load_ms,
+            Term::FloatTextureLoad => self.float_texture_load_ms,
             Term::TextureSample => self.texture_sample_ms,
-            Term::WideTextureSample => self.wide_texture_sample_ms,
+            Term::FloatTextureSample => self.float_texture_sample_ms,
             Term::VertexTranscendental => self.vertex_transcendental_ms,
             Term::FragmentTranscendental => self.fragment_transcendental_ms,
             Term::ComputeTranscendental => self.compute_transcendental_ms,
@@ -338,13 +349,13 @@ mod tests {
     #[test]
     fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
         // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
-        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns, sample 6 ns, wide
-        // sample 10 ns,
+        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns (4 ns floating-point),
+        // sample 6 ns (10 ns floating-point),
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
         // 0.05 / 0.1 ns.
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 1e-5, 2e-6, 5e-7, 1e-6,
-            2e-7, 5e-8, 1e-7,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 6e-6, 1e-5, 2e-6, 5e-7,
+            1e-6, 2e-7, 5e-8, 1e-7,
         ]
         .map(cost);
         let costs = UnitCosts::from_ms_per_unit(
@@ -366,8 +377,9 @@ mod tests {
             compute_invocations: 2e5,
             upload_bytes: 4e6,
             texture_loads: 5e5,
+            float_texture_loads: 2.5e5,
             texture_samples: 2e5,
-            wide_texture_samples: 5e4,
+            float_texture_samples: 5e4,
             vertex_transcendentals: 1e6,
             fragment_transcendentals: 4e6,
             compute_transcendentals: 0.0,
@@ -376,15 +388,16 @@ mod tests {
             compute_arithmetic: 0.0,
         };
         let p = costs.predict(&work);
-        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1.2 + 0.5 + 2 + 2 + 0 + 1 + 1 + 0 ms.
+        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 1.2 + 0.5 + 2 + 2 + 0 + 1 + 1 + 0
+        // ms.
         let expected = [
-            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.2, 0.5, 2.0, 2.0, 0.0, 1.0, 1.0,
-            0.0,
+            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 1.2, 0.5, 2.0, 2.0, 0.0, 1.0,
+            1.0, 0.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 16.61).abs() < 1e-9);
+        assert!((p.total_ms - 17.61).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -403,8 +416,8 @@ mod tests {
     #[test]
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 6e-6, 1e-5, 2e-6, 5e-7, 1e-6,
-            2e-7, 5e-8, 1e-7,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 6e-6, 1e-5, 2e-6, 5e-7,
+            1e-6, 2e-7, 5e-8, 1e-7,
         ]
         .map(cost);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -423,7 +436,7 @@ mod tests {
         for l in text.lines() {
             if l.starts_with('[') {
                 skipping = l.starts_with("[texture_")
-                    || l.starts_with("[wide_texture_")
+                    || l.starts_with("[float_texture_")
                     || l.contains("_transcendental_ns]")
                     || l.contains("_arithmetic_ns]");
             }
@@ -438,7 +451,8 @@ mod tests {
             (None, false)
         );
         assert_eq!(read.texture_sample_ns, UnitCost::default());
-        assert_eq!(read.wide_texture_sample_ns, UnitCost::default());
+        assert_eq!(read.float_texture_sample_ns, UnitCost::default());
+        assert_eq!(read.float_texture_load_ns, UnitCost::default());
         assert_eq!(read.vertex_transcendental_ns, UnitCost::default());
         assert!(!older.contains("texture_sample_ns"), "{older}");
         assert!(!older.contains("transcendental_ns"), "{older}");

@@ -30,15 +30,20 @@ pub struct Work {
     /// Bytes written with `GpuContext::write_buffer` (or `write_texture`) before the
     /// submission.
     pub upload_bytes: f64,
-    /// Texels read with `textureLoad` (vertex and fragment stages).
+    /// Texels of normalised or integer formats read with `textureLoad` (every stage).
     #[serde(default)]
     pub texture_loads: f64,
-    /// Filtered texture samples of narrow texels (vertex and fragment stages).
+    /// Texels of floating-point formats read with `textureLoad`
+    /// (`crate::shaders::ShaderOps::float_loads`).
+    #[serde(default)]
+    pub float_texture_loads: f64,
+    /// Filtered texture samples of normalised or integer texels (vertex and fragment stages).
     #[serde(default)]
     pub texture_samples: f64,
-    /// Filtered texture samples of wide texels (`crate::shaders::ShaderOps::wide_samples`).
+    /// Filtered texture samples of floating-point texels
+    /// (`crate::shaders::ShaderOps::float_samples`).
     #[serde(default)]
-    pub wide_texture_samples: f64,
+    pub float_texture_samples: f64,
     /// Transcendental built-ins evaluated by vertex shaders ([`crate::shaders::ShaderOps`]).
     #[serde(default)]
     pub vertex_transcendentals: f64,
@@ -94,8 +99,9 @@ impl Work {
             compute_invocations: counted.compute_invocations as f64,
             upload_bytes: 0.0,
             texture_loads: fetches.loads as f64,
+            float_texture_loads: fetches.float_loads as f64,
             texture_samples: fetches.samples as f64,
-            wide_texture_samples: fetches.wide_samples as f64,
+            float_texture_samples: fetches.float_samples as f64,
             vertex_transcendentals: ops.vertex.transcendentals as f64,
             fragment_transcendentals: ops.fragment.transcendentals as f64,
             compute_transcendentals: ops.compute.transcendentals as f64,
@@ -119,8 +125,9 @@ impl Work {
             Term::Compute => self.compute_invocations,
             Term::Upload => self.upload_bytes / BYTES_PER_MB,
             Term::TextureLoad => self.texture_loads,
+            Term::FloatTextureLoad => self.float_texture_loads,
             Term::TextureSample => self.texture_samples,
-            Term::WideTextureSample => self.wide_texture_samples,
+            Term::FloatTextureSample => self.float_texture_samples,
             Term::VertexTranscendental => self.vertex_transcendentals,
             Term::FragmentTranscendental => self.fragment_transcendentals,
             Term::ComputeTranscendental => self.compute_transcendentals,
@@ -142,8 +149,9 @@ impl Work {
             compute_invocations: self.compute_invocations * k,
             upload_bytes: self.upload_bytes * k,
             texture_loads: self.texture_loads * k,
+            float_texture_loads: self.float_texture_loads * k,
             texture_samples: self.texture_samples * k,
-            wide_texture_samples: self.wide_texture_samples * k,
+            float_texture_samples: self.float_texture_samples * k,
             vertex_transcendentals: self.vertex_transcendentals * k,
             fragment_transcendentals: self.fragment_transcendentals * k,
             compute_transcendentals: self.compute_transcendentals * k,
@@ -175,8 +183,9 @@ impl std::ops::Add for Work {
             compute_invocations: self.compute_invocations + o.compute_invocations,
             upload_bytes: self.upload_bytes + o.upload_bytes,
             texture_loads: self.texture_loads + o.texture_loads,
+            float_texture_loads: self.float_texture_loads + o.float_texture_loads,
             texture_samples: self.texture_samples + o.texture_samples,
-            wide_texture_samples: self.wide_texture_samples + o.wide_texture_samples,
+            float_texture_samples: self.float_texture_samples + o.float_texture_samples,
             vertex_transcendentals: self.vertex_transcendentals + o.vertex_transcendentals,
             fragment_transcendentals: self.fragment_transcendentals + o.fragment_transcendentals,
             compute_transcendentals: self.compute_transcendentals + o.compute_transcendentals,
@@ -203,8 +212,9 @@ mod tests {
             compute_invocations: 5.0,
             upload_bytes: 2.5e6,
             texture_loads: 6.0,
+            float_texture_loads: 6.5,
             texture_samples: 7.0,
-            wide_texture_samples: 7.5,
+            float_texture_samples: 7.5,
             vertex_transcendentals: 8.0,
             fragment_transcendentals: 9.5,
             compute_transcendentals: 10.0,
@@ -216,8 +226,8 @@ mod tests {
         assert_eq!(
             amounts,
             [
-                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 7.0, 7.5, 8.0, 9.5, 10.0, 11.5,
-                12.0, 13.0
+                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 7.0, 7.5, 8.0, 9.5, 10.0,
+                11.5, 12.0, 13.0
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -255,30 +265,33 @@ mod tests {
             fragments,
             ..PipelineCost::default()
         };
-        // 11 vertices fetching 8 texels each (a bilinear height and wind) with 5
-        // transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and 2
-        // of wide texels) and loading 1 texel with 1 transcendental and 20 operations, 64
-        // compute invocations loading 4 with 2 and 3.
+        // 11 vertices fetching 8 floating-point texels each (a bilinear height and wind) with
+        // 5 transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and
+        // 2 of floating-point texels) and loading 1 texel with 1 transcendental and 20
+        // operations, 64 compute invocations loading 4 with 2 and 3.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
             vertex_ops: ShaderOps {
-                loads: 8,
+                loads: 0,
+                float_loads: 8,
                 samples: 0,
-                wide_samples: 0,
+                float_samples: 0,
                 transcendentals: 5,
                 arithmetic: 40,
             },
             fragment_ops: ShaderOps {
                 loads: 1,
+                float_loads: 0,
                 samples: 3,
-                wide_samples: 2,
+                float_samples: 2,
                 transcendentals: 1,
                 arithmetic: 20,
             },
             compute_ops: ShaderOps {
                 loads: 4,
+                float_loads: 0,
                 samples: 0,
-                wide_samples: 0,
+                float_samples: 0,
                 transcendentals: 2,
                 arithmetic: 3,
             },
@@ -290,9 +303,10 @@ mod tests {
                 primitives: 7.0,
                 fragments_alpha_tested: 100.0,
                 compute_invocations: 64.0,
-                texture_loads: 88.0 + 100.0 + 256.0,
+                texture_loads: 100.0 + 256.0,
+                float_texture_loads: 88.0,
                 texture_samples: 300.0,
-                wide_texture_samples: 200.0,
+                float_texture_samples: 200.0,
                 vertex_transcendentals: 55.0,
                 fragment_transcendentals: 100.0,
                 compute_transcendentals: 128.0,

@@ -13,7 +13,7 @@
 //! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
-//! | `wide_texture_samples` | the same samples of the same texels in [`WIDE_FETCH_FORMAT`] | wide texture sample |
+//! | `float_texture_loads`, `float_texture_samples` | the same loads of the texels in [`FLOAT_LOAD_FORMAT`], samples in [`FLOAT_SAMPLE_FORMAT`] | floating-point texel load, sample |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
@@ -37,15 +37,24 @@ use crate::target::Size;
 /// The workloads' shader (composed with the prelude when built).
 pub const SHADER: &str = include_str!("../shaders/unit_costs.wgsl");
 
-/// Format of the `wide_texture_samples` workload's texture (the shader's `fetched_wide`): the
-/// format of boulanger's slice textures, 8 bytes a texel ([`crate::shaders::is_wide`]).
-pub const WIDE_FETCH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Format of the `texture_loads` and `texture_samples` workloads' texture (the shader's
+/// `fetched`).
+pub const FETCH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
-/// The shader's sampled textures with the formats bound to them, as its module is created
-/// with ([`crate::shaders::module_with_formats`]).
+/// Format of the `float_texture_samples` workload's texture (the shader's `fetched_float`): the
+/// format of boulanger's slice textures ([`crate::shaders::is_float`]).
+pub const FLOAT_SAMPLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// Format of the `float_texture_loads` workload's texture (the shader's `fetched_r32`): the
+/// format of the terrain's height and density maps, which every technique loads.
+pub const FLOAT_LOAD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+
+/// The shader's textures with the formats bound to them, as its module is created with
+/// ([`crate::shaders::module_with_formats`]).
 pub const TEXTURE_FORMATS: &[(&str, wgpu::TextureFormat)] = &[
-    ("fetched", wgpu::TextureFormat::Rgba8Unorm),
-    ("fetched_wide", WIDE_FETCH_FORMAT),
+    ("fetched", FETCH_FORMAT),
+    ("fetched_float", FLOAT_SAMPLE_FORMAT),
+    ("fetched_r32", FLOAT_LOAD_FORMAT),
 ];
 
 /// What one invocation of `entry` of [`SHADER`] does ([`ShaderOps`]; nothing for an entry
@@ -54,22 +63,15 @@ pub fn shader_ops(entry: &str) -> ShaderOps {
     static OPS: OnceLock<Vec<(String, ShaderOps)>> = OnceLock::new();
     OPS.get_or_init(|| {
         naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
-            .map(|m| crate::shaders::entry_ops(&m, &wide_textures()))
+            .map(|m| {
+                crate::shaders::entry_ops(&m, &crate::shaders::float_textures(TEXTURE_FORMATS))
+            })
             .unwrap_or_default()
     })
     .iter()
     .find(|(e, _)| e == entry)
     .map(|(_, o)| *o)
     .unwrap_or_default()
-}
-
-/// The names of [`TEXTURE_FORMATS`]'s textures of wide texels.
-fn wide_textures() -> Vec<&'static str> {
-    TEXTURE_FORMATS
-        .iter()
-        .filter(|(_, f)| crate::shaders::is_wide(*f))
-        .map(|(n, _)| *n)
-        .collect()
 }
 
 /// Scalar arithmetic of one invocation of `entry` of [`SHADER`], as a count.
@@ -93,11 +95,11 @@ pub const DRAW_VERTICES: u32 = 3;
 pub const WORKGROUP_SIZE: u32 = 64;
 /// Most workgroups along one dimension of a dispatch (wgpu's default limit).
 pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
-/// `textureLoad`s of one fragment of the `texture_loads` workload: a load costs about a
+/// `textureLoad`s of one fragment of the `texture_loads` and `float_texture_loads` workloads: a load costs about a
 /// tenth of a fragment on lavapipe (1 ns against 8 ns, quiet host), so it takes 32 of them to
 /// stand out of the fragment's own cost by more than the noise.
 pub const LOADS_PER_FRAGMENT: u32 = 32;
-/// `textureSample`s of one fragment of the `texture_samples` and `wide_texture_samples`
+/// `textureSample`s of one fragment of the `texture_samples` and `float_texture_samples`
 /// workloads.
 pub const SAMPLES_PER_FRAGMENT: u32 = 8;
 /// Transcendental built-ins of the `transcendentals_*` workloads' chain (`math_chain` in the
@@ -196,20 +198,28 @@ pub enum Fetch {
     Loads,
     /// [`SAMPLES_PER_FRAGMENT`] trilinear samples (`textureSample`) of the RGBA8 texture.
     Samples,
-    /// The same samples of the texture of wide texels ([`WIDE_FETCH_FORMAT`]).
-    WideSamples,
+    /// The same loads of the texture of floating-point texels ([`FLOAT_LOAD_FORMAT`]).
+    FloatLoads,
+    /// The same samples of the texture of floating-point texels ([`FLOAT_SAMPLE_FORMAT`]).
+    FloatSamples,
 }
 
 impl Fetch {
     /// Every fetch, in declaration order (`fetch as usize` is its position).
-    pub const ALL: [Self; 3] = [Self::Loads, Self::Samples, Self::WideSamples];
+    pub const ALL: [Self; 4] = [
+        Self::Loads,
+        Self::Samples,
+        Self::FloatLoads,
+        Self::FloatSamples,
+    ];
 
     /// The fragment entry point that fetches so.
     pub fn fragment_entry(self) -> &'static str {
         match self {
             Self::Loads => "fs_loads",
             Self::Samples => "fs_samples",
-            Self::WideSamples => "fs_wide_samples",
+            Self::FloatLoads => "fs_float_loads",
+            Self::FloatSamples => "fs_float_samples",
         }
     }
 }
@@ -363,8 +373,9 @@ impl Workload {
                 Work {
                     fragment_arithmetic: base.fragments_opaque * arithmetic(fetch.fragment_entry()),
                     texture_loads: per(LOADS_PER_FRAGMENT, Fetch::Loads),
+                    float_texture_loads: per(LOADS_PER_FRAGMENT, Fetch::FloatLoads),
                     texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::Samples),
-                    wide_texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::WideSamples),
+                    float_texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::FloatSamples),
                     ..base
                 }
             }
@@ -544,10 +555,18 @@ pub fn families() -> Vec<Workload> {
             },
         },
         Workload {
-            name: "wide_texture_samples",
-            term: Term::WideTextureSample,
+            name: "float_texture_loads",
+            term: Term::FloatTextureLoad,
             shape: Shape::FetchLayers {
-                fetch: Fetch::WideSamples,
+                fetch: Fetch::FloatLoads,
+                layers: 1,
+            },
+        },
+        Workload {
+            name: "float_texture_samples",
+            term: Term::FloatTextureSample,
+            shape: Shape::FetchLayers {
+                fetch: Fetch::FloatSamples,
                 layers: 1,
             },
         },
@@ -686,13 +705,17 @@ mod tests {
         let wgsl = crate::shaders::compose(SHADER);
         let ops = crate::shaders::entry_ops(
             &naga::front::wgsl::parse_str(&wgsl).unwrap(),
-            &wide_textures(),
+            &crate::shaders::float_textures(TEXTURE_FORMATS),
         );
         // The fetches and transcendentals (the arithmetic is read off the shader: below).
         let of = |entry: &str| {
-            ops.iter()
-                .find(|(e, _)| e == entry)
-                .map(|(_, f)| (f.loads, f.samples + f.wide_samples, f.transcendentals))
+            ops.iter().find(|(e, _)| e == entry).map(|(_, f)| {
+                (
+                    f.loads + f.float_loads,
+                    f.samples + f.float_samples,
+                    f.transcendentals,
+                )
+            })
         };
         let count = |loads: u32, samples: u32, transcendentals: u32| {
             Some((
@@ -704,15 +727,30 @@ mod tests {
         let lit = LIT_TRANSCENDENTALS;
         assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
         assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
-        assert_eq!(of("fs_wide_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
-        // Which samples are wide: the texture's, as its format says.
-        let wide = |entry: &str| shader_ops(entry).wide_samples;
-        assert_eq!(wide("fs_samples"), 0);
-        assert_eq!(wide("fs_wide_samples"), u64::from(SAMPLES_PER_FRAGMENT));
+        assert_eq!(of("fs_float_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
+        assert_eq!(of("fs_float_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
+        // Which fetches are of floating-point texels: the texture's, as its format says,
+        // through the functions it is passed to.
+        let float = |entry: &str| {
+            let o = shader_ops(entry);
+            (o.float_loads, o.float_samples)
+        };
+        assert_eq!(float("fs_loads"), (0, 0));
+        assert_eq!(float("fs_samples"), (0, 0));
+        assert_eq!(float("fs_float_loads"), (u64::from(LOADS_PER_FRAGMENT), 0));
         assert_eq!(
-            shader_ops("fs_wide_samples").arithmetic,
-            shader_ops("fs_samples").arithmetic
+            float("fs_float_samples"),
+            (0, u64::from(SAMPLES_PER_FRAGMENT))
         );
+        for (float, normalised) in [
+            ("fs_float_samples", "fs_samples"),
+            ("fs_float_loads", "fs_loads"),
+        ] {
+            assert_eq!(
+                shader_ops(float).arithmetic,
+                shader_ops(normalised).arithmetic
+            );
+        }
         for fetch in Fetch::ALL {
             assert_eq!(Fetch::ALL[fetch as usize], fetch);
         }
@@ -764,7 +802,8 @@ mod tests {
             "fs_math",
             "fs_loads",
             "fs_samples",
-            "fs_wide_samples",
+            "fs_float_loads",
+            "fs_float_samples",
             "cs_springs",
             "cs_math",
         ] {

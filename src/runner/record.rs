@@ -104,28 +104,39 @@ pub struct FrameRecord {
     /// Draw calls of the core's background pass.
     #[serde(default)]
     pub background_draw_calls: Option<u64>,
-    /// Texels the technique's shaders read with `textureLoad`: each counted segment's vertex
-    /// and fragment invocations times the loads of one invocation of its pipeline's entry
-    /// points ([`crate::shaders::PipelineCost`], a static count).
+    /// Texels of normalised or integer formats the technique's shaders read with
+    /// `textureLoad`: each counted segment's invocations times the loads of one invocation of
+    /// its pipeline's entry points ([`crate::shaders::PipelineCost`], a static count).
     #[serde(default)]
     pub texture_loads: Option<u64>,
+    /// Texels of floating-point formats (`R32Float`, `Rgba16Float`, ...:
+    /// [`crate::shaders::ShaderOps::float_loads`]) the technique's shaders read with
+    /// `textureLoad`, counted the same way.
+    #[serde(default)]
+    pub float_texture_loads: Option<u64>,
     /// Filtered texture samples (`textureSample*`) the technique's shaders took of textures
-    /// of narrow texels, counted the same way.
+    /// of normalised or integer texels, counted the same way.
     #[serde(default)]
     pub texture_samples: Option<u64>,
-    /// Filtered texture samples of textures of wide texels (`Rgba16Float`:
-    /// [`crate::shaders::ShaderOps::wide_samples`]), counted the same way.
+    /// Filtered texture samples of textures of floating-point texels
+    /// ([`crate::shaders::ShaderOps::float_samples`]), counted the same way.
     #[serde(default)]
-    pub wide_texture_samples: Option<u64>,
-    /// Texels the core's background shaders read with `textureLoad`.
+    pub float_texture_samples: Option<u64>,
+    /// Texels of normalised or integer formats the core's background shaders read with
+    /// `textureLoad`.
     #[serde(default)]
     pub background_texture_loads: Option<u64>,
+    /// Texels of floating-point formats the core's background shaders read with
+    /// `textureLoad` (the terrain's heights and density).
+    #[serde(default)]
+    pub background_float_texture_loads: Option<u64>,
     /// Filtered texture samples the core's background shaders took.
     #[serde(default)]
     pub background_texture_samples: Option<u64>,
-    /// Filtered samples of textures of wide texels the core's background shaders took.
+    /// Filtered samples of textures of floating-point texels the core's background shaders
+    /// took.
     #[serde(default)]
-    pub background_wide_texture_samples: Option<u64>,
+    pub background_float_texture_samples: Option<u64>,
     /// Transcendental built-ins (`sin`, `cos`, `pow`, `exp`, ...) the technique's vertex
     /// shaders evaluated, counted the same way ([`crate::shaders::ShaderOps`]: a loop's body
     /// once).
@@ -337,15 +348,22 @@ pub struct RunSummary {
     /// Median fragment invocations of the core's background pass.
     #[serde(default)]
     pub background_fragment_invocations: Option<u64>,
-    /// Median texels read with `textureLoad` by the technique's shaders.
+    /// Median texels of normalised or integer formats read with `textureLoad` by the
+    /// technique's shaders.
     #[serde(default)]
     pub texture_loads: Option<u64>,
-    /// Median filtered texture samples of the technique's shaders (narrow texels).
+    /// Median texels of floating-point formats read with `textureLoad` by the technique's
+    /// shaders.
+    #[serde(default)]
+    pub float_texture_loads: Option<u64>,
+    /// Median filtered texture samples of the technique's shaders (normalised or integer
+    /// texels).
     #[serde(default)]
     pub texture_samples: Option<u64>,
-    /// Median filtered samples of textures of wide texels of the technique's shaders.
+    /// Median filtered samples of textures of floating-point texels of the technique's
+    /// shaders.
     #[serde(default)]
-    pub wide_texture_samples: Option<u64>,
+    pub float_texture_samples: Option<u64>,
     /// Median transcendental built-ins evaluated by the technique's vertex shaders.
     #[serde(default)]
     pub vertex_transcendentals: Option<u64>,
@@ -408,12 +426,15 @@ pub struct RunSummary {
     /// The model's time for texels read with `textureLoad`, ms.
     #[serde(default)]
     pub model_texture_load_ms: Option<f64>,
+    /// The model's time for floating-point texels read with `textureLoad`, ms.
+    #[serde(default)]
+    pub model_float_texture_load_ms: Option<f64>,
     /// The model's time for filtered texture samples, ms.
     #[serde(default)]
     pub model_texture_sample_ms: Option<f64>,
-    /// The model's time for filtered samples of textures of wide texels, ms.
+    /// The model's time for filtered samples of textures of floating-point texels, ms.
     #[serde(default)]
-    pub model_wide_texture_sample_ms: Option<f64>,
+    pub model_float_texture_sample_ms: Option<f64>,
     /// Predicted ms of vertex shaders' transcendental built-ins.
     #[serde(default)]
     pub model_vertex_transcendental_ms: Option<f64>,
@@ -532,8 +553,9 @@ impl RunSummary {
             compute_invocations: median_u64(&|r| r.compute_invocations),
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
             texture_loads: median_u64(&|r| r.texture_loads),
+            float_texture_loads: median_u64(&|r| r.float_texture_loads),
             texture_samples: median_u64(&|r| r.texture_samples),
-            wide_texture_samples: median_u64(&|r| r.wide_texture_samples),
+            float_texture_samples: median_u64(&|r| r.float_texture_samples),
             vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
             fragment_transcendentals: median_u64(&|r| r.fragment_transcendentals),
             compute_transcendentals: median_u64(&|r| r.compute_transcendentals),
@@ -560,8 +582,9 @@ impl RunSummary {
             model_compute_ms: None,
             model_upload_ms: None,
             model_texture_load_ms: None,
+            model_float_texture_load_ms: None,
             model_texture_sample_ms: None,
-            model_wide_texture_sample_ms: None,
+            model_float_texture_sample_ms: None,
             model_vertex_transcendental_ms: None,
             model_fragment_transcendental_ms: None,
             model_compute_transcendental_ms: None,
@@ -765,14 +788,16 @@ mod tests {
             background_fragment_invocations: None,
             background_draw_calls: None,
             texture_loads: None,
+            float_texture_loads: None,
             texture_samples: None,
-            wide_texture_samples: None,
+            float_texture_samples: None,
             vertex_transcendentals: None,
             fragment_transcendentals: None,
             compute_transcendentals: None,
             background_texture_loads: None,
+            background_float_texture_loads: None,
             background_texture_samples: None,
-            background_wide_texture_samples: None,
+            background_float_texture_samples: None,
             background_vertex_transcendentals: None,
             background_fragment_transcendentals: None,
             vertex_arithmetic: None,

@@ -15,7 +15,7 @@ mod walk;
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
 pub use loops::uniform_bound_loops;
-pub use ops::{ShaderOps, entry_ops, is_wide, sampled_textures};
+pub use ops::{ShaderOps, entry_ops, is_float, texture_globals};
 pub use pipeline::{
     ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,
     depth_less, depth_test, render_pipeline,
@@ -44,11 +44,22 @@ pub fn module(device: &wgpu::Device, label: &str, source: &str) -> Module {
     module_with_formats(device, label, source, &[])
 }
 
-/// [`module`] for a shader that samples textures of wide texels ([`is_wide`]): `formats`
-/// names the module's sampled texture globals with the format of what is bound to them, so
-/// their samples are counted as [`ShaderOps::wide_samples`] (WGSL's texture types do not say
-/// the format; a texture not named is counted narrow). Name a texture by the same constant
-/// its creation uses, so the count follows a change of format.
+/// The prelude's textures (bind group 0) with the formats the core binds there: every
+/// module's fetches of them are priced by their format ([`module_with_formats`]).
+pub const PRELUDE_TEXTURES: [(&str, wgpu::TextureFormat); 4] = [
+    ("height_map", crate::terrain::HEIGHT_FORMAT),
+    ("density_map", crate::terrain::DENSITY_FORMAT),
+    ("covering_map", crate::terrain::COVERING_FORMAT),
+    ("wind_map", crate::wind::TEXTURE_FORMAT),
+];
+
+/// [`module`] for a shader that fetches textures of its own: `formats` names the module's
+/// texture globals with the format of what is bound to them, so the loads and samples of
+/// floating-point ones ([`is_float`]) are counted as [`ShaderOps::float_loads`] and
+/// [`ShaderOps::float_samples`] (WGSL's texture types do not say the format; a texture not
+/// named is counted as normalised, and the prelude's are always named: [`PRELUDE_TEXTURES`]).
+/// Name a texture by the same constant its creation uses, so the count follows a change of
+/// format.
 pub fn module_with_formats(
     device: &wgpu::Device,
     label: &str,
@@ -56,12 +67,7 @@ pub fn module_with_formats(
     formats: &[(&str, wgpu::TextureFormat)],
 ) -> Module {
     let composed = compose(source);
-    let wide: Vec<&str> = formats
-        .iter()
-        .filter(|(_, f)| is_wide(*f))
-        .map(|(n, _)| *n)
-        .collect();
-    let (discarding, ops) = analyse(&composed, &wide);
+    let (discarding, ops) = analyse(&composed, &float_textures(formats));
     Module {
         raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
@@ -72,15 +78,25 @@ pub fn module_with_formats(
     }
 }
 
+/// The names among [`PRELUDE_TEXTURES`] and `formats` whose texels are floating-point.
+pub fn float_textures<'a>(formats: &[(&'a str, wgpu::TextureFormat)]) -> Vec<&'a str> {
+    PRELUDE_TEXTURES
+        .iter()
+        .chain(formats)
+        .filter(|(_, f)| is_float(*f))
+        .map(|(n, _)| *n)
+        .collect()
+}
+
 /// What [`module`] reads off a composed shader, naga parsing it once: the fragment entry points
-/// that can discard and every entry point's costly operations (the samples of the textures
-/// named in `wide` counted as wide). A source naga cannot parse has
+/// that can discard and every entry point's costly operations (the fetches of the textures
+/// named in `float` counted as floating-point ones). A source naga cannot parse has
 /// neither: the device reports its errors when the module is created.
-fn analyse(wgsl: &str, wide: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
+fn analyse(wgsl: &str, float: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
     match naga::front::wgsl::parse_str(wgsl) {
         Ok(parsed) => (
             discarding_fragment_entries(&parsed),
-            entry_ops(&parsed, wide),
+            entry_ops(&parsed, float),
         ),
         Err(_) => (Vec::new(), Vec::new()),
     }
@@ -109,8 +125,9 @@ mod tests {
             cut,
             Some(ShaderOps {
                 loads: 1,
+                float_loads: 0,
                 samples: 0,
-                wide_samples: 0,
+                float_samples: 0,
                 transcendentals: 1,
                 // `p.xy`'s conversion to `vec2<i32>` (2), the product with `exp` (4), the
                 // alpha test (1).
@@ -119,5 +136,33 @@ mod tests {
         );
         // An unparsable source has neither.
         assert_eq!(analyse("fn broken(", &[]), (Vec::new(), Vec::new()));
+    }
+
+    #[test]
+    fn the_prelude_names_every_texture_it_fetches_with_its_format() {
+        let prelude = naga::front::wgsl::parse_str(PRELUDE).unwrap();
+        let mut named: Vec<&str> = PRELUDE_TEXTURES.iter().map(|(n, _)| *n).collect();
+        named.sort_unstable();
+        assert_eq!(texture_globals(&prelude), named);
+        // The terrain's heights and density and the wind are floating-point; the covering
+        // IDs are not. A module's own floating-point textures join them.
+        assert_eq!(
+            float_textures(&[
+                ("blades", wgpu::TextureFormat::Rgba16Float),
+                ("mask", wgpu::TextureFormat::R8Unorm),
+            ]),
+            ["height_map", "density_map", "wind_map", "blades"]
+        );
+        // A prelude function's bilinear height: four loads of floating-point texels.
+        let (_, ops) = analyse(
+            &compose(
+                "@vertex fn vs() -> @builtin(position) vec4<f32> {
+                     return vec4(terrain_height(vec2(1.0, 2.0)));
+                 }",
+            ),
+            &float_textures(&[]),
+        );
+        let vs = ops.iter().find(|(e, _)| e == "vs").map(|(_, f)| *f);
+        assert_eq!(vs.map(|o| (o.loads, o.float_loads)), Some((0, 4)));
     }
 }

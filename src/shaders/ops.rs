@@ -1,7 +1,8 @@
 //! What one shader invocation does that costs more than the invocation itself: its
-//! `textureLoad`s (a texel, unfiltered), its `textureSample*`s (filtered: bilinear or
-//! trilinear, mip level chosen; those of textures with wide texels apart, [`is_wide`]), its transcendental built-ins (`sin`, `cos`, `pow`, `exp`,
-//! ...) and its scalar arithmetic (each operation once per vector component), counted in the
+//! `textureLoad`s (a texel, unfiltered) and `textureSample*`s (filtered: bilinear or
+//! trilinear, mip level chosen), those of textures of floating-point texels apart
+//! ([`is_float`]), its transcendental built-ins (`sin`, `cos`, `pow`, `exp`, ...) and its
+//! scalar arithmetic (each operation once per vector component), counted in the
 //! entry point's naga IR and in every function it calls. On a software
 //! rasteriser each is a stretch of code per invocation (a transcendental is a polynomial
 //! with range reduction, tens of instructions), and the pipeline statistics count
@@ -22,19 +23,26 @@ use std::collections::HashMap;
 /// The costly operations of one invocation of a shader entry point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct ShaderOps {
-    /// `textureLoad` calls (one texel, no filtering).
+    /// `textureLoad` calls (one texel, no filtering) of textures of integer or normalised
+    /// texels (`Rgba8Unorm`, `R8Uint`, ...).
     pub loads: u64,
-    /// `textureSample*` and `textureGather*` calls (filtered) of textures of narrow texels
-    /// (up to 4 bytes: `Rgba8Unorm` and the like).
+    /// `textureLoad` calls of textures of floating-point texels ([`is_float`]: `R32Float`,
+    /// `Rgba16Float`, ...), which the module's creator names ([`super::module_with_formats`];
+    /// the prelude's terrain and wind maps always): WGSL's `texture_2d<f32>` is the same
+    /// type for `Rgba8Unorm` and `R32Float`, the format is only known where the texture is
+    /// bound, and the two cost differently. On lavapipe, 8-bit normalised texels take a fast
+    /// path and floating-point ones a conversion per texel: a load 0.13 ns (`Rgba8Unorm`)
+    /// against 0.59-0.63 (`R32Float`) and 0.93 (`Rgba16Float`); a trilinear sample 3.2 ns
+    /// against 5.4-5.7 (`Rgba16Float`): `grassbench calibrate` at 320x180 and 640x360 with
+    /// the fetch texture in each format, 2026-12-04. On GPUs 16- and 32-bit channels mean
+    /// wider texels (half-rate filtering on most).
+    pub float_loads: u64,
+    /// `textureSample*` and `textureGather*` calls (filtered) of textures of integer or
+    /// normalised texels.
     pub samples: u64,
-    /// `textureSample*` and `textureGather*` calls of textures of wide texels ([`is_wide`]:
-    /// 8 bytes or more, `Rgba16Float`), which the module's creator names
-    /// ([`super::module_with_formats`]): WGSL's `texture_2d<f32>` is the same type for both,
-    /// and the format is only known where the texture is bound. Filtering them costs more:
-    /// half rate on most GPUs, and on lavapipe a conversion per texel outside its 8-bit fast
-    /// path (an `Rgba16Float` sample 5.4 ns against an `Rgba8Unorm` one's 3.2, a load 0.93
-    /// against 0.13: `grassbench calibrate` at 320x180 with the fetch texture in each format).
-    pub wide_samples: u64,
+    /// `textureSample*` and `textureGather*` calls of textures of floating-point texels
+    /// ([`is_float`]; see [`ShaderOps::float_loads`]).
+    pub float_samples: u64,
     /// Calls of transcendental built-ins ([`is_transcendental`]).
     pub transcendentals: u64,
     /// Scalar arithmetic operations: every arithmetic, comparison, logical, selection,
@@ -80,8 +88,9 @@ impl ShaderOps {
     pub fn times(self, n: u64) -> Self {
         Self {
             loads: self.loads * n,
+            float_loads: self.float_loads * n,
             samples: self.samples * n,
-            wide_samples: self.wide_samples * n,
+            float_samples: self.float_samples * n,
             transcendentals: self.transcendentals * n,
             arithmetic: self.arithmetic * n,
         }
@@ -94,28 +103,39 @@ impl std::ops::Add for ShaderOps {
     fn add(self, o: Self) -> Self {
         Self {
             loads: self.loads + o.loads,
+            float_loads: self.float_loads + o.float_loads,
             samples: self.samples + o.samples,
-            wide_samples: self.wide_samples + o.wide_samples,
+            float_samples: self.float_samples + o.float_samples,
             transcendentals: self.transcendentals + o.transcendentals,
             arithmetic: self.arithmetic + o.arithmetic,
         }
     }
 }
 
-/// Whether texels of `format` are wide: 8 bytes a texel or more (`Rgba16Float`,
-/// `Rgba32Float`), whose samples the cost model prices apart ([`ShaderOps::wide_samples`]).
-/// Block-compressed formats are narrow (BC1: half a byte a texel).
-pub fn is_wide(format: wgpu::TextureFormat) -> bool {
-    let (w, h) = format.block_dimensions();
-    format
-        .block_copy_size(None)
-        .is_some_and(|bytes| bytes >= 8 * w * h)
+/// Whether texels of `format` are floating-point numbers (16- or 32-bit channels, or packed
+/// floats), whose fetches the cost model prices apart ([`ShaderOps::float_loads`],
+/// [`ShaderOps::float_samples`]). Normalised and integer formats, sRGB, depth and
+/// block-compressed formats are not.
+pub fn is_float(format: wgpu::TextureFormat) -> bool {
+    use wgpu::TextureFormat as F;
+    matches!(
+        format,
+        F::R16Float
+            | F::Rg16Float
+            | F::Rgba16Float
+            | F::R32Float
+            | F::Rg32Float
+            | F::Rgba32Float
+            | F::Rg11b10Ufloat
+            | F::Rgb9e5Ufloat
+    )
 }
 
 /// The costly operations of every entry point of `module` (a parsed, composed shader), by
-/// name; the samples of the textures named in `wide` (global variables bound to textures of
-/// wide texels, [`is_wide`]) counted as [`ShaderOps::wide_samples`].
-pub fn entry_ops(module: &naga::Module, wide: &[&str]) -> Vec<(String, ShaderOps)> {
+/// name; the fetches of the textures named in `float` (global variables bound to textures of
+/// floating-point texels, [`is_float`]) counted as [`ShaderOps::float_loads`] and
+/// [`ShaderOps::float_samples`].
+pub fn entry_ops(module: &naga::Module, float: &[&str]) -> Vec<(String, ShaderOps)> {
     // The expressions' types, which say how many components each operates on; a module the
     // validator rejects (the device will say why) counts one per expression.
     let info = naga::valid::Validator::new(
@@ -127,7 +147,7 @@ pub fn entry_ops(module: &naga::Module, wide: &[&str]) -> Vec<(String, ShaderOps
     let types = Types {
         module,
         info: info.as_ref(),
-        wide,
+        float,
     };
     let mut memo = HashMap::new();
     module
@@ -138,68 +158,61 @@ pub fn entry_ops(module: &naga::Module, wide: &[&str]) -> Vec<(String, ShaderOps
             let function_info = info.as_ref().map(|m| m.get_entry_point(i));
             (
                 e.name.clone(),
-                function_ops(&types, &e.function, function_info, &mut memo, 0),
+                function_ops(&types, &e.function, function_info, &mut memo, 0, 0),
             )
         })
         .collect()
 }
 
-/// The names of the global textures `module`'s functions and entry points sample (filtered:
-/// `textureSample*`, `textureGather*`), sorted, each once: what a module's creator names
-/// with their formats ([`super::module_with_formats`]), for a test to check against.
-pub fn sampled_textures(module: &naga::Module) -> Vec<String> {
-    let functions = module
-        .functions
+/// The names of `module`'s texture globals, sorted: what a module's creator names with their
+/// formats ([`super::module_with_formats`]), for a test to check against.
+pub fn texture_globals(module: &naga::Module) -> Vec<String> {
+    let mut names: Vec<String> = module
+        .global_variables
         .iter()
-        .map(|(_, f)| f)
-        .chain(module.entry_points.iter().map(|e| &e.function));
-    let mut names: Vec<String> = functions
-        .flat_map(|f| {
-            f.expressions.iter().filter_map(move |(_, e)| match e {
-                naga::Expression::ImageSample { image, .. } => global_of(f, *image),
-                _ => None,
-            })
+        .filter(|(_, g)| {
+            let inner = match module.types[g.ty].inner {
+                naga::TypeInner::BindingArray { base, .. } => &module.types[base].inner,
+                ref other => other,
+            };
+            matches!(inner, naga::TypeInner::Image { .. })
         })
-        .filter_map(|g| module.global_variables[g].name.clone())
+        .filter_map(|(_, g)| g.name.clone())
         .collect();
     names.sort();
-    names.dedup();
     names
 }
 
-/// The global variable image expression `image` of `function` reads: the global itself, or
-/// an element of one (a binding array). `None` for a texture passed as an argument.
-fn global_of(
-    function: &naga::Function,
-    image: naga::Handle<naga::Expression>,
-) -> Option<naga::Handle<naga::GlobalVariable>> {
-    match &function.expressions[image] {
-        naga::Expression::GlobalVariable(g) => Some(*g),
-        naga::Expression::Access { base, .. } | naga::Expression::AccessIndex { base, .. } => {
-            global_of(function, *base)
-        }
-        _ => None,
-    }
-}
-
-/// A module, where it validated its expressions' types, and its textures of wide texels.
+/// A module, where it validated its expressions' types, and its textures of floating-point
+/// texels.
 struct Types<'a> {
     module: &'a naga::Module,
     info: Option<&'a naga::valid::ModuleInfo>,
-    wide: &'a [&'a str],
+    float: &'a [&'a str],
 }
 
 impl Types<'_> {
-    /// Whether image expression `image` of `function` is one of the textures of wide texels:
-    /// a global named in [`Types::wide`], or an element of one (a binding array). A texture
-    /// passed as an argument is counted narrow.
-    fn is_wide(&self, function: &naga::Function, image: naga::Handle<naga::Expression>) -> bool {
-        global_of(function, image).is_some_and(|g| {
-            self.module.global_variables[g]
+    /// Whether image expression `image` of `function` is one of the textures of
+    /// floating-point texels: a global named in [`Types::float`], an argument whose bit is set
+    /// in `float_args` (the caller passed such a texture), or an element of either (a binding
+    /// array).
+    fn is_float(
+        &self,
+        function: &naga::Function,
+        image: naga::Handle<naga::Expression>,
+        float_args: u64,
+    ) -> bool {
+        match &function.expressions[image] {
+            naga::Expression::GlobalVariable(g) => self.module.global_variables[*g]
                 .name
                 .as_deref()
-                .is_some_and(|n| self.wide.contains(&n))
-        })
+                .is_some_and(|n| self.float.contains(&n)),
+            naga::Expression::FunctionArgument(i) => *i < 64 && float_args >> i & 1 == 1,
+            naga::Expression::Access { base, .. } | naga::Expression::AccessIndex { base, .. } => {
+                self.is_float(function, *base, float_args)
+            }
+            _ => false,
+        }
     }
 }
 
@@ -262,15 +275,22 @@ fn arithmetic_of(
 /// Deepest call chain followed (WGSL forbids recursion; this only bounds a malformed IR).
 const MAX_CALL_DEPTH: u32 = 64;
 
+/// A function and which of its arguments are textures of floating-point texels (bit `i`:
+/// argument `i`): its operations depend on both.
+type CallKey = (naga::Handle<naga::Function>, u64);
+
 /// The operations of `function`: its own image and math expressions plus its callees', once
-/// per call site.
+/// per call site. Bit `i` of `float_args` says that argument `i` is a texture of
+/// floating-point texels (the prelude's `bilinear_r(height_map, uv)`).
 fn function_ops(
     types: &Types<'_>,
     function: &naga::Function,
     info: Option<&naga::valid::FunctionInfo>,
-    memo: &mut HashMap<naga::Handle<naga::Function>, ShaderOps>,
+    memo: &mut HashMap<CallKey, ShaderOps>,
     depth: u32,
+    float_args: u64,
 ) -> ShaderOps {
+    let is_float = |image| types.is_float(function, image, float_args);
     let module = types.module;
     let arithmetic = function
         .expressions
@@ -283,14 +303,16 @@ fn function_ops(
             ..ShaderOps::default()
         },
         |acc, (_, e)| match e {
-            naga::Expression::ImageSample { image, .. } if types.is_wide(function, *image) => {
-                ShaderOps {
-                    wide_samples: acc.wide_samples + 1,
-                    ..acc
-                }
-            }
+            naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
+                float_samples: acc.float_samples + 1,
+                ..acc
+            },
             naga::Expression::ImageSample { .. } => ShaderOps {
                 samples: acc.samples + 1,
+                ..acc
+            },
+            naga::Expression::ImageLoad { image, .. } if is_float(*image) => ShaderOps {
+                float_loads: acc.float_loads + 1,
                 ..acc
             },
             naga::Expression::ImageLoad { .. } => ShaderOps {
@@ -304,16 +326,28 @@ fn function_ops(
             _ => acc,
         },
     );
-    let mut calls = Vec::new();
+    let mut calls: Vec<CallKey> = Vec::new();
     super::walk::for_each_statement(&function.body, &mut |s| {
-        if let naga::Statement::Call { function, .. } = s {
-            calls.push(*function);
+        if let naga::Statement::Call {
+            function: callee,
+            arguments,
+            ..
+        } = s
+        {
+            let mask = arguments
+                .iter()
+                .take(64)
+                .enumerate()
+                .filter(|(_, a)| is_float(**a))
+                .fold(0u64, |m, (i, _)| m | 1 << i);
+            calls.push((*callee, mask));
         }
     });
-    calls.into_iter().fold(own, |acc, callee| {
-        let ops = match memo.get(&callee) {
+    calls.into_iter().fold(own, |acc, key| {
+        let ops = match memo.get(&key) {
             Some(f) => *f,
             None if depth < MAX_CALL_DEPTH => {
+                let (callee, mask) = key;
                 let callee_info = types.info.map(|m| &m[callee]);
                 let f = function_ops(
                     types,
@@ -321,8 +355,9 @@ fn function_ops(
                     callee_info,
                     memo,
                     depth + 1,
+                    mask,
                 );
-                memo.insert(callee, f);
+                memo.insert(key, f);
                 f
             }
             None => ShaderOps::default(),
@@ -362,14 +397,21 @@ mod tests {
         @fragment fn plain(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
             return vec4(uv, 0.0, 1.0);
         }
+        @group(0) @binding(2) var u: texture_2d<f32>;
+        fn load_from(m: texture_2d<f32>, p: vec2<i32>) -> f32 {
+            return textureLoad(m, p, 0).r;
+        }
+        @fragment fn passes(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+            return vec4(load_from(t, vec2(0)) + load_from(u, vec2(1)) + load_from(t, vec2(2)));
+        }
     ";
 
     fn of(name: &str) -> ShaderOps {
         of_with(name, &[])
     }
 
-    fn of_with(name: &str, wide: &[&str]) -> ShaderOps {
-        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), wide)
+    fn of_with(name: &str, float: &[&str]) -> ShaderOps {
+        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), float)
             .into_iter()
             .find(|(n, _)| n == name)
             .map(|(_, f)| f)
@@ -386,8 +428,9 @@ mod tests {
             of("vs"),
             ShaderOps {
                 loads: 4,
+                float_loads: 0,
                 samples: 0,
-                wide_samples: 0,
+                float_samples: 0,
                 transcendentals: 2,
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
             }
@@ -400,8 +443,9 @@ mod tests {
             of("fs"),
             ShaderOps {
                 loads: 2,
+                float_loads: 0,
                 samples: 3,
-                wide_samples: 0,
+                float_samples: 0,
                 transcendentals: 2,
                 arithmetic: 11 + 5 + 2 + 8,
             }
@@ -410,41 +454,67 @@ mod tests {
     }
 
     #[test]
-    fn samples_of_textures_named_wide_are_counted_apart() {
-        // `t` bound to wide texels: its three samples move (in the callee too), its loads
-        // stay loads; a name that is not a global changes nothing.
-        let narrow = of("fs");
+    fn fetches_of_textures_named_float_are_counted_apart() {
+        // `t` bound to floating-point texels: its loads and samples move (in the callees
+        // too); a name that is not a global changes nothing.
+        let normalised = of("fs");
         assert_eq!(
             of_with("fs", &["t"]),
             ShaderOps {
+                loads: 0,
+                float_loads: 2,
                 samples: 0,
-                wide_samples: 3,
-                ..narrow
+                float_samples: 3,
+                ..normalised
             }
         );
-        assert_eq!(of_with("fs", &["s", "uv"]), narrow);
-        assert_eq!(of_with("vs", &["t"]), of("vs"));
-        // `t` is what the module samples (`s` is a sampler, and `t`'s loads are not samples).
+        assert_eq!(of_with("fs", &["s", "uv"]), normalised);
+        assert_eq!(
+            of_with("vs", &["t"]),
+            ShaderOps {
+                loads: 0,
+                float_loads: 4,
+                ..of("vs")
+            }
+        );
+        // A texture passed to a function is the caller's: `t` twice, `u` once.
+        let passes = |float: &[&str]| {
+            let o = of_with("passes", float);
+            (o.loads, o.float_loads)
+        };
+        assert_eq!(passes(&[]), (3, 0));
+        assert_eq!(passes(&["t"]), (1, 2));
+        assert_eq!(passes(&["u"]), (2, 1));
+        assert_eq!(passes(&["t", "u"]), (0, 3));
+        // The module's textures (`s` is a sampler).
         let module = naga::front::wgsl::parse_str(SOURCE).unwrap();
-        assert_eq!(sampled_textures(&module), ["t"]);
+        assert_eq!(texture_globals(&module), ["t", "u"]);
     }
 
     #[test]
-    fn wide_texels_are_eight_bytes_or_more() {
+    fn float_texels_are_16_or_32_bit_floats() {
         use wgpu::TextureFormat as F;
-        for f in [F::Rgba16Float, F::Rgba32Float, F::Rg32Float, F::Rgba16Unorm] {
-            assert!(is_wide(f), "{f:?}");
+        for f in [
+            F::Rgba16Float,
+            F::Rgba32Float,
+            F::Rg32Float,
+            F::R32Float,
+            F::Rg16Float,
+            F::Rg11b10Ufloat,
+        ] {
+            assert!(is_float(f), "{f:?}");
         }
         for f in [
             F::Rgba8Unorm,
             F::Rgba8UnormSrgb,
-            F::R32Float,
-            F::Rg16Float,
+            F::Rgba16Unorm,
             F::R8Uint,
+            F::R32Uint,
+            F::Depth32Float,
             F::Bc1RgbaUnorm,
-            F::Bc7RgbaUnorm,
+            F::Bc6hRgbUfloat,
         ] {
-            assert!(!is_wide(f), "{f:?}");
+            assert!(!is_float(f), "{f:?}");
         }
     }
 }

@@ -13,8 +13,10 @@ struct Params {
 // The texture workloads' mip-mapped 512x512 texture (hashed texels) and a trilinear sampler.
 @group(1) @binding(2) var fetched: texture_2d<f32>;
 @group(1) @binding(3) var trilinear: sampler;
-// The same texels in a format of wide texels (`Rgba16Float`: `WIDE_FETCH_FORMAT`).
-@group(1) @binding(4) var fetched_wide: texture_2d<f32>;
+// The same texels as floating-point numbers: `Rgba16Float` for the samples
+// (`FLOAT_SAMPLE_FORMAT`), `R32Float` for the loads (`FLOAT_LOAD_FORMAT`, as the terrain maps).
+@group(1) @binding(4) var fetched_float: texture_2d<f32>;
+@group(1) @binding(5) var fetched_r32: texture_2d<f32>;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -190,53 +192,64 @@ fn fs_arithmetic(in: VsOut) -> @location(0) vec4<f32> {
     return vec4(lit(in) + 0.001 * a.x, 1.0);
 }
 
-// Texel loads: 32 `textureLoad`s per fragment (LOADS_PER_FRAGMENT, each its own call site: the
-// cost model counts fetches per call site), at the pixel's texel and neighbours of level 0,
-// added to the lit colour so none is dead code.
-fn load_at(p: vec2<i32>, k: i32) -> vec4<f32> {
-    return textureLoad(fetched, (p + vec2(k * 3, k * 5)) & vec2(511), 0);
+// Texel loads: 32 `textureLoad`s of `t` per fragment (LOADS_PER_FRAGMENT, each its own call
+// site: the cost model counts fetches per call site), at the pixel's texel and neighbours of
+// level 0, added to the lit colour so none is dead code.
+fn load_at(t: texture_2d<f32>, p: vec2<i32>, k: i32) -> vec4<f32> {
+    return textureLoad(t, (p + vec2(k * 3, k * 5)) & vec2(511), 0);
 }
 
-// 8 loads from `p`'s texel on.
-fn load8(p: vec2<i32>, k: i32) -> vec4<f32> {
-    return load_at(p, k) + load_at(p, k + 1) + load_at(p, k + 2) + load_at(p, k + 3)
-        + load_at(p, k + 4) + load_at(p, k + 5) + load_at(p, k + 6) + load_at(p, k + 7);
+// 8 loads of `t` from `p`'s texel on.
+fn load8(t: texture_2d<f32>, p: vec2<i32>, k: i32) -> vec4<f32> {
+    return load_at(t, p, k) + load_at(t, p, k + 1) + load_at(t, p, k + 2) + load_at(t, p, k + 3)
+        + load_at(t, p, k + 4) + load_at(t, p, k + 5) + load_at(t, p, k + 6)
+        + load_at(t, p, k + 7);
+}
+
+// 32 loads of `t` around the fragment's pixel, lit.
+fn loads32(in: VsOut, t: texture_2d<f32>) -> vec4<f32> {
+    let p = vec2<i32>(in.position.xy);
+    let s = load8(t, p, 0) + load8(t, p, 8) + load8(t, p, 16) + load8(t, p, 24);
+    return vec4(lit(in) + 0.002 * s.rgb, 1.0);
 }
 
 @fragment
 fn fs_loads(in: VsOut) -> @location(0) vec4<f32> {
-    let p = vec2<i32>(in.position.xy);
-    let t = load8(p, 0) + load8(p, 8) + load8(p, 16) + load8(p, 24);
-    return vec4(lit(in) + 0.002 * t.rgb, 1.0);
+    return loads32(in, fetched);
 }
 
-// Filtered samples: 8 trilinear `textureSample`s per fragment (SAMPLES_PER_FRAGMENT), the texture minified 2.5:1 at
-// any target size (2.5 x 512 texels over the screen's width, the layer's world x spanning
-// 20 m: between mip levels 1 and 2, as far grass textures are), each at its own offset.
-fn sample_at(uv: vec2<f32>, k: f32) -> vec4<f32> {
-    return textureSample(fetched, trilinear, uv + vec2(k * 0.013, k * 0.029));
+// The same loads of floating-point texels (the `float_texture_loads` workload).
+@fragment
+fn fs_float_loads(in: VsOut) -> @location(0) vec4<f32> {
+    return loads32(in, fetched_r32);
+}
+
+// Filtered samples: 8 trilinear `textureSample`s of `t` per fragment (SAMPLES_PER_FRAGMENT),
+// the texture minified 2.5:1 at any target size (2.5 x 512 texels over the screen's width,
+// the layer's world x spanning 20 m: between mip levels 1 and 2, as far grass textures are),
+// each at its own offset.
+fn sample_at(t: texture_2d<f32>, uv: vec2<f32>, k: f32) -> vec4<f32> {
+    return textureSample(t, trilinear, uv + vec2(k * 0.013, k * 0.029));
+}
+
+// The 8 samples of `t` at the fragment, lit.
+fn samples8(in: VsOut, t: texture_2d<f32>) -> vec4<f32> {
+    let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
+    let s = sample_at(t, uv, 0.0) + sample_at(t, uv, 1.0) + sample_at(t, uv, 2.0)
+        + sample_at(t, uv, 3.0) + sample_at(t, uv, 4.0) + sample_at(t, uv, 5.0)
+        + sample_at(t, uv, 6.0) + sample_at(t, uv, 7.0);
+    return vec4(lit(in) + 0.01 * s.rgb, 1.0);
 }
 
 @fragment
 fn fs_samples(in: VsOut) -> @location(0) vec4<f32> {
-    let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
-    let t = sample_at(uv, 0.0) + sample_at(uv, 1.0) + sample_at(uv, 2.0) + sample_at(uv, 3.0)
-        + sample_at(uv, 4.0) + sample_at(uv, 5.0) + sample_at(uv, 6.0) + sample_at(uv, 7.0);
-    return vec4(lit(in) + 0.01 * t.rgb, 1.0);
+    return samples8(in, fetched);
 }
 
-// The same samples of the texture of wide texels (the `wide_texture_samples` workload).
-fn wide_sample_at(uv: vec2<f32>, k: f32) -> vec4<f32> {
-    return textureSample(fetched_wide, trilinear, uv + vec2(k * 0.013, k * 0.029));
-}
-
+// The same samples of floating-point texels (the `float_texture_samples` workload).
 @fragment
-fn fs_wide_samples(in: VsOut) -> @location(0) vec4<f32> {
-    let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
-    let t = wide_sample_at(uv, 0.0) + wide_sample_at(uv, 1.0) + wide_sample_at(uv, 2.0)
-        + wide_sample_at(uv, 3.0) + wide_sample_at(uv, 4.0) + wide_sample_at(uv, 5.0)
-        + wide_sample_at(uv, 6.0) + wide_sample_at(uv, 7.0);
-    return vec4(lit(in) + 0.01 * t.rgb, 1.0);
+fn fs_float_samples(in: VsOut) -> @location(0) vec4<f32> {
+    return samples8(in, fetched_float);
 }
 
 // Compute: one spring step per invocation towards a hashed rest state, read-modify-write of

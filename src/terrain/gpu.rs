@@ -26,6 +26,13 @@ impl GroundVertex {
     };
 }
 
+/// Format of the height map (metres).
+pub const HEIGHT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Format of the density map (`[0, 1]`).
+pub const DENSITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Format of the covering map (IDs).
+pub const COVERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Uint;
+
 /// Most vertices along one side of the ground mesh.
 pub const MAX_GROUND_SIDE: u32 = 257;
 
@@ -97,7 +104,7 @@ impl TerrainGpu {
             device,
             queue,
             "terrain heights",
-            wgpu::TextureFormat::R32Float,
+            HEIGHT_FORMAT,
             terrain.heights(),
             4,
         );
@@ -105,7 +112,7 @@ impl TerrainGpu {
             device,
             queue,
             "terrain density",
-            wgpu::TextureFormat::R32Float,
+            DENSITY_FORMAT,
             terrain.density(),
             4,
         );
@@ -113,7 +120,7 @@ impl TerrainGpu {
             device,
             queue,
             "terrain covering",
-            wgpu::TextureFormat::R8Uint,
+            COVERING_FORMAT,
             terrain.covering(),
             1,
         );

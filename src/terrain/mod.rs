@@ -17,7 +17,9 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 pub use config::{CoveringSource, MapSource, TerrainConfig};
-pub use gpu::{GroundVertex, MAX_GROUND_SIDE, TerrainGpu};
+pub use gpu::{
+    COVERING_FORMAT, DENSITY_FORMAT, GroundVertex, HEIGHT_FORMAT, MAX_GROUND_SIDE, TerrainGpu,
+};
 pub use grid::Grid;
 
 use crate::{Error, Result};

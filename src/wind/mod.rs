@@ -33,7 +33,7 @@ pub use fluid::{FluidConfig, FluidMapping, FluidWind};
 pub use point_source::PointSource;
 pub use posture::{BladeConfig, Postures, ResponseCurve};
 pub use primitives::{Mixing, PrimitiveConfig, PrimitiveSet, PrimitivesConfig, WindSample};
-pub use texture::{SAMPLE_HEIGHT, WindTexture};
+pub use texture::{FORMAT as TEXTURE_FORMAT, SAMPLE_HEIGHT, WindTexture};
 
 use crate::Result;
 use crate::object::ObjectConfig;

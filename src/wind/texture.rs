@@ -8,6 +8,9 @@ use crate::terrain::Terrain;
 /// Height above the ground (m) at which the texture samples the field: mid-blade.
 pub const SAMPLE_HEIGHT: f32 = 0.4;
 
+/// Format of the wind texture: a velocity (m/s) in `xyz`.
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
 /// An `Rgba32Float` texture covering the terrain; texel `(i, j)` holds the velocity (m/s) at
 /// the matching ground point, `SAMPLE_HEIGHT` above the ground. Shaders read it with the
 /// prelude's `wind_at(xz)` (bilinear).
@@ -42,7 +45,7 @@ impl WindTexture {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
+            format: FORMAT,
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });

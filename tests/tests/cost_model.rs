@@ -124,8 +124,9 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             | Term::FragmentAlphaTested
             | Term::FragmentBlended
             | Term::TextureLoad
+            | Term::FloatTextureLoad
             | Term::TextureSample
-            | Term::WideTextureSample
+            | Term::FloatTextureSample
             | Term::FragmentTranscendental
             | Term::FragmentArithmetic => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
@@ -137,8 +138,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 }
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
-/// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times and one sampling
-/// a texture of wide texels 8 times, 5k strips, a
+/// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times, the same two of
+/// floating-point texels, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
 /// more scalar operations each, 300 draws, 1M compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
@@ -183,10 +184,18 @@ fn held_out_mix() -> Vec<Workload> {
             },
         ),
         w(
-            "wide samples",
-            Term::WideTextureSample,
+            "float loads",
+            Term::FloatTextureLoad,
             Shape::FetchLayers {
-                fetch: Fetch::WideSamples,
+                fetch: Fetch::FloatLoads,
+                layers: 1,
+            },
+        ),
+        w(
+            "float samples",
+            Term::FloatTextureSample,
+            Shape::FetchLayers {
+                fetch: Fetch::FloatSamples,
                 layers: 1,
             },
         ),

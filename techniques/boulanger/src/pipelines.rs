@@ -19,13 +19,14 @@ use crate::params::{Params, Transparency};
 use crate::shader::{CellRecord, SHADER, SliceQuad};
 use crate::texture;
 
-/// The grass shader's sampled textures and the formats bound to them, for the cost model (a
-/// sample of a texture of wide texels costs more: `grassbench::shaders::module_with_formats`):
-/// the blade texture, the ambient occlusion map, and the BTF bakes (slices and the ground's
-/// shadow mask).
-const TEXTURE_FORMATS: [(&str, wgpu::TextureFormat); 9] = [
+/// The grass shader's textures and the formats bound to them, for the cost model (a fetch of
+/// floating-point texels costs more: `grassbench::shaders::module_with_formats`): the blade
+/// texture, the ambient occlusion and orientation maps, and the BTF bakes (slices and the
+/// ground's shadow mask, `Rgba16Float`).
+const TEXTURE_FORMATS: [(&str, wgpu::TextureFormat); 10] = [
     ("blade_texture", texture::FORMAT),
     ("ao_map", crate::gpu::AO_FORMAT),
+    ("orientation_map", crate::slice::ORIENTATION_FORMAT),
     ("shadow_mask", btf::FORMAT),
     ("slice_color", btf::FORMAT),
     ("slice_diffuse", btf::FORMAT),
@@ -280,31 +281,34 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_sampled_texture_is_named_with_its_format() {
-        // The cost model prices samples of wide texels apart (the slices' `Rgba16Float`):
-        // a texture missing from the list would be priced as RGBA8, a misspelt one never.
+    fn every_texture_is_named_with_its_format() {
+        // The cost model prices fetches of floating-point texels apart (the slices'
+        // `Rgba16Float`): a texture missing from the list would be priced as RGBA8, a
+        // misspelt one never. The prelude's are the core's.
         let composed = shaders::compose(SHADER);
         let module = naga::front::wgsl::parse_str(&composed)
             .map_err(|e| e.emit_to_string(&composed))
             .unwrap_or_else(|e| panic!("{e}"));
-        let mut named: Vec<&str> = TEXTURE_FORMATS.iter().map(|(n, _)| *n).collect();
-        named.sort_unstable();
-        assert_eq!(shaders::sampled_textures(&module), named);
-        // The slices' samples are the wide ones; both also sample the ambient occlusion map
-        // (one byte a texel).
-        let wide: Vec<&str> = TEXTURE_FORMATS
+        let mut named: Vec<&str> = TEXTURE_FORMATS
             .iter()
-            .filter(|(_, f)| shaders::is_wide(*f))
+            .chain(&shaders::PRELUDE_TEXTURES)
             .map(|(n, _)| *n)
             .collect();
-        let ops = shaders::entry_ops(&module, &wide);
+        named.sort_unstable();
+        assert_eq!(shaders::texture_globals(&module), named);
+        // The slices' samples are the floating-point ones; both also sample the ambient
+        // occlusion map (one byte a texel).
+        let ops = shaders::entry_ops(&module, &shaders::float_textures(&TEXTURE_FORMATS));
         let of = |entry: &str| {
             ops.iter()
                 .find(|(e, _)| e == entry)
-                .map(|(_, o)| (o.samples, o.wide_samples))
+                .map(|(_, o)| (o.samples, o.float_samples))
         };
         assert_eq!(of("fs_slice"), Some((1, 3)));
         assert_eq!(of("fs_vslice"), Some((1, 3)));
-        assert_eq!(of("fs_blade").map(|(narrow, _)| narrow > 0), Some(true));
+        assert_eq!(
+            of("fs_blade").map(|(normalised, _)| normalised > 0),
+            Some(true)
+        );
     }
 }

@@ -62,6 +62,9 @@ pub fn orientation_texel(
     (orientation, mirrored - mirrored.floor())
 }
 
+/// Format of the patch orientation map.
+pub const ORIENTATION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Uint;
+
 /// The patch orientation map (Sec. 4.1, Fig. 20a): one `R8Uint` texel per cell, bit 0 = mirror
 /// x, bit 1 = mirror z; the same hash as the CPU's [`Orientation::of_cell`].
 pub fn orientation_map(
@@ -85,7 +88,7 @@ pub fn orientation_map(
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R8Uint,
+            format: ORIENTATION_FORMAT,
             usage: wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         },

@@ -162,8 +162,9 @@ impl Config {
                 // Runs modelled before the fetch, transcendental and arithmetic terms priced
                 // none.
                 r.model_texture_load_ms.unwrap_or(0.0),
+                r.model_float_texture_load_ms.unwrap_or(0.0),
                 r.model_texture_sample_ms.unwrap_or(0.0),
-                r.model_wide_texture_sample_ms.unwrap_or(0.0),
+                r.model_float_texture_sample_ms.unwrap_or(0.0),
                 r.model_vertex_transcendental_ms.unwrap_or(0.0),
                 r.model_fragment_transcendental_ms.unwrap_or(0.0),
                 r.model_compute_transcendental_ms.unwrap_or(0.0),

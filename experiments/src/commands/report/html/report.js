@@ -545,7 +545,7 @@
   }
 
   // ---------------------------------------------------------------- where the time goes
-  const SEGMENT_COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#7f7f7f', '#bcbd22', '#17becf', '#5a5a5a', '#c8c8c8', '#ffbb78', '#98df8a', '#c5b0d5', '#c49c94', '#f7b6d2', '#dbdb8d', '#9edae5', '#393b79', '#637939'];
+  const SEGMENT_COLORS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#7f7f7f', '#bcbd22', '#17becf', '#5a5a5a', '#c8c8c8', '#ffbb78', '#98df8a', '#c5b0d5', '#c49c94', '#f7b6d2', '#dbdb8d', '#9edae5', '#393b79', '#637939', '#8c6d31'];
 
   function splitSection() {
     const sec = el('section', { id: 'time' }, el('h2', { text: 'Where the time goes' }));
