@@ -173,7 +173,12 @@
 //! under issue 9's 64 MB; one byte per cell for the orientation map and for the occlusion
 //! map; the shadow mask, 128 x 64 (262 KB with its mips); on the CPU, 8 bytes per cell for the
 //! population. Per blade fragment the shadow mask costs a ray-cylinder intersection, an
-//! `atan2` and a texture lookup per light. Nothing grows with the virtual blade count except
+//! `atan2` and a texture lookup per light. The BTFs' `Rgba16Float` texels cost lavapipe more
+//! to sample than an RGBA8 texture's, converted one by one: 5.3-5.5 ns a trilinear sample
+//! against 3.1-3.2 (a GPU filters 64-bit texels at half rate, most of them); 42-45 % of what
+//! the cost model predicts for the walker's meadow is those samples (178 of 420 ms at
+//! 320x180), which it prices apart (`TEXTURE_FORMATS` in `pipelines.rs`;
+//! `results/cost_model/`). Nothing grows with the virtual blade count except
 //! the orientation map, the population and the quadtree (about 40 000 nodes on the football
 //! field). Brute force for 626 M blades at the reference's measured ~3.4 µs per blade on this
 //! rasteriser would take over half an hour a
