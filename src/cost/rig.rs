@@ -18,6 +18,14 @@ use crate::{Error, GpuContext, RenderTarget, Result, shaders};
 const SPRING_COUNT: u64 = 1 << 20;
 /// Bytes of the upload workload's destination buffer (its largest size).
 const UPLOAD_CAPACITY: u64 = 64 << 20;
+/// The fetch workloads' textures: their binding in group 1 and format (the shader's `fetched`,
+/// `fetched_float` and `fetched_r32`, as [`workloads::TEXTURE_FORMATS`] names them).
+const FETCH_TEXTURES: [(u32, wgpu::TextureFormat); 3] = [
+    (2, workloads::FETCH_FORMAT),
+    (4, workloads::FLOAT_SAMPLE_FORMAT),
+    (5, workloads::FLOAT_LOAD_FORMAT),
+];
+
 /// Side of the texture the `texture_*` workloads fetch from (mip-mapped down to 1 texel), the
 /// size of a technique's slice or blade texture.
 const FETCH_TEXTURE_SIDE: u32 = 512;
@@ -92,42 +100,29 @@ impl<'g> Rig<'g> {
                         count: None,
                     },
                     wgpu::BindGroupLayoutEntry {
-                        binding: 2,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
-                        ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                            multisampled: false,
-                        },
-                        count: None,
-                    },
-                    wgpu::BindGroupLayoutEntry {
                         binding: 3,
                         visibility: wgpu::ShaderStages::FRAGMENT,
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                         count: None,
                     },
+                ]
+                .into_iter()
+                .chain(FETCH_TEXTURES.map(|(binding, format)| {
                     wgpu::BindGroupLayoutEntry {
-                        binding: 4,
+                        binding,
                         visibility: wgpu::ShaderStages::FRAGMENT,
                         ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                            // Filterable or not, as the format is (`R32Float` is not).
+                            sample_type: format
+                                .sample_type(None, Some(device.features()))
+                                .unwrap_or(wgpu::TextureSampleType::Float { filterable: false }),
                             view_dimension: wgpu::TextureViewDimension::D2,
                             multisampled: false,
                         },
                         count: None,
-                    },
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 5,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
-                        ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                            multisampled: false,
-                        },
-                        count: None,
-                    },
-                ],
+                    }
+                }))
+                .collect::<Vec<_>>(),
             });
             let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("unit costs"),
@@ -163,6 +158,12 @@ impl<'g> Rig<'g> {
                     resource: globals.as_entire_binding(),
                 }],
             });
+            let fetched = FETCH_TEXTURES.map(|(binding, format)| {
+                (
+                    binding,
+                    fetch_texture(gpu, format).create_view(&Default::default()),
+                )
+            });
             let group1 = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("unit costs"),
                 layout: &layout1,
@@ -174,13 +175,6 @@ impl<'g> Rig<'g> {
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: springs_buffer.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(
-                            &fetch_texture(gpu, workloads::FETCH_FORMAT)
-                                .create_view(&Default::default()),
-                        ),
                     },
                     wgpu::BindGroupEntry {
                         binding: 3,
@@ -196,21 +190,13 @@ impl<'g> Rig<'g> {
                             },
                         )),
                     },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: wgpu::BindingResource::TextureView(
-                            &fetch_texture(gpu, workloads::FLOAT_SAMPLE_FORMAT)
-                                .create_view(&Default::default()),
-                        ),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 5,
-                        resource: wgpu::BindingResource::TextureView(
-                            &fetch_texture(gpu, workloads::FLOAT_LOAD_FORMAT)
-                                .create_view(&Default::default()),
-                        ),
-                    },
-                ],
+                ]
+                .into_iter()
+                .chain(fetched.iter().map(|(binding, view)| wgpu::BindGroupEntry {
+                    binding: *binding,
+                    resource: wgpu::BindingResource::TextureView(view),
+                }))
+                .collect::<Vec<_>>(),
             });
             let pipeline = |label, vs, fs, write: bool, blend| {
                 shaders::render_pipeline(

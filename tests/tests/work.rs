@@ -65,21 +65,23 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
 }
 
 /// A compute pipeline's texture fetches are counted like a render pipeline's (issue 20 §3):
-/// jahrmann's simulation reads the wind texture for every blade, so its texel loads are at
-/// least its compute invocations times the loads `cs_simulate` makes, as the naga IR counts
-/// them.
+/// jahrmann's simulation reads the wind texture for every blade, so its floating-point texel
+/// loads (the wind is `Rgba32Float`) are at least its compute invocations times the loads
+/// `cs_simulate` makes, as the naga IR counts them.
 #[test]
 fn compute_shaders_texture_fetches_are_counted() -> anyhow::Result<()> {
     let gpu = gpu()?;
     let module = grassbench::shaders::module(&gpu.device, "jahrmann", grassbench_jahrmann::SHADER);
-    let per_invocation = module.ops("cs_simulate").loads;
+    let per_invocation = module.ops("cs_simulate").float_loads;
     assert!(
         per_invocation >= 4,
         "cs_simulate's wind lookup is bilinear: {per_invocation} loads"
     );
     let r = frame_of(&gpu, "jahrmann", "")?;
     let cs = r.compute_invocations.context("compute")?;
-    let loads = r.texture_loads.context("texture loads")?;
+    let loads = r
+        .float_texture_loads
+        .context("floating-point texture loads")?;
     assert!(cs > 0, "{r:?}");
     assert!(
         loads >= cs * per_invocation,
