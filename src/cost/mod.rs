@@ -5,7 +5,7 @@
 //! - [`Work`]: what a frame made the GPU do (vertex invocations, primitives, fragments by
 //!   [`FragmentKind`], draws, compute invocations, bytes uploaded), from the GPU's own
 //!   counters and the harness's, and what its shaders did inside those invocations (texel
-//!   loads, texture samples of narrow and of wide texels, transcendentals and scalar
+//!   loads and samples, those of floating-point texels apart, transcendentals and scalar
 //!   arithmetic by stage: the counted invocations times their entry points' operations,
 //!   `crate::shaders::ShaderOps`);
 //! - [`Term`]: the model's terms, one unit cost each, plus a fixed cost per submission;
