@@ -18,14 +18,6 @@ use crate::{Error, GpuContext, RenderTarget, Result, shaders};
 const SPRING_COUNT: u64 = 1 << 20;
 /// Bytes of the upload workload's destination buffer (its largest size).
 const UPLOAD_CAPACITY: u64 = 64 << 20;
-/// The fetch workloads' textures: their binding in group 1 and format (the shader's `fetched`,
-/// `fetched_float` and `fetched_r32`, as [`workloads::TEXTURE_FORMATS`] names them).
-const FETCH_TEXTURES: [(u32, wgpu::TextureFormat); 3] = [
-    (2, workloads::FETCH_FORMAT),
-    (4, workloads::FLOAT_SAMPLE_FORMAT),
-    (5, workloads::FLOAT_LOAD_FORMAT),
-];
-
 /// Side of the texture the `texture_*` workloads fetch from (mip-mapped down to 1 texel), the
 /// size of a technique's slice or blade texture.
 const FETCH_TEXTURE_SIDE: u32 = 512;
@@ -61,7 +53,7 @@ impl<'g> Rig<'g> {
                 device,
                 "unit costs",
                 workloads::SHADER,
-                workloads::TEXTURE_FORMATS,
+                &workloads::texture_formats(),
             );
             let uniform_entry = |binding, visibility| wgpu::BindGroupLayoutEntry {
                 binding,
@@ -107,13 +99,14 @@ impl<'g> Rig<'g> {
                     },
                 ]
                 .into_iter()
-                .chain(FETCH_TEXTURES.map(|(binding, format)| {
+                .chain(workloads::FETCH_TEXTURES.map(|t| {
                     wgpu::BindGroupLayoutEntry {
-                        binding,
+                        binding: t.binding,
                         visibility: wgpu::ShaderStages::FRAGMENT,
                         ty: wgpu::BindingType::Texture {
                             // Filterable or not, as the format is (`R32Float` is not).
-                            sample_type: format
+                            sample_type: t
+                                .format
                                 .sample_type(None, Some(device.features()))
                                 .unwrap_or(wgpu::TextureSampleType::Float { filterable: false }),
                             view_dimension: wgpu::TextureViewDimension::D2,
@@ -158,10 +151,10 @@ impl<'g> Rig<'g> {
                     resource: globals.as_entire_binding(),
                 }],
             });
-            let fetched = FETCH_TEXTURES.map(|(binding, format)| {
+            let fetched = workloads::FETCH_TEXTURES.map(|t| {
                 (
-                    binding,
-                    fetch_texture(gpu, format).create_view(&Default::default()),
+                    t.binding,
+                    fetch_texture(gpu, t.format).create_view(&Default::default()),
                 )
             });
             let group1 = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -508,10 +501,10 @@ impl<'g> Rig<'g> {
     }
 }
 
-/// A `texture_*` workload's texture: [`FETCH_TEXTURE_SIDE`]² texels of `format`
-/// (`Rgba8Unorm`, `Rgba16Float` or `R32Float`; any other is written as `Rgba8Unorm`) with every
-/// mip level, hashed (no level is uniform, so no fetch can be folded away; the same values,
-/// multiples of 1/255, in every format).
+/// A `texture_*` workload's texture: [`FETCH_TEXTURE_SIDE`]² texels of `format` (8-bit
+/// normalised channels, or 16- or 32-bit floating-point ones) with every mip level, hashed (no
+/// level is uniform, so no fetch can be folded away; the same values, multiples of 1/255, in
+/// every format).
 fn fetch_texture(gpu: &GpuContext, format: wgpu::TextureFormat) -> wgpu::Texture {
     let levels = FETCH_TEXTURE_SIDE.ilog2() + 1;
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -528,17 +521,19 @@ fn fetch_texture(gpu: &GpuContext, format: wgpu::TextureFormat) -> wgpu::Texture
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
-    // Channels a texel, and one channel's bytes from its byte value.
-    let (channels, encode): (u32, fn(u8) -> Vec<u8>) = match format {
-        wgpu::TextureFormat::Rgba16Float => (4, |b| {
-            half::f16::from_f32(f32::from(b) / 255.0)
-                .to_le_bytes()
-                .to_vec()
-        }),
-        wgpu::TextureFormat::R32Float => (1, |b| (f32::from(b) / 255.0).to_le_bytes().to_vec()),
-        _ => (4, |b| vec![b]),
-    };
+    // One channel's bytes from its hashed byte: the byte itself (8-bit normalised) or its value
+    // over 255 as a half or a single float.
+    let channels = u32::from(format.components());
     let texel_bytes = format.block_copy_size(None).unwrap_or(4);
+    let float = shaders::is_float(format);
+    let encode = |b: u8| -> Vec<u8> {
+        let v = f32::from(b) / 255.0;
+        match (float, texel_bytes / channels.max(1)) {
+            (true, 2) => half::f16::from_f32(v).to_le_bytes().to_vec(),
+            (true, _) => v.to_le_bytes().to_vec(),
+            (false, _) => vec![b],
+        }
+    };
     let mut rng = crate::rng::Rng::new(0x7e7e);
     for level in 0..levels {
         let side = (FETCH_TEXTURE_SIDE >> level).max(1);

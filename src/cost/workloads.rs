@@ -49,13 +49,41 @@ pub const FLOAT_SAMPLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16
 /// format of the terrain's height and density maps, which every technique loads.
 pub const FLOAT_LOAD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 
-/// The shader's textures with the formats bound to them, as its module is created with
-/// ([`crate::shaders::module_with_formats`]).
-pub const TEXTURE_FORMATS: &[(&str, wgpu::TextureFormat)] = &[
-    ("fetched", FETCH_FORMAT),
-    ("fetched_float", FLOAT_SAMPLE_FORMAT),
-    ("fetched_r32", FLOAT_LOAD_FORMAT),
+/// One of the shader's fetch textures: what the rig binds and the cost counter names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FetchTexture {
+    /// The shader's global.
+    pub name: &'static str,
+    /// Its binding in group 1.
+    pub binding: u32,
+    /// The format bound there.
+    pub format: wgpu::TextureFormat,
+}
+
+/// The shader's fetch textures (`tests` holds the names and bindings to the shader).
+pub const FETCH_TEXTURES: [FetchTexture; 3] = [
+    FetchTexture {
+        name: "fetched",
+        binding: 2,
+        format: FETCH_FORMAT,
+    },
+    FetchTexture {
+        name: "fetched_float",
+        binding: 4,
+        format: FLOAT_SAMPLE_FORMAT,
+    },
+    FetchTexture {
+        name: "fetched_r32",
+        binding: 5,
+        format: FLOAT_LOAD_FORMAT,
+    },
 ];
+
+/// [`FETCH_TEXTURES`]' names and formats, as the shader's module is created with
+/// ([`crate::shaders::module_with_formats`]).
+pub fn texture_formats() -> [(&'static str, wgpu::TextureFormat); FETCH_TEXTURES.len()] {
+    FETCH_TEXTURES.map(|t| (t.name, t.format))
+}
 
 /// What one invocation of `entry` of [`SHADER`] does ([`ShaderOps`]; nothing for an entry
 /// point it lacks: `tests` checks every one the workloads use is there).
@@ -64,7 +92,7 @@ pub fn shader_ops(entry: &str) -> ShaderOps {
     OPS.get_or_init(|| {
         naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
             .map(|m| {
-                crate::shaders::entry_ops(&m, &crate::shaders::float_textures(TEXTURE_FORMATS))
+                crate::shaders::entry_ops(&m, &crate::shaders::float_textures(&texture_formats()))
             })
             .unwrap_or_default()
     })
@@ -703,10 +731,34 @@ mod tests {
         // (`shaders::ops`): the calibration's own shaders must count to the work known in
         // advance.
         let wgsl = crate::shaders::compose(SHADER);
-        let ops = crate::shaders::entry_ops(
-            &naga::front::wgsl::parse_str(&wgsl).unwrap(),
-            &crate::shaders::float_textures(TEXTURE_FORMATS),
-        );
+        let module = naga::front::wgsl::parse_str(&wgsl).unwrap();
+        let ops =
+            crate::shaders::entry_ops(&module, &crate::shaders::float_textures(&texture_formats()));
+        // Every texture the shader declares is named with its format (the prelude's by the
+        // core), at the binding the rig binds it to.
+        let mut named: Vec<&str> = texture_formats()
+            .iter()
+            .chain(&crate::shaders::PRELUDE_TEXTURES)
+            .map(|(n, _)| *n)
+            .collect();
+        named.sort_unstable();
+        assert_eq!(crate::shaders::texture_globals(&module), named);
+        for t in FETCH_TEXTURES {
+            let binding = module
+                .global_variables
+                .iter()
+                .find(|(_, g)| g.name.as_deref() == Some(t.name))
+                .and_then(|(_, g)| g.binding);
+            assert_eq!(
+                binding,
+                Some(naga::ResourceBinding {
+                    group: 1,
+                    binding: t.binding
+                }),
+                "{}",
+                t.name
+            );
+        }
         // The fetches and transcendentals (the arithmetic is read off the shader: below).
         let of = |entry: &str| {
             ops.iter().find(|(e, _)| e == entry).map(|(_, f)| {

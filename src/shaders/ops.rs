@@ -32,8 +32,8 @@ pub struct ShaderOps {
     /// type for `Rgba8Unorm` and `R32Float`, the format is only known where the texture is
     /// bound, and the two cost differently. On lavapipe, 8-bit normalised texels take a fast
     /// path and floating-point ones a conversion per texel: a load 0.13 ns (`Rgba8Unorm`)
-    /// against 0.59-0.63 (`R32Float`) and 0.93 (`Rgba16Float`); a trilinear sample 3.2 ns
-    /// against 5.4-5.7 (`Rgba16Float`): `grassbench calibrate` at 320x180 and 640x360 with
+    /// against 0.59-0.63 (`R32Float`) and 0.93 (`Rgba16Float`); a trilinear sample 3.1-3.2 ns
+    /// against 5.3-5.7 (`Rgba16Float`): `grassbench calibrate` at 320x180 and 640x360 with
     /// the fetch texture in each format, 2026-12-04. On GPUs 16- and 32-bit channels mean
     /// wider texels (half-rate filtering on most).
     pub float_loads: u64,
