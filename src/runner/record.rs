@@ -688,7 +688,15 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", Some(454.927483))
+            ("reference", Some(1625.291816))
+        );
+        // The newest columns: floating-point texel loads (the reference's height and wind
+        // maps, 8 a vertex) and their price.
+        assert_eq!(reference.float_texture_loads, Some(38_167_360));
+        assert!(
+            reference
+                .model_float_texture_load_ms
+                .is_some_and(|ms| ms > 0.0)
         );
         assert_eq!(reference.gpu_wall_ratio_to_reference, Some(1.0));
         assert_eq!(reference.gpu_ts_compute_ms_median, None);

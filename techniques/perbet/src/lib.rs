@@ -100,16 +100,24 @@
 //! layers with their mip chains) plus per-frame entries and receivers: 8 MB on the meadow
 //! (`results/perbet_quality/`). Measured on the meadow with the medium preset (the default
 //! comparison, `results/default/`, revision `a4b32a7`): 59 ms a frame against the
-//! reference's 539 ms (9.2x), 1.1 ms of it CPU; pre-computation 136 ms.
+//! reference's 539 ms (9.2x), 1.1 ms of it CPU, on the 2-core Xeon; pre-computation 136 ms
+//! (`benches/precompute.rs`, 2026-12-01). The
+//! frame's cost moves with the host, and not by one factor: `results/perbet_quality/`, re-made
+//! on an AMD EPYC virtual machine at `487fc0a`, has perbet's frames 4.1-5.7 times the Xeon's
+//! and the reference's 3.2-4.3 times (that host prices a blended fragment at 4.1 times the
+//! Xeon's, a texture sample at 4.8, a primitive at 2.3), so the speed-ups over the reference
+//! there are 3.3-6.8x at the presets' own densities (4.1-8.9x on the Xeon).
 //!
 //! The 2D level drawn patch by patch grew with the terrain where the view was already full
-//! (`results/scaling/`: 34 → 91 ms from 80 m to 400 m, 42 k → 249 k triangles). With the
-//! blocks, on the meadow at 20 blades/m² (480x270, lavapipe, frame 6): at 80 m 377 2D patches
-//! in 82 draws, 32.5 k triangles (42.0 k patch by patch), 85.6 k vertex invocations (113.9 k);
-//! at 400 m 6 816 2D patches in 224 draws, 37.7 k triangles (248.6 k), 99.6 k vertex
-//! invocations (732.4 k), 29.7 k primitives out of the clipper (237.7 k); fragments hardly
-//! change (1.26 M / 1.24 M). So from 80 m to 400 m the triangles now grow 1.16x instead of
-//! 5.9x. The CPU's level update still visits every patch (`O(patches)`).
+//! (`results/scaling/` at `493d788`, on the Xeon: 34 → 91 ms from 80 m to 400 m, 42 k → 249 k
+//! triangles). With the blocks, on the meadow at 20 blades/m² (480x270, lavapipe, frame 6): at
+//! 80 m 377 2D patches in 82 draws, 32.5 k triangles (42.0 k patch by patch), 85.6 k vertex
+//! invocations (113.9 k); at 400 m 6 816 2D patches in 224 draws, 37.7 k triangles (248.6 k),
+//! 99.6 k vertex invocations (732.4 k), 29.7 k primitives out of the clipper (237.7 k);
+//! fragments hardly change (1.26 M / 1.24 M). So from 80 m to 400 m the triangles now grow
+//! 1.16x instead of 5.9x, and the frame stays flat: `results/scaling/` has perbet at 106.0 →
+//! 103.1 ms (0.97x) on the AMD EPYC at `487fc0a`, 28.5 → 30.1 ms (1.05x) on the Xeon at
+//! `00e5090`. The CPU's level update still visits every patch (`O(patches)`).
 //!
 //! ## Deviations and known artifacts
 //! - Blades are drawn as tapering quads of their width along the chain, not as GL lines (wgpu
