@@ -99,8 +99,8 @@
 //! the variants' blades and textures (about 7 MB, mostly the 32 strip layers and twelve 2D
 //! layers with their mip chains) plus per-frame entries and receivers: 8 MB on the meadow
 //! (`results/perbet_quality/`). Measured on the meadow with the medium preset (the default
-//! comparison, `results/default/`, revision `a4b32a7`): 59 ms a frame against the
-//! reference's 539 ms (9.2x), 1.1 ms of it CPU, on the 2-core Xeon; pre-computation 136 ms
+//! comparison, `results/default/`, revision `5d8d609`): 51 ms of GPU time a frame against the
+//! reference's 482 ms (9.5x), 0.7 ms of CPU update, on the 2-core Xeon; pre-computation 136 ms
 //! (`benches/precompute.rs`, 2026-12-01). The
 //! frame's cost moves with the host, and not by one factor: `results/perbet_quality/`, re-made
 //! on an AMD EPYC virtual machine at `487fc0a`, has perbet's frames 4.1-5.7 times the Xeon's
