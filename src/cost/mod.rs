@@ -15,7 +15,9 @@
 //!   from the same work;
 //! - [`fit`]: the joint, weighted, non-negative least-squares fit of [`Sample`]s;
 //! - [`workloads`]: the micro-workloads and their work known in advance; [`measure`] runs and
-//!   times them on a GPU ([`calibrate_units`]) and checks their work against the counters.
+//!   times them on a GPU ([`calibrate_units`]) and checks their work against the counters;
+//! - [`ProbeReading`]: what a probe, timed with the calibration but not fitted, says a term
+//!   costs where no workload measured it (texel loads in the vertex stage).
 //!
 //! Costs are in the clock the samples were timed with: submit-to-`poll(wait)` wall time, the
 //! ground truth on lavapipe (see `shared/PLATFORM.md`), the same clock as the runner's
@@ -24,6 +26,7 @@
 pub mod fit;
 mod lstsq;
 pub mod measure;
+mod probe;
 mod rig;
 mod run;
 mod term;
@@ -35,6 +38,7 @@ pub use fit::{FitSummary, Sample, WorkloadResidual, fit};
 pub use measure::{
     COUNTED_TERMS, MeasuredSample, Options, UnitCalibration, calibrate_units, calibrate_units_with,
 };
+pub use probe::{ProbeReading, probes_markdown};
 pub use run::{apply_model, predict_run};
 pub use term::Term;
 pub use units::{Prediction, UnitCost, UnitCosts};

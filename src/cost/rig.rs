@@ -37,6 +37,8 @@ pub(super) struct Rig<'g> {
     math: [crate::shaders::RenderPipeline; 2],
     /// The `arithmetic_*` workloads': off-screen strips, opaque layers.
     arithmetic: [crate::shaders::RenderPipeline; 2],
+    /// The probes' off-screen strips loading texels: RGBA8, floating-point.
+    load_strips: [crate::shaders::RenderPipeline; 2],
     /// The spring update, plain and with each chain, in [`workloads::Chain::ALL`]'s order.
     springs: [crate::shaders::ComputePipeline; workloads::Chain::ALL.len()],
     upload: wgpu::Buffer,
@@ -102,7 +104,8 @@ impl<'g> Rig<'g> {
                 .chain(workloads::FETCH_TEXTURES.map(|t| {
                     wgpu::BindGroupLayoutEntry {
                         binding: t.binding,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        // The vertex stage's for the probes' loads.
+                        visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
                         ty: wgpu::BindingType::Texture {
                             // Filterable or not, as the format is (`R32Float` is not).
                             sample_type: t
@@ -295,6 +298,15 @@ impl<'g> Rig<'g> {
                         None,
                     ),
                 ],
+                load_strips: [false, true].map(|float| {
+                    pipeline(
+                        "unit costs: vertex loads",
+                        workloads::load_strips_entry(float),
+                        "fs_opaque",
+                        true,
+                        None,
+                    )
+                }),
                 springs: workloads::Chain::ALL.map(|chain| {
                     let entry = chain.compute_entry();
                     let label = format!("unit costs: {entry}");
@@ -420,7 +432,8 @@ impl<'g> Rig<'g> {
                     Shape::OffscreenStrips { instances }
                     | Shape::SubpixelStrips { instances }
                     | Shape::MathStrips { instances }
-                    | Shape::ArithmeticStrips { instances } => {
+                    | Shape::ArithmeticStrips { instances }
+                    | Shape::LoadStrips { instances, .. } => {
                         pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
                     }
                     Shape::Layers { layers, .. }
@@ -496,6 +509,7 @@ impl<'g> Rig<'g> {
             Shape::MathLayers { .. } => Some(&self.math[1]),
             Shape::ArithmeticStrips { .. } => Some(&self.arithmetic[0]),
             Shape::ArithmeticLayers { .. } => Some(&self.arithmetic[1]),
+            Shape::LoadStrips { float, .. } => Some(&self.load_strips[usize::from(float)]),
             Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => None,
         }
     }

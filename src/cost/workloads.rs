@@ -20,6 +20,11 @@
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
 //!
+//! Besides the families, [`probes`]: workloads timed with them but not fitted, each doing much
+//! of one term where no family measures it (texel loads in the vertex stage: the load prices
+//! are fitted on fragment shaders'), to say whether the fitted price holds there
+//! ([`super::ProbeReading`]).
+//!
 //! Every sample is one submission holding one render pass that clears the target, plus the
 //! workload: the fixed term is what a frame with nothing in it costs at this size.
 //!
@@ -127,6 +132,9 @@ pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
 /// tenth of a fragment on lavapipe (1 ns against 8 ns, quiet host), so it takes 32 of them to
 /// stand out of the fragment's own cost by more than the noise.
 pub const LOADS_PER_FRAGMENT: u32 = 32;
+/// `textureLoad`s of one vertex of the vertex-stage load probes ([`probes`]): the fragment
+/// workloads' loads, through the same shader functions.
+pub const LOADS_PER_VERTEX: u32 = LOADS_PER_FRAGMENT;
 /// `textureSample`s of one fragment of the `texture_samples` and `float_texture_samples`
 /// workloads.
 pub const SAMPLES_PER_FRAGMENT: u32 = 8;
@@ -166,6 +174,15 @@ pub enum Shape {
     /// `instances` off-screen blade strips whose vertex shader also does
     /// [`ARITHMETIC_CHAIN`] scalar operations, in one instanced draw.
     ArithmeticStrips {
+        /// Instances.
+        instances: u32,
+    },
+    /// `instances` off-screen blade strips whose vertex shader also does [`LOADS_PER_VERTEX`]
+    /// `textureLoad`s of the RGBA8 texture, or of the floating-point one
+    /// ([`FLOAT_LOAD_FORMAT`]) where `float`, in one instanced draw (the probes).
+    LoadStrips {
+        /// Whether the texels loaded are of the floating-point texture.
+        float: bool,
         /// Instances.
         instances: u32,
     },
@@ -325,6 +342,17 @@ impl Workload {
                 let base = self.offscreen_strips(instances, size);
                 Work {
                     vertex_arithmetic: base.vertex_invocations * arithmetic("vs_arithmetic"),
+                    ..base
+                }
+            }
+            Shape::LoadStrips { float, instances } => {
+                let base = self.offscreen_strips(instances, size);
+                let loads = base.vertex_invocations * f64::from(LOADS_PER_VERTEX);
+                Work {
+                    vertex_arithmetic: base.vertex_invocations
+                        * arithmetic(load_strips_entry(float)),
+                    texture_loads: if float { 0.0 } else { loads },
+                    float_texture_loads: if float { loads } else { 0.0 },
                     ..base
                 }
             }
@@ -495,6 +523,10 @@ impl Workload {
             Shape::ArithmeticStrips { instances } => Shape::ArithmeticStrips {
                 instances: instances.saturating_mul(k),
             },
+            Shape::LoadStrips { float, instances } => Shape::LoadStrips {
+                float,
+                instances: instances.saturating_mul(k),
+            },
             Shape::MathLayers { layers } => Shape::MathLayers {
                 layers: layers.saturating_mul(k),
             },
@@ -655,6 +687,39 @@ pub fn families() -> Vec<Workload> {
     ]
 }
 
+/// The vertex entry point of the load probes' strips (`float`: of the floating-point texture).
+pub fn load_strips_entry(float: bool) -> &'static str {
+    if float { "vs_float_loads" } else { "vs_loads" }
+}
+
+/// The probes: workloads timed in the calibration's rounds (as
+/// [`super::calibrate_units_with`]'s held-out submissions, so under the same load) but not
+/// fitted, at the families' four sizes: off-screen strips whose vertices each load
+/// [`LOADS_PER_VERTEX`] texels, RGBA8 (`vertex_texture_loads`) and `R32Float`
+/// (`vertex_float_texture_loads`, as a technique's vertex reads the terrain's height and
+/// density maps). The load prices are fitted on fragment shaders' loads: the probes say
+/// whether they hold in the vertex stage ([`super::ProbeReading`]). Sized as the
+/// `transcendentals_vertex` family (5 000 strips at the smallest size).
+pub fn probes() -> Vec<Workload> {
+    [
+        ("vertex_texture_loads", Term::TextureLoad, false),
+        ("vertex_float_texture_loads", Term::FloatTextureLoad, true),
+    ]
+    .into_iter()
+    .flat_map(|(name, term, float)| {
+        let probe = Workload {
+            name,
+            term,
+            shape: Shape::LoadStrips {
+                float,
+                instances: 5_000,
+            },
+        };
+        sizes(&probe, 1)
+    })
+    .collect()
+}
+
 /// A family's samples: its workload at [`SIZE_STEPS`] times `scale`; `empty` four times
 /// (it is the fixed cost alone, and one short sample is easily hit by a hiccup of a busy
 /// host: four spread over the round cost under 3 ms); uploads at 1, 4, 16 and 64 MiB,
@@ -781,6 +846,13 @@ mod tests {
         assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
         assert_eq!(of("fs_float_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
         assert_eq!(of("fs_float_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
+        for float in [false, true] {
+            assert_eq!(
+                of(load_strips_entry(float)),
+                count(LOADS_PER_VERTEX, 0, STRIP_VERTEX_TRANSCENDENTALS),
+                "{float}"
+            );
+        }
         // Which fetches are of floating-point texels: the texture's, as its format says,
         // through the functions it is passed to.
         let float = |entry: &str| {
@@ -788,6 +860,8 @@ mod tests {
             (o.float_loads, o.float_samples)
         };
         assert_eq!(float("fs_loads"), (0, 0));
+        assert_eq!(float("vs_loads"), (0, 0));
+        assert_eq!(float("vs_float_loads"), (u64::from(LOADS_PER_VERTEX), 0));
         assert_eq!(float("fs_samples"), (0, 0));
         assert_eq!(float("fs_float_loads"), (u64::from(LOADS_PER_FRAGMENT), 0));
         assert_eq!(
@@ -797,6 +871,7 @@ mod tests {
         for (float, normalised) in [
             ("fs_float_samples", "fs_samples"),
             ("fs_float_loads", "fs_loads"),
+            ("vs_float_loads", "vs_loads"),
         ] {
             assert_eq!(
                 shader_ops(float).arithmetic,
@@ -856,11 +931,67 @@ mod tests {
             "fs_samples",
             "fs_float_loads",
             "fs_float_samples",
+            "vs_loads",
+            "vs_float_loads",
             "cs_springs",
             "cs_math",
         ] {
             assert!(shader_ops(entry).arithmetic > 0, "{entry}");
         }
+    }
+
+    #[test]
+    fn probes_load_texels_in_the_vertex_stage_alone() {
+        let probes = probes();
+        assert_eq!(probes.len(), 2 * SIZE_STEPS.len());
+        for p in &probes {
+            let Shape::LoadStrips { float, instances } = p.shape else {
+                panic!("{p:?}");
+            };
+            let w = p.work(SIZE);
+            let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
+            let loads = vertices * f64::from(LOADS_PER_VERTEX);
+            // The off-screen strips' work (no primitive, no fragment), plus the loads: of the
+            // probe's own term, none of the other format.
+            assert_eq!(w.vertex_invocations, vertices, "{}", p.name);
+            assert_eq!(w.amount(p.term), loads, "{}", p.name);
+            let other = if float {
+                w.texture_loads
+            } else {
+                w.float_texture_loads
+            };
+            assert_eq!(other, 0.0, "{}", p.name);
+            assert_eq!(
+                w.primitives + w.fragments_opaque + w.texture_samples + w.float_texture_samples,
+                0.0
+            );
+            assert_eq!(
+                (w.draw_calls, w.vertex_transcendentals),
+                (1.0, vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS))
+            );
+            // The loads and the sum feeding the depth: more arithmetic than the plain strip's.
+            assert!(
+                w.vertex_arithmetic > vertices * arithmetic("vs_offscreen"),
+                "{}",
+                p.name
+            );
+        }
+        // Each probe at the four sizes, 1 : 2 : 4 : 8.
+        let strips: Vec<f64> = probes[..SIZE_STEPS.len()]
+            .iter()
+            .map(|p| p.work(SIZE).vertex_invocations)
+            .collect();
+        assert_eq!(
+            strips,
+            SIZE_STEPS.map(|k| f64::from(k * 5_000 * STRIP_VERTICES))
+        );
+        // No probe is a fitted family.
+        let families = families();
+        assert!(
+            probes
+                .iter()
+                .all(|p| families.iter().all(|f| f.name != p.name))
+        );
     }
 
     #[test]

@@ -224,6 +224,30 @@ fn fs_float_loads(in: VsOut) -> @location(0) vec4<f32> {
     return loads32(in, fetched_r32);
 }
 
+// Texel loads in the vertex stage (the probes of `workloads::probes`, timed with the
+// calibration but not fitted): the off-screen strip whose vertex also does 32 `textureLoad`s
+// of `t` (LOADS_PER_FRAGMENT) around the strip's texel (i % 512, i / 512), as a blade's vertex
+// reads the terrain maps at its root (the strip's 11 vertices read the same texels), their sum
+// setting the depth (clamped into the clip volume: still off screen, still rejected).
+fn vertex_loads32(v: u32, i: u32, t: texture_2d<f32>) -> VsOut {
+    var out = offscreen_vertex(v, i);
+    let p = vec2(i32(i % 512u), i32((i / 512u) % 512u));
+    let s = load8(t, p, 0) + load8(t, p, 8) + load8(t, p, 16) + load8(t, p, 24);
+    out.position.z = clamp(out.position.z + 1e-3 * s.x, 0.0, 1.0);
+    return out;
+}
+
+@vertex
+fn vs_loads(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    return vertex_loads32(v, i, fetched);
+}
+
+// The same loads of floating-point texels (`R32Float`, as the terrain's maps).
+@vertex
+fn vs_float_loads(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    return vertex_loads32(v, i, fetched_r32);
+}
+
 // Filtered samples: 8 trilinear `textureSample`s of `t` per fragment (SAMPLES_PER_FRAGMENT),
 // the texture minified 2.5:1 at any target size (2.5 x 512 texels over the screen's width,
 // the layer's world x spanning 20 m: between mip levels 1 and 2, as far grass textures are),

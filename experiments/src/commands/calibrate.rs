@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use anyhow::Context as _;
 use grassbench::calibration::calibrate as measure;
 use grassbench::cost::{
-    COUNTED_TERMS, MeasuredSample, UnitCalibration, UnitCosts, calibrate_units,
+    COUNTED_TERMS, MeasuredSample, Options, ProbeReading, UnitCalibration, UnitCosts,
+    calibrate_units, calibrate_units_with, probes_markdown, workloads,
 };
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
@@ -21,6 +22,11 @@ pub struct CalibrateArgs {
     /// Also write the figures with provenance to this TOML file.
     #[arg(long, short)]
     pub out: Option<PathBuf>,
+    /// Also time the probes in the calibration's rounds, unfitted: strips whose vertices load
+    /// texels (RGBA8 and `R32Float`), to say what a texel load costs in the vertex stage
+    /// against the price fitted on fragment shaders' loads.
+    #[arg(long)]
+    pub probes: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -38,6 +44,12 @@ pub struct CalibrationFile {
     pub provenance: Provenance,
     /// The samples, with their runs and counted work.
     pub samples: Vec<MeasuredSample>,
+    /// With `--probes`: what each probe sample implies its term costs.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub probes: Vec<ProbeReading>,
+    /// With `--probes`: the probe samples, with their runs and counted work.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub probe_samples: Vec<MeasuredSample>,
 }
 
 /// Measures, prints (TOML on stdout, a summary on stderr) and optionally writes.
@@ -46,12 +58,30 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     let gpu = args.gpu.context()?;
     let calibration = measure(&gpu, size)?;
     let started = std::time::Instant::now();
+    let probes = if args.probes {
+        workloads::probes()
+    } else {
+        Vec::new()
+    };
+    let held_out: Vec<_> = probes.iter().map(|w| vec![*w]).collect();
     let UnitCalibration {
         unit_costs,
         samples,
-        ..
-    } = calibrate_units(&gpu, size).context("measuring the unit costs")?;
+        held_out: probe_samples,
+    } = calibrate_units_with(&gpu, size, Options::default(), &held_out)
+        .context("measuring the unit costs")?;
     eprint!("{}", summary(&unit_costs, &samples));
+    let readings: Vec<ProbeReading> = probes
+        .iter()
+        .zip(&probe_samples)
+        .filter_map(|(w, s)| ProbeReading::read(&unit_costs, &s.sample, w.term))
+        .collect();
+    if !probes.is_empty() {
+        eprint!(
+            "Probes (timed in the same rounds, not fitted; prices in ns per unit)\n\n{}",
+            probes_markdown(&readings)
+        );
+    }
     eprintln!(
         "Unit costs measured in {:.1} s.",
         started.elapsed().as_secs_f64()
@@ -61,6 +91,8 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
         unit_costs,
         provenance: Provenance::collect(&gpu.summary),
         samples,
+        probes: readings,
+        probe_samples,
     };
     let text = toml::to_string_pretty(&file)?;
     std::io::Write::write_all(&mut std::io::stdout(), text.as_bytes())?;
