@@ -136,16 +136,19 @@
 //! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
 //! 147 k → 123 k triangles.
 //!
-//! Measured (lavapipe, `results/bakay_table2/`, revision `cfbfa08`, at the `paper` variant:
-//! every shell everywhere, box mipmaps, the point source; the reference in the same group):
-//! (866.9 − 22.3) / 64 = 13.2 ms per added shell at 640x480 and 27.7 ms at 1024x768, 2.1x
-//! for 2.56x the pixels (the paper: 2.2 and 4.6 ms on a GeForce3, 2.1x), every cell of
-//! Table 2 6.0-6.6x the paper's time: the table's shape is reproduced, only its scale is a
-//! software rasteriser's; faster than `reference` up to 17 shells at 640x480 (33 take its
-//! time, 1.01x) and 9 at 1024x768, because a software rasteriser has no cheap fill rate. (Before
-//! issue 19, with the texture 9 times the scene's density, the same table read 8.0 and
-//! 17.3 ms a shell: most shell fragments now fail the alpha test before the second lookup
-//! and the shading.)
+//! Measured (lavapipe, `results/bakay_table2/`, revision `e1e5cb1`, a 2-vCPU AMD EPYC, at the
+//! `paper` variant: every shell everywhere, box mipmaps, the point source; the reference in the
+//! same group): (2 146.3 − 60.9) / 64 = 32.6 ms per added shell at 640x480 and 73.7 ms at
+//! 1024x768, 2.26x for 2.56x the pixels (the paper: 2.2 and 4.6 ms on a GeForce3, 2.1x); the
+//! cells of Table 2 14.7-16.3x the paper's time from 9 to 65 shells and 17.9 and 17.3x at 1
+//! shell, where the rest of the frame weighs more: time grows with shells x pixels as in the
+//! paper, at a software rasteriser's scale; faster than `reference` up to 33 shells at 640x480
+//! (0.84x its time) and 17 at 1024x768 (0.97x), slower at 65 shells by 1.65x and 3.61x, because
+//! a software rasteriser has no cheap fill rate. On the Xeon at `cfbfa08`: 6.0-6.6x the paper's
+//! time, 13.2 and 27.7 ms a shell (2.1x), faster than `reference` up to 17 shells at 640x480
+//! and 9 at 1024x768. (On 2026-12-01, before issue 19, at our defaults then and with the texture
+//! 9 times the scene's density, the same table read 8.0 and 17.3 ms a shell on average from 1
+//! to 65 shells.)
 //! 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not depend on its
 //! blades).
 //!
