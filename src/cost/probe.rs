@@ -90,21 +90,13 @@ mod tests {
     use super::*;
     use crate::cost::{UnitCost, Work};
 
-    fn cost(value: f64) -> UnitCost {
-        UnitCost {
-            value,
-            standard_error: 0.0,
-            at_zero: value == 0.0,
-        }
-    }
-
     #[test]
     fn the_implied_price_is_what_the_time_leaves_for_the_term() {
         // In ms per unit: a 0.5 ms submission, 20 ns a vertex, 0.6 ns a float texel load.
-        let mut per_unit = [cost(0.0); Term::ALL.len()];
-        per_unit[Term::Fixed.index()] = cost(0.5);
-        per_unit[Term::Vertex.index()] = cost(20e-6);
-        per_unit[Term::FloatTextureLoad.index()] = cost(0.6e-6);
+        let mut per_unit = [UnitCost::exact(0.0); Term::ALL.len()];
+        per_unit[Term::Fixed.index()] = UnitCost::exact(0.5);
+        per_unit[Term::Vertex.index()] = UnitCost::exact(20e-6);
+        per_unit[Term::FloatTextureLoad.index()] = UnitCost::exact(0.6e-6);
         let costs = UnitCosts::from_ms_per_unit(
             "640x360".into(),
             "test".into(),

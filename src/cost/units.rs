@@ -17,6 +17,19 @@ pub struct UnitCost {
     pub at_zero: bool,
 }
 
+#[cfg(test)]
+impl UnitCost {
+    /// A cost known exactly (no standard error), held at zero only where it is zero: the
+    /// tests' fixtures.
+    pub(crate) fn exact(value: f64) -> Self {
+        Self {
+            value,
+            standard_error: 0.0,
+            at_zero: value == 0.0,
+        }
+    }
+}
+
 /// An adapter's unit costs: what one unit of each kind of work adds to a frame's GPU time,
 /// fitted jointly over the calibration's micro-workloads. Written to `meta.toml` under
 /// `[unit_costs]` beside the adapter's provenance.
@@ -338,14 +351,6 @@ impl Prediction {
 mod tests {
     use super::*;
 
-    fn cost(value: f64) -> UnitCost {
-        UnitCost {
-            value,
-            standard_error: 0.0,
-            at_zero: false,
-        }
-    }
-
     #[test]
     fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
         // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
@@ -357,7 +362,7 @@ mod tests {
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 6e-6, 1e-5, 2e-6, 5e-7,
             1e-6, 2e-7, 5e-8, 1e-7,
         ]
-        .map(cost);
+        .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
             "640x360".into(),
             "test".into(),
@@ -419,7 +424,7 @@ mod tests {
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 6e-6, 1e-5, 2e-6, 5e-7,
             1e-6, 2e-7, 5e-8, 1e-7,
         ]
-        .map(cost);
+        .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
             "640x360".into(),
             "test".into(),
