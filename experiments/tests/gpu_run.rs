@@ -53,6 +53,12 @@ fn gpu_run_script_measures_every_step_into_the_adapters_folder() {
         let calibration = std::fs::read_to_string(out.join(format!("calibration_{size}.toml")))
             .unwrap_or_else(|e| panic!("calibration at {size}: {e}\n{log}"));
         assert!(calibration.contains("[unit_costs]"), "{calibration}");
+        // With the vertex-stage load probes, read.
+        assert!(
+            calibration.contains("[[probes]]")
+                && calibration.contains("workload = \"vertex_float_texture_loads\""),
+            "{calibration}"
+        );
         let runs = out.join(format!("default_{size}/runs.csv"));
         for id in grassbench_cli::registry::ids() {
             assert_eq!(rows_with(&runs, "technique", id), 1, "{id} at {size}");
