@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The measurements for a machine with a GPU and no Rust toolchain (issue 24 §4): with a
 # stripped release binary beside the repository's files, one command calibrates the adapter
-# (with the probes: what a texel load costs its vertex stage against the fitted price), runs
+# (its unit costs, the vertex stage's texel loads among them), runs
 # the default comparison at 1280x720 and 1920x1080, the image comparison, and the cost
 # model's sweep, into results/gpu-<adapter>/ with each step's provenance (every folder's
 # meta.toml: adapter, driver, backend, revision, command line) and a log of what ran.
@@ -55,7 +55,7 @@ mkdir -p -m 700 "$XDG_RUNTIME_DIR"
 # The adapter names the folder: calibrate first, into a scratch file, and read its name.
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-"$bin" calibrate --probes --size "${sizes[0]}" -o "$scratch/calibration.toml" || {
+"$bin" calibrate --size "${sizes[0]}" -o "$scratch/calibration.toml" || {
   echo "gpu-run: calibration failed: no adapter? (see above)" >&2
   exit 2
 }
@@ -80,7 +80,7 @@ step() {
 }
 
 for size in "${sizes[@]:1}"; do
-  step "$bin" calibrate --probes --size "$size" -o "$out/calibration_$size.toml"
+  step "$bin" calibrate --size "$size" -o "$out/calibration_$size.toml"
 done
 for size in "${sizes[@]}"; do
   step "$bin" run --technique all --scene "$scenes" --size "$size" --frames "$frames" \

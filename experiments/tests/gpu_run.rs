@@ -53,9 +53,9 @@ fn gpu_run_script_measures_every_step_into_the_adapters_folder() {
         let calibration = std::fs::read_to_string(out.join(format!("calibration_{size}.toml")))
             .unwrap_or_else(|e| panic!("calibration at {size}: {e}\n{log}"));
         assert!(calibration.contains("[unit_costs]"), "{calibration}");
-        // With the vertex-stage load probes, read.
+        // With the vertex stage's texel loads priced.
         assert!(
-            calibration.contains("[[probes]]")
+            calibration.contains("[unit_costs.vertex_float_texture_load_ns]")
                 && calibration.contains("workload = \"vertex_float_texture_loads\""),
             "{calibration}"
         );

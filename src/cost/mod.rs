@@ -5,8 +5,8 @@
 //! - [`Work`]: what a frame made the GPU do (vertex invocations, primitives, fragments by
 //!   [`FragmentKind`], draws, compute invocations, bytes uploaded), from the GPU's own
 //!   counters and the harness's, and what its shaders did inside those invocations (texel
-//!   loads and samples, those of floating-point texels apart, transcendentals and scalar
-//!   arithmetic by stage: the counted invocations times their entry points' operations,
+//!   loads and samples, those of floating-point texels and the vertex stage's loads apart,
+//!   transcendentals and scalar arithmetic by stage: the counted invocations times their entry points' operations,
 //!   `crate::shaders::ShaderOps`);
 //! - [`Term`]: the model's terms, one unit cost each, plus a fixed cost per submission;
 //! - [`UnitCosts`]: an adapter's fitted costs with their standard errors and the fit's
@@ -16,8 +16,6 @@
 //! - [`fit`]: the joint, weighted, non-negative least-squares fit of [`Sample`]s;
 //! - [`workloads`]: the micro-workloads and their work known in advance; [`measure`] runs and
 //!   times them on a GPU ([`calibrate_units`]) and checks their work against the counters;
-//! - [`ProbeReading`]: what a probe, timed with the calibration but not fitted, says a term
-//!   costs where no workload measured it (texel loads in the vertex stage).
 //!
 //! Costs are in the clock the samples were timed with: submit-to-`poll(wait)` wall time, the
 //! ground truth on lavapipe (see `shared/PLATFORM.md`), the same clock as the runner's
@@ -26,7 +24,6 @@
 pub mod fit;
 mod lstsq;
 pub mod measure;
-mod probe;
 mod rig;
 mod run;
 mod term;
@@ -38,7 +35,6 @@ pub use fit::{FitSummary, Sample, WorkloadResidual, fit};
 pub use measure::{
     COUNTED_TERMS, MeasuredSample, Options, UnitCalibration, calibrate_units, calibrate_units_with,
 };
-pub use probe::{ProbeReading, probes_markdown};
 pub use run::{apply_model, predict_run};
 pub use term::Term;
 pub use units::{Prediction, UnitCost, UnitCosts};

@@ -37,7 +37,8 @@ pub(super) struct Rig<'g> {
     math: [crate::shaders::RenderPipeline; 2],
     /// The `arithmetic_*` workloads': off-screen strips, opaque layers.
     arithmetic: [crate::shaders::RenderPipeline; 2],
-    /// The probes' off-screen strips loading texels: RGBA8, floating-point.
+    /// The `vertex_*texture_loads` workloads': off-screen strips loading texels, RGBA8 and
+    /// floating-point.
     load_strips: [crate::shaders::RenderPipeline; 2],
     /// The spring update, plain and with each chain, in [`workloads::Chain::ALL`]'s order.
     springs: [crate::shaders::ComputePipeline; workloads::Chain::ALL.len()],
@@ -104,7 +105,7 @@ impl<'g> Rig<'g> {
                 .chain(workloads::FETCH_TEXTURES.map(|t| {
                     wgpu::BindGroupLayoutEntry {
                         binding: t.binding,
-                        // The vertex stage's for the probes' loads.
+                        // The vertex stage's for the `vertex_*texture_loads` strips.
                         visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
                         ty: wgpu::BindingType::Texture {
                             // Filterable or not, as the format is (`R32Float` is not).

@@ -26,6 +26,11 @@ impl Work {
                 + f(r.background_texture_loads).unwrap_or(0.0),
             float_texture_loads: f(r.float_texture_loads).unwrap_or(0.0)
                 + f(r.background_float_texture_loads).unwrap_or(0.0),
+            // Older records do not say which loads were the vertex stage's: priced as any.
+            vertex_texture_loads: f(r.vertex_texture_loads).unwrap_or(0.0)
+                + f(r.background_vertex_texture_loads).unwrap_or(0.0),
+            vertex_float_texture_loads: f(r.vertex_float_texture_loads).unwrap_or(0.0)
+                + f(r.background_vertex_float_texture_loads).unwrap_or(0.0),
             texture_samples: f(r.texture_samples).unwrap_or(0.0)
                 + f(r.background_texture_samples).unwrap_or(0.0),
             float_texture_samples: f(r.float_texture_samples).unwrap_or(0.0)
@@ -79,6 +84,8 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_upload_ms = p.map(|p| p.upload_ms);
     run.model_texture_load_ms = p.map(|p| p.texture_load_ms);
     run.model_float_texture_load_ms = p.map(|p| p.float_texture_load_ms);
+    run.model_vertex_texture_load_ms = p.map(|p| p.vertex_texture_load_ms);
+    run.model_vertex_float_texture_load_ms = p.map(|p| p.vertex_float_texture_load_ms);
     run.model_texture_sample_ms = p.map(|p| p.texture_sample_ms);
     run.model_float_texture_sample_ms = p.map(|p| p.float_texture_sample_ms);
     run.model_vertex_transcendental_ms = p.map(|p| p.vertex_transcendental_ms);

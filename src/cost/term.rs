@@ -39,6 +39,19 @@ pub enum Term {
     /// texture, and lavapipe converts floating-point texels outside its 8-bit fast path (an
     /// `R32Float` load 0.59-0.63 ns against an `Rgba8Unorm` one's 0.13).
     FloatTextureLoad,
+    /// A texel of normalised or integer format read with `textureLoad` by a vertex shader
+    /// invocation: what it costs on top of [`Term::TextureLoad`], which every load pays. Not
+    /// among the units issue 20 lists: the load terms are fitted on fragment shaders' loads,
+    /// and lavapipe shades vertices in the thread that records the draws, one vertex at a
+    /// time where a fragment shader runs on a worker thread over a block of pixels (timed as
+    /// an unfitted probe on the 2-vCPU EPYC host before the term: 1.8-2.2 ns a load in the
+    /// vertex stage against 0.9-1.2 fitted on fragments).
+    VertexTextureLoad,
+    /// A texel of floating-point format read with `textureLoad` by a vertex shader
+    /// invocation, on top of [`Term::FloatTextureLoad`]: a blade's vertex reading the
+    /// terrain's height and the wind at its root (the EPYC probe: 5.1-6.1 ns an `R32Float`
+    /// load in the vertex stage against 2.1-2.8 fitted on fragments).
+    VertexFloatTextureLoad,
     /// A filtered texture sample (`textureSample*`) by a vertex or fragment shader invocation:
     /// on a software rasteriser the filtering (mip level, bilinear or trilinear taps) is code
     /// run per sample, several times a plain fragment's cost.
@@ -79,7 +92,7 @@ pub enum Term {
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 19] = [
+    pub const ALL: [Self; 21] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -91,6 +104,8 @@ impl Term {
         Self::Upload,
         Self::TextureLoad,
         Self::FloatTextureLoad,
+        Self::VertexTextureLoad,
+        Self::VertexFloatTextureLoad,
         Self::TextureSample,
         Self::FloatTextureSample,
         Self::VertexTranscendental,
@@ -115,6 +130,8 @@ impl Term {
             Self::Upload => "upload",
             Self::TextureLoad => "texture_load",
             Self::FloatTextureLoad => "float_texture_load",
+            Self::VertexTextureLoad => "vertex_texture_load",
+            Self::VertexFloatTextureLoad => "vertex_float_texture_load",
             Self::TextureSample => "texture_sample",
             Self::FloatTextureSample => "float_texture_sample",
             Self::VertexTranscendental => "vertex_transcendental",
@@ -140,6 +157,8 @@ impl Term {
             Self::Upload => "MB",
             Self::TextureLoad => "texel load",
             Self::FloatTextureLoad => "float texel load",
+            Self::VertexTextureLoad => "vertex texel load",
+            Self::VertexFloatTextureLoad => "vertex float texel load",
             Self::TextureSample => "texture sample",
             Self::FloatTextureSample => "float texture sample",
             Self::VertexTranscendental

@@ -70,6 +70,14 @@ pub struct UnitCosts {
     /// the term).
     #[serde(default)]
     pub float_texture_load_ns: UnitCost,
+    /// Per texel a vertex shader reads with `textureLoad`, on top of `texture_load_ns`, ns
+    /// (0 in calibrations made before the term).
+    #[serde(default)]
+    pub vertex_texture_load_ns: UnitCost,
+    /// Per floating-point texel a vertex shader reads with `textureLoad`, on top of
+    /// `float_texture_load_ns`, ns (0 in calibrations made before the term).
+    #[serde(default)]
+    pub vertex_float_texture_load_ns: UnitCost,
     /// Per filtered texture sample, ns (0 in calibrations made before the term).
     #[serde(default)]
     pub texture_sample_ns: UnitCost,
@@ -130,6 +138,13 @@ pub struct Prediction {
     /// Floating-point texel loads, ms.
     #[serde(default)]
     pub float_texture_load_ms: f64,
+    /// Vertex shaders' texel loads, on top of their `texture_load_ms`, ms.
+    #[serde(default)]
+    pub vertex_texture_load_ms: f64,
+    /// Vertex shaders' floating-point texel loads, on top of their `float_texture_load_ms`,
+    /// ms.
+    #[serde(default)]
+    pub vertex_float_texture_load_ms: f64,
     /// Texture samples, ms.
     #[serde(default)]
     pub texture_sample_ms: f64,
@@ -189,6 +204,8 @@ impl UnitCosts {
             upload_ms_per_mb: stored(Term::Upload),
             texture_load_ns: stored(Term::TextureLoad),
             float_texture_load_ns: stored(Term::FloatTextureLoad),
+            vertex_texture_load_ns: stored(Term::VertexTextureLoad),
+            vertex_float_texture_load_ns: stored(Term::VertexFloatTextureLoad),
             texture_sample_ns: stored(Term::TextureSample),
             float_texture_sample_ns: stored(Term::FloatTextureSample),
             vertex_transcendental_ns: stored(Term::VertexTranscendental),
@@ -215,6 +232,8 @@ impl UnitCosts {
             Term::Upload => self.upload_ms_per_mb,
             Term::TextureLoad => self.texture_load_ns,
             Term::FloatTextureLoad => self.float_texture_load_ns,
+            Term::VertexTextureLoad => self.vertex_texture_load_ns,
+            Term::VertexFloatTextureLoad => self.vertex_float_texture_load_ns,
             Term::TextureSample => self.texture_sample_ns,
             Term::FloatTextureSample => self.float_texture_sample_ns,
             Term::VertexTranscendental => self.vertex_transcendental_ns,
@@ -247,6 +266,8 @@ impl UnitCosts {
             upload_ms: ms(Term::Upload),
             texture_load_ms: ms(Term::TextureLoad),
             float_texture_load_ms: ms(Term::FloatTextureLoad),
+            vertex_texture_load_ms: ms(Term::VertexTextureLoad),
+            vertex_float_texture_load_ms: ms(Term::VertexFloatTextureLoad),
             texture_sample_ms: ms(Term::TextureSample),
             float_texture_sample_ms: ms(Term::FloatTextureSample),
             vertex_transcendental_ms: ms(Term::VertexTranscendental),
@@ -326,6 +347,8 @@ impl Prediction {
             Term::Upload => self.upload_ms,
             Term::TextureLoad => self.texture_load_ms,
             Term::FloatTextureLoad => self.float_texture_load_ms,
+            Term::VertexTextureLoad => self.vertex_texture_load_ms,
+            Term::VertexFloatTextureLoad => self.vertex_float_texture_load_ms,
             Term::TextureSample => self.texture_sample_ms,
             Term::FloatTextureSample => self.float_texture_sample_ms,
             Term::VertexTranscendental => self.vertex_transcendental_ms,
@@ -354,13 +377,13 @@ mod tests {
     #[test]
     fn a_prediction_is_the_sum_of_its_terms_in_their_units() {
         // ms per unit: fixed 1 ms, vertex 10 ns, primitive 100 ns, fragments 2 / 3 / 4 ns,
-        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns (4 ns floating-point),
-        // sample 6 ns (10 ns floating-point),
+        // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns (4 ns floating-point;
+        // 2 and 8 ns more in a vertex shader), sample 6 ns (10 ns floating-point),
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
         // 0.05 / 0.1 ns.
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 6e-6, 1e-5, 2e-6, 5e-7,
-            1e-6, 2e-7, 5e-8, 1e-7,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -383,6 +406,8 @@ mod tests {
             upload_bytes: 4e6,
             texture_loads: 5e5,
             float_texture_loads: 2.5e5,
+            vertex_texture_loads: 1e5,
+            vertex_float_texture_loads: 2.5e5,
             texture_samples: 2e5,
             float_texture_samples: 5e4,
             vertex_transcendentals: 1e6,
@@ -393,16 +418,16 @@ mod tests {
             compute_arithmetic: 0.0,
         };
         let p = costs.predict(&work);
-        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 1.2 + 0.5 + 2 + 2 + 0 + 1 + 1 + 0
-        // ms.
+        // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
+        // + 1 + 1 + 0 ms.
         let expected = [
-            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 1.2, 0.5, 2.0, 2.0, 0.0, 1.0,
-            1.0, 0.0,
+            1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
+            0.0, 1.0, 1.0, 0.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 17.61).abs() < 1e-9);
+        assert!((p.total_ms - 19.81).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -421,8 +446,8 @@ mod tests {
     #[test]
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
-            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 6e-6, 1e-5, 2e-6, 5e-7,
-            1e-6, 2e-7, 5e-8, 1e-7,
+            1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -442,6 +467,8 @@ mod tests {
             if l.starts_with('[') {
                 skipping = l.starts_with("[texture_")
                     || l.starts_with("[float_texture_")
+                    || l.starts_with("[vertex_texture_")
+                    || l.starts_with("[vertex_float_texture_")
                     || l.contains("_transcendental_ns]")
                     || l.contains("_arithmetic_ns]");
             }
@@ -458,6 +485,8 @@ mod tests {
         assert_eq!(read.texture_sample_ns, UnitCost::default());
         assert_eq!(read.float_texture_sample_ns, UnitCost::default());
         assert_eq!(read.float_texture_load_ns, UnitCost::default());
+        assert_eq!(read.vertex_float_texture_load_ns, UnitCost::default());
+        assert!(!older.contains("vertex_float_texture_load_ns"), "{older}");
         assert_eq!(read.vertex_transcendental_ns, UnitCost::default());
         assert!(!older.contains("texture_sample_ns"), "{older}");
         assert!(!older.contains("transcendental_ns"), "{older}");

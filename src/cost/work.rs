@@ -37,6 +37,14 @@ pub struct Work {
     /// (`crate::shaders::ShaderOps::float_loads`).
     #[serde(default)]
     pub float_texture_loads: f64,
+    /// Of [`Work::texture_loads`], those of vertex shaders (priced again, by
+    /// [`Term::VertexTextureLoad`]).
+    #[serde(default)]
+    pub vertex_texture_loads: f64,
+    /// Of [`Work::float_texture_loads`], those of vertex shaders (priced again, by
+    /// [`Term::VertexFloatTextureLoad`]).
+    #[serde(default)]
+    pub vertex_float_texture_loads: f64,
     /// Filtered texture samples of normalised or integer texels (vertex and fragment stages).
     #[serde(default)]
     pub texture_samples: f64,
@@ -100,6 +108,8 @@ impl Work {
             upload_bytes: 0.0,
             texture_loads: fetches.loads as f64,
             float_texture_loads: fetches.float_loads as f64,
+            vertex_texture_loads: ops.vertex.loads as f64,
+            vertex_float_texture_loads: ops.vertex.float_loads as f64,
             texture_samples: fetches.samples as f64,
             float_texture_samples: fetches.float_samples as f64,
             vertex_transcendentals: ops.vertex.transcendentals as f64,
@@ -126,6 +136,8 @@ impl Work {
             Term::Upload => self.upload_bytes / BYTES_PER_MB,
             Term::TextureLoad => self.texture_loads,
             Term::FloatTextureLoad => self.float_texture_loads,
+            Term::VertexTextureLoad => self.vertex_texture_loads,
+            Term::VertexFloatTextureLoad => self.vertex_float_texture_loads,
             Term::TextureSample => self.texture_samples,
             Term::FloatTextureSample => self.float_texture_samples,
             Term::VertexTranscendental => self.vertex_transcendentals,
@@ -150,6 +162,8 @@ impl Work {
             upload_bytes: self.upload_bytes * k,
             texture_loads: self.texture_loads * k,
             float_texture_loads: self.float_texture_loads * k,
+            vertex_texture_loads: self.vertex_texture_loads * k,
+            vertex_float_texture_loads: self.vertex_float_texture_loads * k,
             texture_samples: self.texture_samples * k,
             float_texture_samples: self.float_texture_samples * k,
             vertex_transcendentals: self.vertex_transcendentals * k,
@@ -184,6 +198,9 @@ impl std::ops::Add for Work {
             upload_bytes: self.upload_bytes + o.upload_bytes,
             texture_loads: self.texture_loads + o.texture_loads,
             float_texture_loads: self.float_texture_loads + o.float_texture_loads,
+            vertex_texture_loads: self.vertex_texture_loads + o.vertex_texture_loads,
+            vertex_float_texture_loads: self.vertex_float_texture_loads
+                + o.vertex_float_texture_loads,
             texture_samples: self.texture_samples + o.texture_samples,
             float_texture_samples: self.float_texture_samples + o.float_texture_samples,
             vertex_transcendentals: self.vertex_transcendentals + o.vertex_transcendentals,
@@ -213,6 +230,8 @@ mod tests {
             upload_bytes: 2.5e6,
             texture_loads: 6.0,
             float_texture_loads: 6.5,
+            vertex_texture_loads: 3.0,
+            vertex_float_texture_loads: 3.5,
             texture_samples: 7.0,
             float_texture_samples: 7.5,
             vertex_transcendentals: 8.0,
@@ -226,8 +245,8 @@ mod tests {
         assert_eq!(
             amounts,
             [
-                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 7.0, 7.5, 8.0, 9.5, 10.0,
-                11.5, 12.0, 13.0
+                1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
+                9.5, 10.0, 11.5, 12.0, 13.0
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -305,6 +324,7 @@ mod tests {
                 compute_invocations: 64.0,
                 texture_loads: 100.0 + 256.0,
                 float_texture_loads: 88.0,
+                vertex_float_texture_loads: 88.0,
                 texture_samples: 300.0,
                 float_texture_samples: 200.0,
                 vertex_transcendentals: 55.0,

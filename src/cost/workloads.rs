@@ -14,16 +14,12 @@
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
 //! | `float_texture_loads`, `float_texture_samples` | the same loads of the texels in [`FLOAT_LOAD_FORMAT`], samples in [`FLOAT_SAMPLE_FORMAT`] | floating-point texel load, sample |
+//! | `vertex_texture_loads`, `vertex_float_texture_loads` | the off-screen strips with [`LOADS_PER_VERTEX`] `textureLoad`s per vertex of the RGBA8 / floating-point texture | what a load costs a vertex shader more |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
-//!
-//! Besides the families, [`probes`]: workloads timed with them but not fitted, each doing much
-//! of one term where no family measures it (texel loads in the vertex stage: the load prices
-//! are fitted on fragment shaders'), to say whether the fitted price holds there
-//! ([`super::ProbeReading`]).
 //!
 //! Every sample is one submission holding one render pass that clears the target, plus the
 //! workload: the fixed term is what a frame with nothing in it costs at this size.
@@ -132,8 +128,9 @@ pub const MAX_GROUPS_PER_DIMENSION: u32 = 65_535;
 /// tenth of a fragment on lavapipe (1 ns against 8 ns, quiet host), so it takes 32 of them to
 /// stand out of the fragment's own cost by more than the noise.
 pub const LOADS_PER_FRAGMENT: u32 = 32;
-/// `textureLoad`s of one vertex of the vertex-stage load probes ([`probes`]): the fragment
-/// workloads' loads, through the same shader functions.
+/// `textureLoad`s of one vertex of the `vertex_texture_loads` and
+/// `vertex_float_texture_loads` workloads: the fragment workloads' loads, through the same
+/// shader functions.
 pub const LOADS_PER_VERTEX: u32 = LOADS_PER_FRAGMENT;
 /// `textureSample`s of one fragment of the `texture_samples` and `float_texture_samples`
 /// workloads.
@@ -179,7 +176,7 @@ pub enum Shape {
     },
     /// `instances` off-screen blade strips whose vertex shader also does [`LOADS_PER_VERTEX`]
     /// `textureLoad`s of the RGBA8 texture, or of the floating-point one
-    /// ([`FLOAT_LOAD_FORMAT`]) where `float`, in one instanced draw (the probes).
+    /// ([`FLOAT_LOAD_FORMAT`]) where `float`, in one instanced draw.
     LoadStrips {
         /// Whether the texels loaded are of the floating-point texture.
         float: bool,
@@ -348,11 +345,14 @@ impl Workload {
             Shape::LoadStrips { float, instances } => {
                 let base = self.offscreen_strips(instances, size);
                 let loads = base.vertex_invocations * f64::from(LOADS_PER_VERTEX);
+                let (normalised, float) = if float { (0.0, loads) } else { (loads, 0.0) };
                 Work {
                     vertex_arithmetic: base.vertex_invocations
-                        * arithmetic(load_strips_entry(float)),
-                    texture_loads: if float { 0.0 } else { loads },
-                    float_texture_loads: if float { loads } else { 0.0 },
+                        * arithmetic(load_strips_entry(float > 0.0)),
+                    texture_loads: normalised,
+                    float_texture_loads: float,
+                    vertex_texture_loads: normalised,
+                    vertex_float_texture_loads: float,
                     ..base
                 }
             }
@@ -623,6 +623,22 @@ pub fn families() -> Vec<Workload> {
             },
         },
         Workload {
+            name: "vertex_texture_loads",
+            term: Term::VertexTextureLoad,
+            shape: Shape::LoadStrips {
+                float: false,
+                instances: 5_000,
+            },
+        },
+        Workload {
+            name: "vertex_float_texture_loads",
+            term: Term::VertexFloatTextureLoad,
+            shape: Shape::LoadStrips {
+                float: true,
+                instances: 5_000,
+            },
+        },
+        Workload {
             name: "float_texture_samples",
             term: Term::FloatTextureSample,
             shape: Shape::FetchLayers {
@@ -687,37 +703,10 @@ pub fn families() -> Vec<Workload> {
     ]
 }
 
-/// The vertex entry point of the load probes' strips (`float`: of the floating-point texture).
+/// The vertex entry point of the strips that load texels (`float`: of the floating-point
+/// texture).
 pub fn load_strips_entry(float: bool) -> &'static str {
     if float { "vs_float_loads" } else { "vs_loads" }
-}
-
-/// The probes: workloads timed in the calibration's rounds (as
-/// [`super::calibrate_units_with`]'s held-out submissions, so under the same load) but not
-/// fitted, at the families' four sizes: off-screen strips whose vertices each load
-/// [`LOADS_PER_VERTEX`] texels, RGBA8 (`vertex_texture_loads`) and `R32Float`
-/// (`vertex_float_texture_loads`, as a technique's vertex reads the terrain's height and
-/// density maps). The load prices are fitted on fragment shaders' loads: the probes say
-/// whether they hold in the vertex stage ([`super::ProbeReading`]). Sized as the
-/// `transcendentals_vertex` family (5 000 strips at the smallest size).
-pub fn probes() -> Vec<Workload> {
-    [
-        ("vertex_texture_loads", Term::TextureLoad, false),
-        ("vertex_float_texture_loads", Term::FloatTextureLoad, true),
-    ]
-    .into_iter()
-    .flat_map(|(name, term, float)| {
-        let probe = Workload {
-            name,
-            term,
-            shape: Shape::LoadStrips {
-                float,
-                instances: 5_000,
-            },
-        };
-        sizes(&probe, 1)
-    })
-    .collect()
 }
 
 /// A family's samples: its workload at [`SIZE_STEPS`] times `scale`; `empty` four times
@@ -941,26 +930,33 @@ mod tests {
     }
 
     #[test]
-    fn probes_load_texels_in_the_vertex_stage_alone() {
-        let probes = probes();
-        assert_eq!(probes.len(), 2 * SIZE_STEPS.len());
-        for p in &probes {
-            let Shape::LoadStrips { float, instances } = p.shape else {
-                panic!("{p:?}");
+    fn vertex_load_strips_load_texels_in_the_vertex_stage_alone() {
+        for f in families()
+            .into_iter()
+            .filter(|f| matches!(f.shape, Shape::LoadStrips { .. }))
+        {
+            let Shape::LoadStrips { float, instances } = f.shape else {
+                unreachable!()
             };
-            let w = p.work(SIZE);
+            let w = f.work(SIZE);
             let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
             let loads = vertices * f64::from(LOADS_PER_VERTEX);
             // The off-screen strips' work (no primitive, no fragment), plus the loads: of the
-            // probe's own term, none of the other format.
-            assert_eq!(w.vertex_invocations, vertices, "{}", p.name);
-            assert_eq!(w.amount(p.term), loads, "{}", p.name);
-            let other = if float {
-                w.texture_loads
+            // family's format, each counted as a load and as a vertex shader's load.
+            assert_eq!(w.vertex_invocations, vertices, "{}", f.name);
+            assert_eq!(w.amount(f.term), loads, "{}", f.name);
+            let (all, other) = if float {
+                (
+                    w.float_texture_loads,
+                    w.texture_loads + w.vertex_texture_loads,
+                )
             } else {
-                w.float_texture_loads
+                (
+                    w.texture_loads,
+                    w.float_texture_loads + w.vertex_float_texture_loads,
+                )
             };
-            assert_eq!(other, 0.0, "{}", p.name);
+            assert_eq!((all, other), (loads, 0.0), "{}", f.name);
             assert_eq!(
                 w.primitives + w.fragments_opaque + w.texture_samples + w.float_texture_samples,
                 0.0
@@ -973,24 +969,22 @@ mod tests {
             assert!(
                 w.vertex_arithmetic > vertices * arithmetic("vs_offscreen"),
                 "{}",
-                p.name
+                f.name
             );
         }
-        // Each probe at the four sizes, 1 : 2 : 4 : 8.
-        let strips: Vec<f64> = probes[..SIZE_STEPS.len()]
+        // Both formats are fitted, and only these strips load in the vertex stage: the
+        // fragment workloads' loads are not the vertex stage's.
+        let vertex_loaders: Vec<&str> = families()
             .iter()
-            .map(|p| p.work(SIZE).vertex_invocations)
+            .filter(|f| {
+                let w = sizes(f, 1)[0].work(SIZE);
+                w.vertex_texture_loads + w.vertex_float_texture_loads > 0.0
+            })
+            .map(|f| f.name)
             .collect();
         assert_eq!(
-            strips,
-            SIZE_STEPS.map(|k| f64::from(k * 5_000 * STRIP_VERTICES))
-        );
-        // No probe is a fitted family.
-        let families = families();
-        assert!(
-            probes
-                .iter()
-                .all(|p| families.iter().all(|f| f.name != p.name))
+            vertex_loaders,
+            ["vertex_texture_loads", "vertex_float_texture_loads"]
         );
     }
 

@@ -294,7 +294,8 @@ impl<'g> World<'g> {
             })
         };
         let (ops, background_ops) = (ops_of(false), ops_of(true));
-        // Texture fetches are priced alike in every stage: summed once.
+        // Texture fetches are summed over the stages (the vertex stage's are priced again
+        // apart).
         let (fetches, background_fetches) = (ops.map(|o| o.all()), background_ops.map(|o| o.all()));
         let pixels = f64::from(view.target.size.width * view.target.size.height);
         let image = readback.map(|r| r.finish(gpu)).transpose()?;
@@ -335,10 +336,14 @@ impl<'g> World<'g> {
             background_draw_calls: Some(core_draws),
             texture_loads: fetches.map(|f| f.loads),
             float_texture_loads: fetches.map(|f| f.float_loads),
+            vertex_texture_loads: ops.map(|o| o.vertex.loads),
+            vertex_float_texture_loads: ops.map(|o| o.vertex.float_loads),
             texture_samples: fetches.map(|f| f.samples),
             float_texture_samples: fetches.map(|f| f.float_samples),
             background_texture_loads: background_fetches.map(|f| f.loads),
             background_float_texture_loads: background_fetches.map(|f| f.float_loads),
+            background_vertex_texture_loads: background_ops.map(|o| o.vertex.loads),
+            background_vertex_float_texture_loads: background_ops.map(|o| o.vertex.float_loads),
             background_texture_samples: background_fetches.map(|f| f.samples),
             background_float_texture_samples: background_fetches.map(|f| f.float_samples),
             vertex_transcendentals: ops.map(|f| f.vertex.transcendentals),

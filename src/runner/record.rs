@@ -114,6 +114,12 @@ pub struct FrameRecord {
     /// `textureLoad`, counted the same way.
     #[serde(default)]
     pub float_texture_loads: Option<u64>,
+    /// Of `texture_loads`, those of the technique's vertex shaders.
+    #[serde(default)]
+    pub vertex_texture_loads: Option<u64>,
+    /// Of `float_texture_loads`, those of the technique's vertex shaders.
+    #[serde(default)]
+    pub vertex_float_texture_loads: Option<u64>,
     /// Filtered texture samples (`textureSample*`) the technique's shaders took of textures
     /// of normalised or integer texels, counted the same way.
     #[serde(default)]
@@ -130,6 +136,13 @@ pub struct FrameRecord {
     /// `textureLoad` (the terrain's heights and density).
     #[serde(default)]
     pub background_float_texture_loads: Option<u64>,
+    /// Of `background_texture_loads`, those of the core's background vertex shaders.
+    #[serde(default)]
+    pub background_vertex_texture_loads: Option<u64>,
+    /// Of `background_float_texture_loads`, those of the core's background vertex shaders
+    /// (the ground's heights).
+    #[serde(default)]
+    pub background_vertex_float_texture_loads: Option<u64>,
     /// Filtered texture samples the core's background shaders took.
     #[serde(default)]
     pub background_texture_samples: Option<u64>,
@@ -356,6 +369,12 @@ pub struct RunSummary {
     /// shaders.
     #[serde(default)]
     pub float_texture_loads: Option<u64>,
+    /// Median of `texture_loads`' vertex shaders' share.
+    #[serde(default)]
+    pub vertex_texture_loads: Option<u64>,
+    /// Median of `float_texture_loads`' vertex shaders' share.
+    #[serde(default)]
+    pub vertex_float_texture_loads: Option<u64>,
     /// Median filtered texture samples of the technique's shaders (normalised or integer
     /// texels).
     #[serde(default)]
@@ -429,6 +448,13 @@ pub struct RunSummary {
     /// The model's time for floating-point texels read with `textureLoad`, ms.
     #[serde(default)]
     pub model_float_texture_load_ms: Option<f64>,
+    /// What the model adds for texels read with `textureLoad` in vertex shaders, ms.
+    #[serde(default)]
+    pub model_vertex_texture_load_ms: Option<f64>,
+    /// What the model adds for floating-point texels read with `textureLoad` in vertex
+    /// shaders, ms.
+    #[serde(default)]
+    pub model_vertex_float_texture_load_ms: Option<f64>,
     /// The model's time for filtered texture samples, ms.
     #[serde(default)]
     pub model_texture_sample_ms: Option<f64>,
@@ -554,6 +580,8 @@ impl RunSummary {
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
             texture_loads: median_u64(&|r| r.texture_loads),
             float_texture_loads: median_u64(&|r| r.float_texture_loads),
+            vertex_texture_loads: median_u64(&|r| r.vertex_texture_loads),
+            vertex_float_texture_loads: median_u64(&|r| r.vertex_float_texture_loads),
             texture_samples: median_u64(&|r| r.texture_samples),
             float_texture_samples: median_u64(&|r| r.float_texture_samples),
             vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
@@ -583,6 +611,8 @@ impl RunSummary {
             model_upload_ms: None,
             model_texture_load_ms: None,
             model_float_texture_load_ms: None,
+            model_vertex_texture_load_ms: None,
+            model_vertex_float_texture_load_ms: None,
             model_texture_sample_ms: None,
             model_float_texture_sample_ms: None,
             model_vertex_transcendental_ms: None,
@@ -797,6 +827,8 @@ mod tests {
             background_draw_calls: None,
             texture_loads: None,
             float_texture_loads: None,
+            vertex_texture_loads: None,
+            vertex_float_texture_loads: None,
             texture_samples: None,
             float_texture_samples: None,
             vertex_transcendentals: None,
@@ -804,6 +836,8 @@ mod tests {
             compute_transcendentals: None,
             background_texture_loads: None,
             background_float_texture_loads: None,
+            background_vertex_texture_loads: None,
+            background_vertex_float_texture_loads: None,
             background_texture_samples: None,
             background_float_texture_samples: None,
             background_vertex_transcendentals: None,

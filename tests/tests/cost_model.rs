@@ -45,16 +45,26 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
 
     // Every cost is a number, and every term's own workload resolves a positive cost: its
     // standard error under half its value (11 runs: 4.7-18.3%, growing with the residual).
+    // The vertex stage's loads are priced on top of every load's price, and what they add
+    // may be next to nothing on a faster host (an RGBA8 load in the vertex stage: 0.24 ±
+    // 0.14 ns more than the 0.24 ns fitted for a load at 320x180 on the 2-vCPU EPYC; an
+    // `R32Float` one 1.21 ± 0.23 more than 0.81): resolved to within the load's own price.
     for t in Term::ALL {
         let c = costs.get(t);
         eprintln!(
             "{t}: relative SE {:.1}%",
             100.0 * c.standard_error / c.value
         );
-        assert!(
-            c.value.is_finite() && c.value > 0.0 && c.standard_error < 0.5 * c.value,
-            "{t}: {c:?}"
-        );
+        let base = match t {
+            Term::VertexTextureLoad => Some(Term::TextureLoad),
+            Term::VertexFloatTextureLoad => Some(Term::FloatTextureLoad),
+            _ => None,
+        };
+        let resolved = match base {
+            Some(b) => c.value >= 0.0 && c.standard_error < costs.get(b).value,
+            None => c.value > 0.0 && c.standard_error < 0.5 * c.value,
+        };
+        assert!(c.value.is_finite() && resolved, "{t}: {c:?}");
     }
 
     // The fit explains its own samples. Over 24 runs the overall RMS residual was 5.9-23%
@@ -139,7 +149,7 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
 /// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times, the same two of
-/// floating-point texels, 5k strips, a
+/// floating-point texels, 5k strips loading 32 floating-point texels a vertex, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
 /// more scalar operations each, 300 draws, 1M compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
@@ -197,6 +207,14 @@ fn held_out_mix() -> Vec<Workload> {
             Shape::FetchLayers {
                 fetch: Fetch::FloatSamples,
                 layers: 1,
+            },
+        ),
+        w(
+            "vertex float loads",
+            Term::VertexFloatTextureLoad,
+            Shape::LoadStrips {
+                float: true,
+                instances: 5_000,
             },
         ),
         w(

@@ -4,10 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use grassbench::calibration::calibrate as measure;
-use grassbench::cost::{
-    COUNTED_TERMS, MeasuredSample, Options, ProbeReading, UnitCalibration, UnitCosts,
-    calibrate_units, calibrate_units_with, probes_markdown, workloads,
-};
+use grassbench::cost::{COUNTED_TERMS, MeasuredSample, UnitCosts, calibrate_units};
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
 
@@ -22,11 +19,6 @@ pub struct CalibrateArgs {
     /// Also write the figures with provenance to this TOML file.
     #[arg(long, short)]
     pub out: Option<PathBuf>,
-    /// Also time the probes in the calibration's rounds, unfitted: strips whose vertices load
-    /// texels (RGBA8 and `R32Float`), to say what a texel load costs in the vertex stage
-    /// against the price fitted on fragment shaders' loads.
-    #[arg(long)]
-    pub probes: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -44,12 +36,6 @@ pub struct CalibrationFile {
     pub provenance: Provenance,
     /// The samples, with their runs and counted work.
     pub samples: Vec<MeasuredSample>,
-    /// With `--probes`: what each probe sample implies its term costs.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub probes: Vec<ProbeReading>,
-    /// With `--probes`: the probe samples, with their runs and counted work.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub probe_samples: Vec<MeasuredSample>,
 }
 
 /// Measures, prints (TOML on stdout, a summary on stderr) and optionally writes.
@@ -58,41 +44,17 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     let gpu = args.gpu.context()?;
     let calibration = measure(&gpu, size)?;
     let started = std::time::Instant::now();
-    let probes = if args.probes {
-        workloads::probes()
-    } else {
-        Vec::new()
-    };
-    let held_out: Vec<_> = probes.iter().map(|w| vec![*w]).collect();
-    let UnitCalibration {
-        unit_costs,
-        samples,
-        held_out: probe_samples,
-    } = calibrate_units_with(&gpu, size, Options::default(), &held_out)
-        .context("measuring the unit costs")?;
-    eprint!("{}", summary(&unit_costs, &samples));
-    let readings: Vec<ProbeReading> = probes
-        .iter()
-        .zip(&probe_samples)
-        .filter_map(|(w, s)| ProbeReading::read(&unit_costs, &s.sample, w.term))
-        .collect();
-    if !probes.is_empty() {
-        eprint!(
-            "Probes (timed in the same rounds, not fitted; prices in ns per unit)\n\n{}",
-            probes_markdown(&readings)
-        );
-    }
+    let units = calibrate_units(&gpu, size).context("measuring the unit costs")?;
+    eprint!("{}", summary(&units.unit_costs, &units.samples));
     eprintln!(
         "Unit costs measured in {:.1} s.",
         started.elapsed().as_secs_f64()
     );
     let file = CalibrationFile {
         calibration,
-        unit_costs,
+        unit_costs: units.unit_costs,
         provenance: Provenance::collect(&gpu.summary),
-        samples,
-        probes: readings,
-        probe_samples,
+        samples: units.samples,
     };
     let text = toml::to_string_pretty(&file)?;
     std::io::Write::write_all(&mut std::io::stdout(), text.as_bytes())?;

@@ -163,6 +163,8 @@ impl Config {
                 // none.
                 r.model_texture_load_ms.unwrap_or(0.0),
                 r.model_float_texture_load_ms.unwrap_or(0.0),
+                r.model_vertex_texture_load_ms.unwrap_or(0.0),
+                r.model_vertex_float_texture_load_ms.unwrap_or(0.0),
                 r.model_texture_sample_ms.unwrap_or(0.0),
                 r.model_float_texture_sample_ms.unwrap_or(0.0),
                 r.model_vertex_transcendental_ms.unwrap_or(0.0),

@@ -362,6 +362,8 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU uploads",
     "GPU texel loads",
     "GPU float texel loads",
+    "GPU vertex texel loads (extra)",
+    "GPU vertex float texel loads (extra)",
     "GPU texture samples",
     "GPU float texture samples",
     "GPU vertex transcendentals",
