@@ -718,14 +718,17 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", Some(1625.291816))
+            ("reference", Some(493.9494705))
         );
-        // The newest columns: floating-point texel loads (the reference's height and wind
-        // maps, 8 a vertex) and their price.
+        // The newest columns: the vertex stage's texel loads (the reference's height and wind
+        // maps, 8 floating-point texels a vertex and no other load) and what the vertex stage
+        // adds to their price.
         assert_eq!(reference.float_texture_loads, Some(38_167_360));
+        assert_eq!(reference.vertex_float_texture_loads, Some(38_167_360));
+        assert_eq!(reference.vertex_texture_loads, Some(0));
         assert!(
             reference
-                .model_float_texture_load_ms
+                .model_vertex_float_texture_load_ms
                 .is_some_and(|ms| ms > 0.0)
         );
         assert_eq!(reference.gpu_wall_ratio_to_reference, Some(1.0));

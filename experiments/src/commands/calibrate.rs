@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use grassbench::calibration::calibrate as measure;
+use grassbench::calibration::{Calibration, calibrate as measure};
 use grassbench::cost::{COUNTED_TERMS, MeasuredSample, UnitCosts, calibrate_units};
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
@@ -64,9 +64,38 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// What `run` and `sweep` calibrate before measuring: the adapter's raw limits at `raw`, then
+/// its unit costs at each distinct size of `sizes` (in their first order), each figure
+/// printed as it is measured.
+///
+/// The raw limits come first, and not only for their figures: a process's first
+/// primitive-heavy submissions on lavapipe find its rasteriser slow at triangle setup until a
+/// large draw has run (its raw triangle workload draws 900 k triangles a submission). Measured
+/// on the 2.6 GHz EPYC host, 2026-12-04: unit costs fitted first thing in a process priced a
+/// primitive at 266-281 ns (five processes), the same after the raw limits at 94-115 ns, and
+/// every other term alike; the techniques' frames, which follow their warm-up frames, ran at
+/// the second price (bakay on the meadow at 320x180 predicted at 65.9 ms with the first, its
+/// frames 45.4 ms).
+pub(crate) fn adapter_at(
+    gpu: &grassbench::GpuContext,
+    raw: Size,
+    sizes: impl IntoIterator<Item = Size>,
+) -> anyhow::Result<(Calibration, Vec<UnitCosts>)> {
+    eprintln!("calibrating {} …", gpu.summary.name);
+    let c = measure(gpu, raw).context("measuring the adapter's raw limits")?;
+    eprintln!(
+        "  {:.1} M triangles/s, {:.1} M blended pixels/s, {:.2} GB/s copy; raw reference blade {:.0} ns",
+        c.triangles_per_s / 1e6,
+        c.fill_pixels_per_s / 1e6,
+        c.compute_bytes_per_s / 1e9,
+        c.raw_blade_cost_ns
+    );
+    Ok((c, unit_costs_at(gpu, sizes)?))
+}
+
 /// The adapter's unit costs at each distinct size of `sizes` (in their first order), each
-/// fit's summary printed as it is measured: what `run` and `sweep` calibrate before measuring.
-pub(crate) fn unit_costs_at(
+/// fit's summary printed as it is measured.
+fn unit_costs_at(
     gpu: &grassbench::GpuContext,
     sizes: impl IntoIterator<Item = Size>,
 ) -> anyhow::Result<Vec<UnitCosts>> {

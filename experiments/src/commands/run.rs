@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
+use grassbench::calibration::Calibration;
 use grassbench::cost::{UnitCosts, apply_model};
 use grassbench::metrics::grass_coverage;
 use grassbench::runner::{
@@ -151,33 +152,40 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     let mut progress = Progress::open(&args.out, args.force, "run", arguments, &scene_names)?;
     let gpu = args.gpu.context_for(&needs)?;
     let provenance = Provenance::collect(&gpu.summary);
-    // The adapter's unit costs at every size rendered, so each run's time can be set against
-    // the cost model's prediction from its measured work (issue 20 §3).
-    let unit_costs: Vec<UnitCosts> = if args.no_calibration {
-        Vec::new()
-    } else if let Some(costs) = progress
+    // The adapter's raw limits and its unit costs at every size rendered, so each run's time
+    // can be set against the cost model's prediction from its measured work (issue 20 §3) and
+    // the reference's blades against the raw blade rate (§6).
+    let (calibration, unit_costs): (Option<Calibration>, Vec<UnitCosts>) = if args.no_calibration {
+        (None, Vec::new())
+    } else if let Some(earlier) = progress
         .resumed()
-        .then(|| earlier_unit_costs(&args.out))
+        .then(|| earlier_calibration(&args.out))
         .flatten()
     {
         // The finished scenes' model figures were computed with these: keep them.
-        costs
+        earlier
     } else {
-        super::calibrate::unit_costs_at(
-            &gpu,
-            scenes
-                .iter()
-                .map(|scene| size.unwrap_or(scene.resolution())),
-        )?
+        let sizes: Vec<Size> = scenes
+            .iter()
+            .map(|scene| size.unwrap_or(scene.resolution()))
+            .collect();
+        let raw = sizes.first().copied().unwrap_or(Size {
+            width: 640,
+            height: 360,
+        });
+        let (c, costs) = super::calibrate::adapter_at(&gpu, raw, sizes)?;
+        (Some(c), costs)
     };
     write_atomic(&args.out.join("meta.toml"), |f| {
         let mut text = provenance.to_toml();
         #[derive(serde::Serialize)]
         struct Units<'a> {
+            calibration: Option<&'a Calibration>,
             unit_costs: &'a [UnitCosts],
         }
         if !unit_costs.is_empty() {
             let units = toml::to_string_pretty(&Units {
+                calibration: calibration.as_ref(),
                 unit_costs: &unit_costs,
             })
             .map_err(std::io::Error::other)?;
@@ -316,12 +324,17 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The unit costs the `meta.toml` of an earlier, interrupted run into `dir` recorded, if any.
-fn earlier_unit_costs(dir: &Path) -> Option<Vec<UnitCosts>> {
+/// The raw limits and unit costs the `meta.toml` of an earlier, interrupted run into `dir`
+/// recorded, if any.
+fn earlier_calibration(dir: &Path) -> Option<(Option<Calibration>, Vec<UnitCosts>)> {
     let text = std::fs::read_to_string(dir.join("meta.toml")).ok()?;
     let table: toml::Table = toml::from_str(&text).ok()?;
     let costs: Vec<UnitCosts> = table.get("unit_costs")?.clone().try_into().ok()?;
-    (!costs.is_empty()).then_some(costs)
+    // Folders written before the raw limits were recorded have none.
+    let calibration = table
+        .get("calibration")
+        .and_then(|c| c.clone().try_into().ok());
+    (!costs.is_empty()).then_some((calibration, costs))
 }
 
 /// One scene's output folder as runs come in: images, frames, runs and parameters, written

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use grassbench::calibration::{Calibration, calibrate};
+use grassbench::calibration::Calibration;
 use grassbench::cost::{UnitCosts, apply_model};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
@@ -127,28 +127,20 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
     let (calibration, unit_costs) = if args.no_calibration {
         (None, Vec::new())
     } else {
-        eprintln!("calibrating {} …", gpu.summary.name);
-        let size = plan
+        // The raw limits at the plan's first size (every shard alike).
+        let raw = plan
             .first()
             .and_then(|r| r.size)
             .unwrap_or(grassbench::target::Size {
                 width: 640,
                 height: 360,
             });
-        let c = calibrate(&gpu, size)?;
-        eprintln!(
-            "  {:.1} M triangles/s, {:.1} M blended pixels/s, {:.2} GB/s copy; raw reference blade {:.0} ns",
-            c.triangles_per_s / 1e6,
-            c.fill_pixels_per_s / 1e6,
-            c.compute_bytes_per_s / 1e9,
-            c.raw_blade_cost_ns
-        );
         let mut sizes = Vec::new();
         for run in &mine {
             let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
             sizes.push(run.size.unwrap_or(scene.resolution()));
         }
-        let all = super::calibrate::unit_costs_at(&gpu, sizes)?;
+        let (c, all) = super::calibrate::adapter_at(&gpu, raw, sizes)?;
         (Some(c), all)
     };
     let meta = SweepMeta {
