@@ -72,10 +72,10 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
 /// primitive-heavy submissions on lavapipe find its rasteriser slow at triangle setup until a
 /// large draw has run (its raw triangle workload draws 900 k triangles a submission). Measured
 /// on the 2.6 GHz EPYC host, 2026-12-04: unit costs fitted first thing in a process priced a
-/// primitive at 266-281 ns (five processes), the same after the raw limits at 94-115 ns, and
-/// every other term alike; the techniques' frames, which follow their warm-up frames, ran at
-/// the second price (bakay on the meadow at 320x180 predicted at 65.9 ms with the first, its
-/// frames 45.4 ms).
+/// primitive at 266-281 ns in five processes of six (115 in the sixth), after the raw limits
+/// at 84-113 ns, every other term alike; the techniques' frames, which follow their warm-up
+/// frames, ran at the second price (bakay on the meadow at 320x180 predicted at 65.9 ms with
+/// the first, its frames 45.4 ms).
 pub(crate) fn adapter_at(
     gpu: &grassbench::GpuContext,
     raw: Size,

@@ -113,7 +113,7 @@
 //! The level of detail on the scaling sweep's points (the meadow at 20 blades/m², terrain 80
 //! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core Intel Xeon on 2026-12-03
 //! while another build ran; per-frame counts, the same in every run and, with the level of
-//! detail, in `results/scaling/` on both hosts): triangles 147 k → 696 k with every shell,
+//! detail, in `results/scaling/` on all three hosts): triangles 147 k → 696 k with every shell,
 //! 111 k → 146 k with the level of detail; clipped primitives 110 k → 605 k against 73 k →
 //! 100 k; fragment invocations 3.46 M → 4.07 M against 3.24 M → 2.86 M; vertex invocations
 //! 89 k → 1 416 k against 66 k → 298 k (lavapipe shades about 2 vertices a triangle on the
@@ -127,26 +127,29 @@
 //! (1.17x) with the level of detail and 467 → 1 117 ms without, while the core's background
 //! pass, the same for every technique, grows 25 → 64 ms (its ground mesh was then drawn
 //! whole; the core now draws it in chunks culled to the view, coarser far away). In
-//! `results/scaling/` (revision `487fc0a`, a 2-vCPU AMD EPYC virtual machine, other processes
-//! on at most 0.01 of a core in bakay's runs at these sizes) that pass goes 11.0 → 17.6 ms
-//! there (12.3 and 23.0 ms at 400 m by repetition) and bakay's frame 201.6 → 250.2 ms, 1.24x
-//! (1.04-1.47x by repetition); in its previous version, on the Xeon at `00e5090`, 4.2 → 4.8 ms and
-//! 78.1 → 88.6 ms, 1.13x. The picture: mean FLIP 0.0001-0.0003 between the two (frames 2 and
-//! 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
+//! `results/scaling/` (revision `2dd4b96`, a 2-vCPU AMD EPYC virtual machine at 2.6 GHz, no
+//! other process busy in bakay's runs at these sizes) that pass goes 4.7 → 5.8 ms there (5.5
+//! and 6.1 ms at 400 m by repetition) and bakay's frame 71.4 → 84.0 ms, 1.18x (1.17-1.19x by
+//! repetition); in its previous versions, on the 2.0 GHz EPYC at `487fc0a`, 11.0 → 17.6 ms and
+//! 201.6 → 250.2 ms, 1.24x (1.04-1.47x by repetition), and on the Xeon at `00e5090`, 4.2 → 4.8
+//! ms and 78.1 → 88.6 ms, 1.13x. The picture: mean FLIP 0.0001-0.0003 between the two
+//! (frames 2 and 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
 //! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
 //! 147 k → 123 k triangles.
 //!
-//! Measured (lavapipe, `results/bakay_table2/`, revision `e1e5cb1`, a 2-vCPU AMD EPYC, at the
-//! `paper` variant: every shell everywhere, box mipmaps, the point source; the reference in the
-//! same group): (2 146.3 − 60.9) / 64 = 32.6 ms per added shell at 640x480 and 73.7 ms at
-//! 1024x768, 2.26x for 2.56x the pixels (the paper: 2.2 and 4.6 ms on a GeForce3, 2.1x); the
-//! cells of Table 2 14.7-16.3x the paper's time from 9 to 65 shells and 17.9 and 17.3x at 1
-//! shell, where the rest of the frame weighs more: time grows with shells x pixels as in the
-//! paper, at a software rasteriser's scale; faster than `reference` up to 33 shells at 640x480
-//! (0.84x its time) and 17 at 1024x768 (0.97x), slower at 65 shells by 1.65x and 3.61x, because
-//! a software rasteriser has no cheap fill rate. On the Xeon at `cfbfa08`: 6.0-6.6x the paper's
-//! time, 13.2 and 27.7 ms a shell (2.1x), faster than `reference` up to 17 shells at 640x480
-//! and 9 at 1024x768. (On 2026-12-01, before issue 19, at our defaults then and with the texture
+//! Measured (lavapipe, `results/bakay_table2/`, revision `2dd4b96`, a 2-vCPU AMD EPYC at 2.6
+//! GHz, at the `paper` variant: every shell everywhere, box mipmaps, the point source; the
+//! reference in the same group): (736.9 − 21.7) / 64 = 11.2 ms per added shell at 640x480 and
+//! 23.4 ms at 1024x768, 2.10x for 2.56x the pixels (the paper: 2.2 and 4.6 ms on a GeForce3,
+//! 2.1x); the cells of Table 2 5.1-5.4x the paper's time from 9 to 65 shells and 6.4 and 5.9x
+//! at 1 shell, where the rest of the frame weighs more: time grows with shells x pixels as in
+//! the paper, at a software rasteriser's scale; faster than `reference` up to 33 shells at
+//! 640x480 (0.79x its time) and 17 at 1024x768 (0.88x), slower at 65 shells by 1.51x and
+//! 3.08x, because a software rasteriser has no cheap fill rate. On the 2.0 GHz EPYC at
+//! `e1e5cb1`: 14.7-17.9x the paper's time, 32.6 and 73.7 ms a shell (2.26x), faster than
+//! `reference` up to the same 33 and 17 shells; on the Xeon at `cfbfa08`: 6.0-6.6x, 13.2 and
+//! 27.7 ms a shell (2.1x), faster than `reference` up to 17 shells at 640x480 and 9 at
+//! 1024x768. (On 2026-12-01, before issue 19, at our defaults then and with the texture
 //! 9 times the scene's density, the same table read 8.0 and 17.3 ms a shell on average from 1
 //! to 65 shells.)
 //! 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not depend on its

@@ -168,16 +168,19 @@
 //!   (`dispatch_tile`; 0 = the paper's every blade every frame), and the distance test also thins
 //!   as `(D / d)²` beyond `thin_distance` (0 = the paper's buckets alone). Both keep the far
 //!   field's cost bounded as the terrain grows. Measured on `experiments/scaling.toml`'s meadow at
-//!   80 m and 400 m (jahrmann alone, 4 repetitions, 480x270, lavapipe on a 2-core host that other
-//!   processes kept 1.1-1.5 cores busy, so times are noisy): GPU wall ms, median of the
-//!   repetitions' medians, 82.5 → 565.5 (6.9x) with both off, 70.5 → 99.0 (1.40x) with both on (the
-//!   least of the four: 72.3 → 523.2, 7.2x; 50.3 → 58.2, 1.16x); the cost model's prediction 48.1 →
-//!   141.1 ms (2.9x) and 44.0 → 58.1 ms (1.32x), what still grows with both on being mostly the
-//!   core's ground mesh (its vertex and primitive terms: the blades' triangles grow 5 %). Tiles
-//!   alone took the 400 m frame from 2.26 M blades simulated to 79 k (triangles unchanged at 239 k:
-//!   the far level then dominates); the thinning alone took triangles to 79 k (simulated
-//!   unchanged). The CPU's pass over the tiles grows with the terrain: `update` 0.05 ms at 80 m,
-//!   0.5 ms at 400 m.
+//!   80 m and 400 m (jahrmann alone, 4 repetitions, 480x270, 2026-12-03 at `8b91ee2`, lavapipe on
+//!   the first host, a 2-core Intel Xeon that other processes kept 1.1-1.5 cores busy, so times are
+//!   noisy): GPU wall ms, median of the repetitions' medians, 82.5 → 565.5 (6.9x) with both off,
+//!   70.5 → 99.0 (1.40x) with both on (the least of the four: 72.3 → 523.2, 7.2x; 50.3 → 58.2,
+//!   1.16x); the cost model's prediction 48.1 → 141.1 ms (2.9x) and 44.0 → 58.1 ms (1.32x), what
+//!   still grows with both on being mostly the core's ground mesh (its vertex and primitive terms:
+//!   the blades' triangles grow 5 %). Tiles alone took the 400 m frame from 2.26 M blades simulated
+//!   to 79 k (triangles unchanged at 239 k: the far level then dominates); the thinning alone took
+//!   triangles to 79 k (simulated unchanged). The CPU's pass over the tiles grows with the terrain:
+//!   `update` 0.05 ms at 80 m, 0.5 ms at 400 m. On a quiet host, with both on (`results/scaling`,
+//!   every technique, 2 repetitions, a 2-vCPU AMD EPYC at 2.6 GHz, revision `2dd4b96`, 2026-12-04):
+//!   25.4 → 31.3 ms (1.24x by the means of the medians, 1.24 and 1.23 by repetition), the cost
+//!   model's 19.6 → 21.1 ms (1.07x), `update` 0.06 → 0.67 ms.
 //!
 //! ## Parameters
 //! See [`Params`]. Defaults and where they come from: `stiffness` 30/s (a 33 ms response at

@@ -99,14 +99,16 @@
 //! the variants' blades and textures (about 7 MB, mostly the 32 strip layers and twelve 2D
 //! layers with their mip chains) plus per-frame entries and receivers: 8 MB on the meadow
 //! (`results/perbet_quality/`). Measured on the meadow with the medium preset (the default
-//! comparison, `results/default/`, revision `5d8d609`): 51 ms of GPU time a frame against the
-//! reference's 482 ms (9.5x), 0.7 ms of CPU update, on the 2-core Xeon; pre-computation 136 ms
-//! (`benches/precompute.rs`, 2026-12-01). The
-//! frame's cost moves with the host, and not by one factor: `results/perbet_quality/`, re-made
-//! on an AMD EPYC virtual machine at `487fc0a`, has perbet's frames 4.1-5.7 times the Xeon's
-//! and the reference's 3.2-4.3 times (that host prices a blended fragment at 4.1 times the
-//! Xeon's, a texture sample at 4.8, a primitive at 2.3), so the speed-ups over the reference
-//! there are 3.3-6.8x at the presets' own densities (4.1-8.9x on the Xeon).
+//! comparison, `results/default/`, revision `fc2311d`): 56 ms of GPU time a frame against the
+//! reference's 489 ms (8.7x), 0.9 ms of CPU update, on a 2-vCPU AMD EPYC virtual machine
+//! (Zen 4, 2.6 GHz; at `5d8d609` on a 2-core Xeon: 51 against 482 ms, 9.5x, 0.7 ms);
+//! pre-computation 136 ms (`benches/precompute.rs`, 2026-12-01). The frame's cost moves with
+//! the host, and not by one factor: `results/perbet_quality/`, re-made on that EPYC at
+//! `2dd4b96`, has perbet's frames 1.13-1.30 times the Xeon's and the reference's 1.08-1.15
+//! times (that host prices a blended fragment at 1.13 times the Xeon's, a texture sample at
+//! 1.30, a vertex at 1.75, a primitive at 0.77), so the speed-ups over the reference there are
+//! 3.8-8.4x at the presets' own densities (4.1-8.9x on the Xeon); on a 2.0 GHz AMD EPYC
+//! (`487fc0a`), whose frames took 2.8-4.9 times these, they were 3.3-6.8x.
 //!
 //! The 2D level drawn patch by patch grew with the terrain where the view was already full
 //! (`results/scaling/` at `493d788`, on the Xeon: 34 → 91 ms from 80 m to 400 m, 42 k → 249 k
@@ -115,9 +117,10 @@
 //! invocations (113.9 k); at 400 m 6 816 2D patches in 224 draws, 37.7 k triangles (248.6 k),
 //! 99.6 k vertex invocations (732.4 k), 29.7 k primitives out of the clipper (237.7 k);
 //! fragments hardly change (1.26 M / 1.24 M). So from 80 m to 400 m the triangles now grow
-//! 1.16x instead of 5.9x, and the frame stays flat: `results/scaling/` has perbet at 106.0 →
-//! 103.1 ms (0.97x) on the AMD EPYC at `487fc0a`, 28.5 → 30.1 ms (1.05x) on the Xeon at
-//! `00e5090`. The CPU's level update still visits every patch (`O(patches)`).
+//! 1.16x instead of 5.9x, and the frame stays nearly flat: `results/scaling/` has perbet at
+//! 32.9 → 35.9 ms (1.09x) on the Zen 4 EPYC at `2dd4b96`, 106.0 → 103.1 ms (0.97x) on the
+//! 2.0 GHz EPYC at `487fc0a`, 28.5 → 30.1 ms (1.05x) on the Xeon at `00e5090`. The CPU's level
+//! update still visits every patch (`O(patches)`).
 //!
 //! ## Deviations and known artifacts
 //! - Blades are drawn as tapering quads of their width along the chain, not as GL lines (wgpu

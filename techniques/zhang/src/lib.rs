@@ -181,9 +181,10 @@
 //!   triangles 26.7 k → 19.9 k, 20.1 k, 27.4 k (1.03x at 400 m; with the thesis' count 393 k,
 //!   14.7x), GPU wall 49.4 → 45.0, 49.0, 59.5 ms (1.21x; with the count 46.6 → 236.3 ms, 5.07x), of
 //!   which the core's background pass (sky, ground mesh over the whole heightmap, props; the core
-//!   draws the ground in chunks since, and the sweep of `results/scaling/` at `487fc0a`, on an AMD
-//!   EPYC virtual machine, has zhang at 56 → 64 ms, 1.13x; 16 → 20 ms, 1.18x, on the Xeon at
-//!   `00e5090`) 11.2 → 17.5 ms and zhang's own passes 38.1 → 42.0 ms (1.10x); CPU update 7.4 →
+//!   draws the ground in chunks since, and the sweep of `results/scaling/` at `2dd4b96`, on a
+//!   2.6 GHz AMD EPYC (Zen 4) virtual machine, has zhang at 17 → 19 ms, 1.13x; 56 → 64 ms,
+//!   1.13x, on a 2.0 GHz EPYC at `487fc0a`; 16 → 20 ms, 1.18x, on the Xeon at `00e5090`) 11.2 →
+//!   17.5 ms and zhang's own passes 38.1 → 42.0 ms (1.10x); CPU update 7.4 →
 //!   9.3, 17.4, 16.2 ms (2.2x; with the count 9.4 → 115.6 ms, 12.3x). In an earlier sweep 5.1 m
 //!   grids without groups gave 41.8 k triangles (1.57x) and 1.72x the GPU time. What still grows in
 //!   the update is bounded by `far_groups`, not by the terrain: the grids nearer than `T_1` (up to
