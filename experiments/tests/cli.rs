@@ -311,6 +311,22 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
         meta.contains("revision") && meta.contains("[adapter]"),
         "{meta}"
     );
+    // The adapter's raw limits, measured before its unit costs as a sweep measures them (a
+    // process's first primitive-heavy submissions find lavapipe slow: `calibrate::adapter_at`),
+    // and recorded with them at the run's size.
+    let table: toml::Table = toml::from_str(&meta).unwrap();
+    let raw: grassbench::calibration::Calibration =
+        table["calibration"].clone().try_into().unwrap();
+    assert_eq!(raw.size, "96x64");
+    assert!(raw.raw_blade_cost_ns > 0.0, "{raw:?}");
+    let costs: Vec<grassbench::cost::UnitCosts> = table["unit_costs"].clone().try_into().unwrap();
+    assert_eq!(costs.len(), 1);
+    assert_eq!(costs[0].size, "96x64");
+    let (raw_at, costs_at) = (
+        err.find("triangles/s").expect("the raw limits printed"),
+        err.find("unit costs of").expect("the unit costs printed"),
+    );
+    assert!(raw_at < costs_at, "{err}");
     // The command names the program, not the path it was started from.
     assert!(
         meta.contains("command = \"grassbench run -t reference -s football_field "),
