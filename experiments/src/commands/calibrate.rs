@@ -64,9 +64,9 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// What `run` and `sweep` calibrate before measuring: the adapter's raw limits at `raw`, then
-/// its unit costs at each distinct size of `sizes` (in their first order), each figure
-/// printed as it is measured.
+/// What `run` and `sweep` calibrate before measuring: the adapter's raw limits at `raw` (by
+/// default the first of `sizes`, or 640x360 where there is none), then its unit costs at each
+/// distinct size of `sizes` (in their first order), each figure printed as it is measured.
 ///
 /// The raw limits come first, and not only for their figures: a process's first
 /// primitive-heavy submissions on lavapipe find its rasteriser slow at triangle setup until a
@@ -78,9 +78,13 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
 /// the first, its frames 45.4 ms).
 pub(crate) fn adapter_at(
     gpu: &grassbench::GpuContext,
-    raw: Size,
-    sizes: impl IntoIterator<Item = Size>,
+    raw: Option<Size>,
+    sizes: &[Size],
 ) -> anyhow::Result<(Calibration, Vec<UnitCosts>)> {
+    let raw = raw.or(sizes.first().copied()).unwrap_or(Size {
+        width: 640,
+        height: 360,
+    });
     eprintln!("calibrating {} …", gpu.summary.name);
     let c = measure(gpu, raw).context("measuring the adapter's raw limits")?;
     eprintln!(
@@ -90,7 +94,7 @@ pub(crate) fn adapter_at(
         c.compute_bytes_per_s / 1e9,
         c.raw_blade_cost_ns
     );
-    Ok((c, unit_costs_at(gpu, sizes)?))
+    Ok((c, unit_costs_at(gpu, sizes.iter().copied())?))
 }
 
 /// The adapter's unit costs at each distinct size of `sizes` (in their first order), each

@@ -169,11 +169,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
             .iter()
             .map(|scene| size.unwrap_or(scene.resolution()))
             .collect();
-        let raw = sizes.first().copied().unwrap_or(Size {
-            width: 640,
-            height: 360,
-        });
-        let (c, costs) = super::calibrate::adapter_at(&gpu, raw, sizes)?;
+        let (c, costs) = super::calibrate::adapter_at(&gpu, None, &sizes)?;
         (Some(c), costs)
     };
     write_atomic(&args.out.join("meta.toml"), |f| {

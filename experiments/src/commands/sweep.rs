@@ -127,20 +127,17 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
     let (calibration, unit_costs) = if args.no_calibration {
         (None, Vec::new())
     } else {
-        // The raw limits at the plan's first size (every shard alike).
-        let raw = plan
-            .first()
-            .and_then(|r| r.size)
-            .unwrap_or(grassbench::target::Size {
-                width: 640,
-                height: 360,
-            });
-        let mut sizes = Vec::new();
-        for run in &mine {
+        let size_of = |run: &PlannedRun| -> anyhow::Result<grassbench::target::Size> {
             let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
-            sizes.push(run.size.unwrap_or(scene.resolution()));
-        }
-        let (c, all) = super::calibrate::adapter_at(&gpu, raw, sizes)?;
+            Ok(run.size.unwrap_or(scene.resolution()))
+        };
+        // The raw limits at the plan's first size (every shard alike).
+        let raw = plan.first().map(size_of).transpose()?;
+        let sizes = mine
+            .iter()
+            .map(|run| size_of(run))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let (c, all) = super::calibrate::adapter_at(&gpu, raw, &sizes)?;
         (Some(c), all)
     };
     let meta = SweepMeta {
