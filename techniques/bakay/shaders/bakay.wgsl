@@ -3,7 +3,7 @@
 // - `cs_bend` (compute) gives every ground vertex its wind vector V_w and intensity I and keeps
 //   the running sums (n_k, w_k) of every shell k (Sec. 3, Fig. 6; mirrored on the CPU by
 //   src/wind.rs and src/bend.rs);
-// - `vs_shell` / `fs_shell` draw the ground mesh once per shell (bottom to top), displaced by
+// - `vs_shell` / `fs_shell_*` draw the ground mesh once per shell (bottom to top), displaced by
 //   N·n_k + V_w·w_k and alpha-tested against the shell's height (k/N, the paper's 255/N steps).
 //   A far chunk's draw is at a level of detail L (src/lod.rs, a departure): its instances
 //   L·LEVEL_INSTANCES + i draw every 2^L-th shell down from the top one, each alpha-tested
@@ -11,7 +11,7 @@
 
 struct Params {
     // x: shells N (the shader reads `SHELLS`); y: ground vertices; z: wind mode (0 = scene, 1 = point source);
-    // w: level of detail (0 = the sampler's, 1 = the footprint's minor axis)
+    // w: padding (the level-of-detail mode picks the fragment entry point: `fs_shell_*`)
     counts: vec4<u32>,
     // x: inter-shell distance S (m); y: stiffness exponent p; z: max |I|; w: reference speed (m/s)
     shape: vec4<f32>,
@@ -159,45 +159,58 @@ fn vs_shell(
     return out;
 }
 
+// The fragment stage, one entry point for each way of picking the texture's mip level (the
+// `lod` parameter picks one when the pipeline is made). Not one entry point branching on a
+// uniform: a SIMD rasteriser runs both sides of such a branch, a lookup of each kind per
+// texture (lavapipe: 7-9 ms of 54 on the meadow at 320x180 for a lookup no pixel keeps).
+
+// `lod = "minor_axis"`: the mip level whose texels match the footprint's minor axis (the level
+// anisotropic filtering picks), sampled once. At grazing angles the sampler's own choice, from
+// the major axis, is many levels too coarse and blurs blades into felt (box mips) or blotches
+// (custom mips). The footprint is taken before any discard (derivatives need uniform control
+// flow).
 @fragment
-fn fs_shell(in: ShellOut) -> @location(0) vec4<f32> {
-    // Texture footprint, taken before any discard (derivatives need uniform control flow).
+fn fs_shell_minor_axis(in: ShellOut) -> @location(0) vec4<f32> {
     let size = vec2<f32>(textureDimensions(color_height));
     let dx = dpdx(in.uv);
     let dy = dpdy(in.uv);
-    // With `lod = "minor_axis"`: the mip level whose texels match the footprint's minor axis
-    // (the level anisotropic filtering picks), sampled once. At grazing angles the sampler's
-    // own choice, from the major axis, is many levels too coarse and blurs blades into felt
-    // (box mips) or blotches (custom mips).
     let lod = max(log2(max(min(length(dx * size), length(dy * size)), 1e-6)), 0.0);
-    let minor = params.counts.w == 1u;
-
-    var texel: vec4<f32>;
-    if (minor) {
-        texel = textureSampleLevel(color_height, grass_sampler, in.uv, lod);
-    } else {
-        texel = textureSampleGrad(color_height, grass_sampler, in.uv, dx, dy);
-    }
-    // The alpha test: shell k keeps the texels whose blade reaches its height k/N (a far
-    // chunk's shell: the lowest shell it stands for). Shell 0 is the ground, which the core
-    // draws: here it keeps the blades' roots only (alpha > 0). Grass grows only where the
-    // covering map says so. Tested first: most fragments of a shell end here, before the
-    // second lookup and the shading.
-    let height = f32(in.shell.x) / f32(SHELLS);
-    let lowest = f32(in.shell.y) / f32(SHELLS);
-    if (texel.a < max(lowest, 1.0 / 255.0) || in.grows.y < 0.5) {
+    let texel = textureSampleLevel(color_height, grass_sampler, in.uv, lod);
+    if (shell_cut(in, texel)) {
         discard;
     }
-    var attrs: vec4<f32>;
-    if (minor) {
-        attrs = textureSampleLevel(blade_attrs, grass_sampler, in.uv, lod);
-    } else {
-        attrs = textureSampleGrad(blade_attrs, grass_sampler, in.uv, dx, dy);
+    return shell_color(in, texel, textureSampleLevel(blade_attrs, grass_sampler, in.uv, lod));
+}
+
+// `lod = "hardware"`: the sampler picks the level (and filters anisotropically where the
+// sampler's clamp allows) from the footprint, taken before any discard.
+@fragment
+fn fs_shell_hardware(in: ShellOut) -> @location(0) vec4<f32> {
+    let dx = dpdx(in.uv);
+    let dy = dpdy(in.uv);
+    let texel = textureSampleGrad(color_height, grass_sampler, in.uv, dx, dy);
+    if (shell_cut(in, texel)) {
+        discard;
     }
-    // The density map thins blades as the scene's blade field does (threshold < density).
+    return shell_color(in, texel, textureSampleGrad(blade_attrs, grass_sampler, in.uv, dx, dy));
+}
+
+// The alpha test: shell k keeps the texels whose blade reaches its height k/N (a far chunk's
+// shell: the lowest shell it stands for). Shell 0 is the ground, which the core draws: here it
+// keeps the blades' roots only (alpha > 0). Grass grows only where the covering map says so.
+// Tested first: most fragments of a shell end here, before the second lookup and the shading.
+fn shell_cut(in: ShellOut, texel: vec4<f32>) -> bool {
+    let lowest = f32(in.shell.y) / f32(SHELLS);
+    return texel.a < max(lowest, 1.0 / 255.0) || in.grows.y < 0.5;
+}
+
+// A kept texel's colour, from its blade's attributes (`attrs`); discards it where the density
+// map thins blades as the scene's blade field does (threshold < density).
+fn shell_color(in: ShellOut, texel: vec4<f32>, attrs: vec4<f32>) -> vec4<f32> {
     if (attrs.r >= in.grows.x) {
         discard;
     }
+    let height = f32(in.shell.x) / f32(SHELLS);
     // Relative height along this texel's blade: root colour below, tip colour above.
     let s = clamp(height / max(texel.a, 1e-3), 0.0, 1.0);
     let albedo = texel.rgb * mix(params.color_ratio.rgb, vec3(1.0), pow(s, 0.8));

@@ -7,7 +7,7 @@ use grassbench::{Error, InitContext, Result, bytemuck, shaders, target, wgpu};
 
 use crate::chunks::Draw;
 use crate::lod::{LEVEL_INSTANCES, ShellLod};
-use crate::params::Mipmaps;
+use crate::params::{Lod, Mipmaps, Params};
 use crate::texture::{GrassTexture, Level};
 
 /// The shader (without the prelude): the bend pass and the shells.
@@ -17,8 +17,8 @@ pub const SHADER: &str = include_str!("../shaders/bakay.wgsl");
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ParamsUniform {
-    /// Shells, ground vertices, wind mode (0 = scene, 1 = point source), level of detail (0 =
-    /// the sampler's, 1 = minor axis).
+    /// Shells, ground vertices, wind mode (0 = scene, 1 = point source), padding (the level
+    /// of detail's mode picks the fragment entry point instead: [`fragment_entry`]).
     pub counts: [u32; 4],
     /// Inter-shell distance (m), stiffness exponent, largest |I|, reference speed (m/s).
     pub shape: [f32; 4],
@@ -44,19 +44,36 @@ pub struct ShellGpu {
     pub bytes: u64,
 }
 
+/// The shells' fragment entry point for level-of-detail mode `lod`: one entry point each, with
+/// no branch on the mode (a SIMD rasteriser runs both sides of a branch, even on a uniform:
+/// lavapipe paid a second lookup a texture for it).
+pub fn fragment_entry(lod: Lod) -> &'static str {
+    match lod {
+        Lod::MinorAxis => "fs_shell_minor_axis",
+        Lod::Hardware => "fs_shell_hardware",
+    }
+}
+
 /// Workgroup size of `cs_bend`.
 const WORKGROUP: u32 = 64;
 
 impl ShellGpu {
-    /// Uploads the texture, allocates the per-vertex buffers and builds both pipelines.
+    /// Uploads the texture, allocates the per-vertex buffers and builds both pipelines (the
+    /// sampler and the fragment entry point from `params`' mip levels, level of detail and
+    /// anisotropy).
     pub fn new(
         ctx: &InitContext<'_>,
         chunk_indices: &[u32],
         uniform: &ParamsUniform,
         texture: &GrassTexture,
-        mipmaps: Mipmaps,
-        anisotropy: u16,
+        params: &Params,
     ) -> Result<Self> {
+        let Params {
+            mipmaps,
+            anisotropy,
+            lod,
+            ..
+        } = *params;
         let device = &ctx.gpu.device;
         let terrain = &ctx.scene_gpu.terrain;
         let (nx, nz) = terrain.ground_side;
@@ -211,7 +228,7 @@ impl ShellGpu {
                     "bakay shells",
                     &shell_pipeline_layout,
                     &module,
-                    ("vs_shell", "fs_shell"),
+                    ("vs_shell", fragment_entry(lod)),
                     &buffers,
                     ctx.sample_count,
                 )
@@ -334,5 +351,19 @@ mod tests {
             shaders::struct_size(SHADER, "Params").unwrap() as usize,
             std::mem::size_of::<ParamsUniform>()
         );
+    }
+
+    #[test]
+    fn each_level_of_detail_mode_looks_each_texture_up_once() {
+        // The op counter counts both sides of a branch, as a SIMD rasteriser runs them: an
+        // entry point that chose its lookup by a branch on the mode would count 4.
+        let module = naga::front::wgsl::parse_str(&shaders::compose(SHADER)).unwrap();
+        let ops = shaders::entry_ops(&module, &[]);
+        for lod in [Lod::MinorAxis, Lod::Hardware] {
+            let entry = fragment_entry(lod);
+            let samples = ops.iter().find(|(e, _)| e == entry).map(|(_, o)| o.samples);
+            // The colour and height, then (for the texels kept) the blade's attributes.
+            assert_eq!(samples, Some(2), "{entry}");
+        }
     }
 }

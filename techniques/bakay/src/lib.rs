@@ -110,6 +110,16 @@
 //! shells, a loop the driver leaves rolled, cost 0.5-1.7 ms outside the passes: the 5 ms were
 //! the driver's, which no GPU pays.
 //!
+//! The way a lookup picks its mip level (`lod`) picks the fragment entry point when the
+//! pipeline is made (`fs_shell_minor_axis`, `fs_shell_hardware`), for the same reason: one
+//! entry point branching on the mode in the uniform made every fragment on lavapipe take both
+//! kinds of lookup, 4 filtered samples where 2 are kept, since a SIMD rasteriser runs both
+//! sides of a branch even when every invocation agrees. The same pictures, byte for byte, and
+//! on the meadow at 320x180 (8 frames after 8, alternating builds, 2026-12-05) frames of
+//! 47.8-48.7 ms against 51.4-52.2 (46.8-47.6 against 53.7-56.6 in a first pair of runs of
+//! three); the flyover's frames moved between 61 and 96 ms with either build. The cost model
+//! had priced the four samples, 10 ms of a 55 ms meadow frame for the two no pixel keeps.
+//!
 //! The level of detail on the scaling sweep's points (the meadow at 20 blades/m², terrain 80
 //! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core Intel Xeon on 2026-12-03
 //! while another build ran; per-frame counts, the same in every run and, with the level of
@@ -266,14 +276,7 @@ impl Technique for Bakay {
             ctx.scene_gpu.terrain.ground_side,
             scene.config.grass.height[1],
         );
-        let gpu = gpu::ShellGpu::new(
-            ctx,
-            &chunks.indices,
-            &uniform,
-            &texture,
-            params.mipmaps,
-            params.anisotropy,
-        )?;
+        let gpu = gpu::ShellGpu::new(ctx, &chunks.indices, &uniform, &texture, &params)?;
         Ok(Self {
             blades: count_blades(&texture, params.tile_size, &scene.terrain),
             texture_blades: texture.blades.len(),
@@ -352,7 +355,7 @@ pub fn uniform(
             params.shells,
             ground_side.0 * ground_side.1,
             u32::from(params.wind == WindSource::PointSource),
-            u32::from(params.lod == Lod::MinorAxis),
+            0,
         ],
         shape: [
             g.height[1] / params.shells as f32,
