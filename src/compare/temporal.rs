@@ -380,7 +380,9 @@ mod tests {
             .map(|k| {
                 let sharp = image::RgbaImage::from_fn(64, 32, |x, y| {
                     let inside = (8 + k..40 + k).contains(&x) && (8..24).contains(&y);
-                    let phase = if attached { x - k + y } else { x + y };
+                    // `x + y + k` has the parity of `x − k + y` (the pattern moving with the patch)
+                    // without underflowing left of it.
+                    let phase = if attached { x + y + k } else { x + y };
                     let v = if inside && phase % 2 == 0 { 240 } else { 20 };
                     image::Rgba([v, v, v, 255])
                 });

@@ -78,9 +78,9 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches, transcendentals and arithmetic are the
+/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic and barriers are the
 /// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 16] = [
+pub const COUNTED_TERMS: [Term; 17] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -97,6 +97,7 @@ pub const COUNTED_TERMS: [Term; 16] = [
     Term::VertexArithmetic,
     Term::FragmentArithmetic,
     Term::ComputeArithmetic,
+    Term::ComputeBarrier,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

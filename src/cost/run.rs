@@ -45,6 +45,7 @@ impl Work {
             fragment_arithmetic: f(r.fragment_arithmetic).unwrap_or(0.0)
                 + f(r.background_fragment_arithmetic).unwrap_or(0.0),
             compute_arithmetic: f(r.compute_arithmetic).unwrap_or(0.0),
+            compute_barriers: f(r.compute_barriers).unwrap_or(0.0),
         })
     }
 
@@ -94,6 +95,7 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_vertex_arithmetic_ms = p.map(|p| p.vertex_arithmetic_ms);
     run.model_fragment_arithmetic_ms = p.map(|p| p.fragment_arithmetic_ms);
     run.model_compute_arithmetic_ms = p.map(|p| p.compute_arithmetic_ms);
+    run.model_compute_barrier_ms = p.map(|p| p.compute_barrier_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

@@ -88,11 +88,19 @@ pub enum Term {
     /// simulation, 578 operations an invocation, cost 60-75 ns an invocation where the
     /// calibration's 39-operation spring update costs 4 ns).
     ComputeArithmetic,
+    /// A workgroup barrier reached by a compute shader invocation
+    /// (`crate::shaders::ShaderOps::barriers`). Not among the units issue 20 lists: the
+    /// compute term is calibrated on a spring update with no barrier, and a CPU rasteriser
+    /// pays for each, suspending the workgroup's batch of invocations and resuming the next
+    /// (lavapipe: 1.8 ± 0.16 ns an invocation at a barrier against 4.8 ns the invocation,
+    /// `grassbench calibrate` at 320x180, 2026-12-05). jahrmann's culling pass has three
+    /// (a `workgroupBarrier` and a `workgroupUniformLoad`) in each invocation.
+    ComputeBarrier,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 21] = [
+    pub const ALL: [Self; 22] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -114,6 +122,7 @@ impl Term {
         Self::VertexArithmetic,
         Self::FragmentArithmetic,
         Self::ComputeArithmetic,
+        Self::ComputeBarrier,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -140,6 +149,7 @@ impl Term {
             Self::VertexArithmetic => "vertex_arithmetic",
             Self::FragmentArithmetic => "fragment_arithmetic",
             Self::ComputeArithmetic => "compute_arithmetic",
+            Self::ComputeBarrier => "compute_barrier",
         }
     }
 
@@ -167,6 +177,7 @@ impl Term {
             Self::VertexArithmetic | Self::FragmentArithmetic | Self::ComputeArithmetic => {
                 "scalar operation"
             }
+            Self::ComputeBarrier => "invocation at a barrier",
         }
     }
 

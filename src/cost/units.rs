@@ -105,6 +105,9 @@ pub struct UnitCosts {
     /// Per scalar arithmetic operation of a compute shader, ns (0 before the term).
     #[serde(default)]
     pub compute_arithmetic_ns: UnitCost,
+    /// Per compute shader invocation reaching a workgroup barrier, ns (0 before the term).
+    #[serde(default)]
+    pub compute_barrier_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -169,6 +172,9 @@ pub struct Prediction {
     /// Compute shaders' scalar arithmetic, ms.
     #[serde(default)]
     pub compute_arithmetic_ms: f64,
+    /// Compute shaders' workgroup barriers, ms.
+    #[serde(default)]
+    pub compute_barrier_ms: f64,
 }
 
 impl UnitCosts {
@@ -214,6 +220,7 @@ impl UnitCosts {
             vertex_arithmetic_ns: stored(Term::VertexArithmetic),
             fragment_arithmetic_ns: stored(Term::FragmentArithmetic),
             compute_arithmetic_ns: stored(Term::ComputeArithmetic),
+            compute_barrier_ns: stored(Term::ComputeBarrier),
             fit,
         }
     }
@@ -242,6 +249,7 @@ impl UnitCosts {
             Term::VertexArithmetic => self.vertex_arithmetic_ns,
             Term::FragmentArithmetic => self.fragment_arithmetic_ns,
             Term::ComputeArithmetic => self.compute_arithmetic_ns,
+            Term::ComputeBarrier => self.compute_barrier_ns,
         }
     }
 
@@ -276,6 +284,7 @@ impl UnitCosts {
             vertex_arithmetic_ms: ms(Term::VertexArithmetic),
             fragment_arithmetic_ms: ms(Term::FragmentArithmetic),
             compute_arithmetic_ms: ms(Term::ComputeArithmetic),
+            compute_barrier_ms: ms(Term::ComputeBarrier),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -357,6 +366,7 @@ impl Prediction {
             Term::VertexArithmetic => self.vertex_arithmetic_ms,
             Term::FragmentArithmetic => self.fragment_arithmetic_ms,
             Term::ComputeArithmetic => self.compute_arithmetic_ms,
+            Term::ComputeBarrier => self.compute_barrier_ms,
         }
     }
 
@@ -380,10 +390,10 @@ mod tests {
         // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns (4 ns floating-point;
         // 2 and 8 ns more in a vertex shader), sample 6 ns (10 ns floating-point),
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
-        // 0.05 / 0.1 ns.
+        // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns.
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -416,18 +426,19 @@ mod tests {
             vertex_arithmetic: 5e6,
             fragment_arithmetic: 2e7,
             compute_arithmetic: 0.0,
+            compute_barriers: 4e5,
         };
         let p = costs.predict(&work);
         // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
-        // + 1 + 1 + 0 ms.
+        // + 1 + 1 + 0 + 8 ms.
         let expected = [
             1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
-            0.0, 1.0, 1.0, 0.0,
+            0.0, 1.0, 1.0, 0.0, 8.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 19.81).abs() < 1e-9);
+        assert!((p.total_ms - 27.81).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -447,7 +458,7 @@ mod tests {
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -470,7 +481,8 @@ mod tests {
                     || l.starts_with("[vertex_texture_")
                     || l.starts_with("[vertex_float_texture_")
                     || l.contains("_transcendental_ns]")
-                    || l.contains("_arithmetic_ns]");
+                    || l.contains("_arithmetic_ns]")
+                    || l.starts_with("[compute_barrier_");
             }
             if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
                 older.push_str(l);
@@ -492,5 +504,7 @@ mod tests {
         assert!(!older.contains("transcendental_ns"), "{older}");
         assert_eq!(read.compute_arithmetic_ns, UnitCost::default());
         assert!(!older.contains("arithmetic_ns"), "{older}");
+        assert_eq!(read.compute_barrier_ns, UnitCost::default());
+        assert!(!older.contains("barrier_ns"), "{older}");
     }
 }

@@ -70,6 +70,10 @@ pub struct Work {
     /// Scalar arithmetic operations of compute shaders.
     #[serde(default)]
     pub compute_arithmetic: f64,
+    /// Workgroup barriers reached by compute shader invocations, one per invocation at each
+    /// ([`crate::shaders::ShaderOps::barriers`]).
+    #[serde(default)]
+    pub compute_barriers: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -118,6 +122,7 @@ impl Work {
             vertex_arithmetic: ops.vertex.arithmetic as f64,
             fragment_arithmetic: ops.fragment.arithmetic as f64,
             compute_arithmetic: ops.compute.arithmetic as f64,
+            compute_barriers: ops.compute.barriers as f64,
         }
     }
 
@@ -146,6 +151,7 @@ impl Work {
             Term::VertexArithmetic => self.vertex_arithmetic,
             Term::FragmentArithmetic => self.fragment_arithmetic,
             Term::ComputeArithmetic => self.compute_arithmetic,
+            Term::ComputeBarrier => self.compute_barriers,
         }
     }
 
@@ -172,6 +178,7 @@ impl Work {
             vertex_arithmetic: self.vertex_arithmetic * k,
             fragment_arithmetic: self.fragment_arithmetic * k,
             compute_arithmetic: self.compute_arithmetic * k,
+            compute_barriers: self.compute_barriers * k,
         }
     }
 
@@ -209,6 +216,7 @@ impl std::ops::Add for Work {
             vertex_arithmetic: self.vertex_arithmetic + o.vertex_arithmetic,
             fragment_arithmetic: self.fragment_arithmetic + o.fragment_arithmetic,
             compute_arithmetic: self.compute_arithmetic + o.compute_arithmetic,
+            compute_barriers: self.compute_barriers + o.compute_barriers,
         }
     }
 }
@@ -240,13 +248,14 @@ mod tests {
             vertex_arithmetic: 11.5,
             fragment_arithmetic: 12.0,
             compute_arithmetic: 13.0,
+            compute_barriers: 14.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -287,7 +296,7 @@ mod tests {
         // 11 vertices fetching 8 floating-point texels each (a bilinear height and wind) with
         // 5 transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and
         // 2 of floating-point texels) and loading 1 texel with 1 transcendental and 20
-        // operations, 64 compute invocations loading 4 with 2 and 3.
+        // operations, 64 compute invocations loading 4 with 2 and 3 and reaching 2 barriers.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
             vertex_ops: ShaderOps {
@@ -297,6 +306,7 @@ mod tests {
                 float_samples: 0,
                 transcendentals: 5,
                 arithmetic: 40,
+                barriers: 0,
             },
             fragment_ops: ShaderOps {
                 loads: 1,
@@ -305,6 +315,7 @@ mod tests {
                 float_samples: 2,
                 transcendentals: 1,
                 arithmetic: 20,
+                barriers: 0,
             },
             compute_ops: ShaderOps {
                 loads: 4,
@@ -313,6 +324,7 @@ mod tests {
                 float_samples: 0,
                 transcendentals: 2,
                 arithmetic: 3,
+                barriers: 2,
             },
         };
         assert_eq!(
@@ -333,6 +345,7 @@ mod tests {
                 vertex_arithmetic: 440.0,
                 fragment_arithmetic: 2000.0,
                 compute_arithmetic: 192.0,
+                compute_barriers: 128.0,
                 ..Work::default()
             }
         );

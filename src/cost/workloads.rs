@@ -17,6 +17,7 @@
 //! | `vertex_texture_loads`, `vertex_float_texture_loads` | the off-screen strips with [`LOADS_PER_VERTEX`] `textureLoad`s per vertex of the RGBA8 / floating-point texture | what a load costs a vertex shader more |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
+//! | `compute_barriers` | the spring update of the element [`BARRIER_CHAIN`] / 2 neighbours along, passed through workgroup memory with a barrier before and after each read | a compute invocation at a barrier |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
@@ -143,6 +144,9 @@ pub const MATH_CHAIN: u32 = 30;
 /// 16 links of a `vec4` multiply-add, a `vec4` scaled and their maximum, 16 operations each,
 /// each link fed by the last and mixing the components, so none is folded away).
 pub const ARITHMETIC_CHAIN: u32 = 256;
+/// Workgroup barriers of one invocation of the `compute_barriers` workload (`cs_barriers`:
+/// four exchanges with the neighbour, two barriers each).
+pub const BARRIER_CHAIN: u32 = 8;
 /// Transcendentals of one invocation of the strips' vertex shader (`blade_vertex`: the
 /// facing's `cos` and `sin`, the sway's `sin`).
 pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
@@ -275,6 +279,8 @@ pub enum Chain {
     Transcendental,
     /// [`ARITHMETIC_CHAIN`] scalar operations.
     Arithmetic,
+    /// [`BARRIER_CHAIN`] workgroup barriers.
+    Barriers,
 }
 
 /// One sample's workload.
@@ -297,7 +303,12 @@ pub fn dispatch_grid(groups: u32) -> (u32, u32) {
 
 impl Chain {
     /// Every chain, in declaration order (`chain as usize` is its position).
-    pub const ALL: [Self; 3] = [Self::None, Self::Transcendental, Self::Arithmetic];
+    pub const ALL: [Self; 4] = [
+        Self::None,
+        Self::Transcendental,
+        Self::Arithmetic,
+        Self::Barriers,
+    ];
 
     /// The compute entry point of the spring update with this chain.
     pub fn compute_entry(self) -> &'static str {
@@ -305,6 +316,7 @@ impl Chain {
             Self::None => "cs_springs",
             Self::Transcendental => "cs_math",
             Self::Arithmetic => "cs_arithmetic",
+            Self::Barriers => "cs_barriers",
         }
     }
 }
@@ -457,6 +469,8 @@ impl Workload {
                         0.0
                     },
                     compute_arithmetic: invocations * arithmetic(chain.compute_entry()),
+                    compute_barriers: invocations
+                        * shader_ops(chain.compute_entry()).barriers as f64,
                     ..none
                 }
             }
@@ -680,6 +694,15 @@ pub fn families() -> Vec<Workload> {
             shape: Shape::Compute {
                 groups: 4_096,
                 chain: Chain::Arithmetic,
+            },
+        },
+        // An eighth of the other compute workloads' invocations: each reaches 8 barriers.
+        Workload {
+            name: "compute_barriers",
+            term: Term::ComputeBarrier,
+            shape: Shape::Compute {
+                groups: 512,
+                chain: Chain::Barriers,
             },
         },
         Workload {
@@ -924,9 +947,32 @@ mod tests {
             "vs_float_loads",
             "cs_springs",
             "cs_math",
+            "cs_barriers",
         ] {
             assert!(shader_ops(entry).arithmetic > 0, "{entry}");
         }
+        // The barriers' workload reaches its barriers, and it alone: its exchanges' few
+        // operations (the neighbour's index) are counted as any.
+        for (i, chain) in Chain::ALL.iter().enumerate() {
+            let barriers = shader_ops(chain.compute_entry()).barriers;
+            let expected = if *chain == Chain::Barriers {
+                BARRIER_CHAIN
+            } else {
+                0
+            };
+            assert_eq!(barriers, u64::from(expected), "chain {i}");
+        }
+        assert_eq!(
+            ShaderOps {
+                arithmetic: 0,
+                barriers: 0,
+                ..shader_ops("cs_barriers")
+            },
+            ShaderOps {
+                arithmetic: 0,
+                ..shader_ops("cs_springs")
+            }
+        );
     }
 
     #[test]

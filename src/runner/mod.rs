@@ -356,6 +356,7 @@ impl<'g> World<'g> {
             compute_arithmetic: ops.map(|f| f.compute.arithmetic),
             background_vertex_arithmetic: background_ops.map(|f| f.vertex.arithmetic),
             background_fragment_arithmetic: background_ops.map(|f| f.fragment.arithmetic),
+            compute_barriers: ops.map(|f| f.compute.barriers),
             upload_bytes: Some(upload_bytes),
             overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
             grass_pixels: None,

@@ -183,6 +183,10 @@ pub struct FrameRecord {
     /// Scalar arithmetic operations of the core's background fragment shaders.
     #[serde(default)]
     pub background_fragment_arithmetic: Option<u64>,
+    /// Workgroup barriers reached by the technique's compute shader invocations, one per
+    /// invocation at each ([`crate::shaders::ShaderOps::barriers`]).
+    #[serde(default)]
+    pub compute_barriers: Option<u64>,
     /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
     /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
     /// [`crate::GpuContext::write_texture`].
@@ -401,6 +405,9 @@ pub struct RunSummary {
     /// Median scalar arithmetic operations of the technique's compute shaders.
     #[serde(default)]
     pub compute_arithmetic: Option<u64>,
+    /// Median workgroup barriers reached by the technique's compute shader invocations.
+    #[serde(default)]
+    pub compute_barriers: Option<u64>,
     /// Median overdraw: the technique's fragment invocations per target pixel.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -479,6 +486,9 @@ pub struct RunSummary {
     /// Predicted ms of compute shaders' scalar arithmetic.
     #[serde(default)]
     pub model_compute_arithmetic_ms: Option<f64>,
+    /// Predicted ms of compute shader invocations at workgroup barriers.
+    #[serde(default)]
+    pub model_compute_barrier_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -590,6 +600,7 @@ impl RunSummary {
             vertex_arithmetic: median_u64(&|r| r.vertex_arithmetic),
             fragment_arithmetic: median_u64(&|r| r.fragment_arithmetic),
             compute_arithmetic: median_u64(&|r| r.compute_arithmetic),
+            compute_barriers: median_u64(&|r| r.compute_barriers),
             overdraw: median(&|r| r.overdraw),
             fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
@@ -621,6 +632,7 @@ impl RunSummary {
             model_vertex_arithmetic_ms: None,
             model_fragment_arithmetic_ms: None,
             model_compute_arithmetic_ms: None,
+            model_compute_barrier_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -850,6 +862,7 @@ mod tests {
             compute_arithmetic: None,
             background_vertex_arithmetic: None,
             background_fragment_arithmetic: None,
+            compute_barriers: None,
             upload_bytes: None,
             overdraw: None,
             grass_pixels: None,

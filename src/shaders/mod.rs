@@ -132,6 +132,7 @@ mod tests {
                 // `p.xy`'s conversion to `vec2<i32>` (2), the product with `exp` (4), the
                 // alpha test (1).
                 arithmetic: 7,
+                barriers: 0,
             })
         );
         // An unparsable source has neither.

@@ -56,6 +56,14 @@ pub struct ShaderOps {
     /// (lavapipe keeps each component of a vector in a register of its own). Loads, stores,
     /// swizzles and constructors are not counted: they move values.
     pub arithmetic: u64,
+    /// Workgroup barriers (compute shaders only): `workgroupBarrier`, `storageBarrier`,
+    /// `textureBarrier` one each, `workgroupUniformLoad` two (a barrier before its load and
+    /// one after, as every backend writes it). Every invocation of the workgroup waits at
+    /// one for the others: a GPU's scheduler switches to another workgroup meanwhile, a CPU
+    /// rasteriser suspends the batch of invocations it runs and resumes the next (lavapipe:
+    /// 1.8 ns an invocation at a barrier, 40 % of a compute invocation's own cost,
+    /// `grassbench calibrate` at 320x180, 2026-12-05).
+    pub barriers: u64,
 }
 
 /// Whether `f` is a transcendental built-in: trigonometric and hyperbolic functions and
@@ -97,6 +105,7 @@ impl ShaderOps {
             float_samples: self.float_samples * n,
             transcendentals: self.transcendentals * n,
             arithmetic: self.arithmetic * n,
+            barriers: self.barriers * n,
         }
     }
 }
@@ -112,6 +121,7 @@ impl std::ops::Add for ShaderOps {
             float_samples: self.float_samples + o.float_samples,
             transcendentals: self.transcendentals + o.transcendentals,
             arithmetic: self.arithmetic + o.arithmetic,
+            barriers: self.barriers + o.barriers,
         }
     }
 }
@@ -331,7 +341,13 @@ fn function_ops(
         },
     );
     let mut calls: Vec<CallKey> = Vec::new();
+    let mut barriers = 0;
     super::walk::for_each_statement(&function.body, &mut |s| {
+        barriers += match s {
+            naga::Statement::ControlBarrier(_) => 1,
+            naga::Statement::WorkGroupUniformLoad { .. } => 2,
+            _ => 0,
+        };
         if let naga::Statement::Call {
             function: callee,
             arguments,
@@ -347,6 +363,7 @@ fn function_ops(
             calls.push((*callee, mask));
         }
     });
+    let own = ShaderOps { barriers, ..own };
     calls.into_iter().fold(own, |acc, key| {
         let ops = match memo.get(&key) {
             Some(f) => *f,
@@ -437,6 +454,7 @@ mod tests {
                 float_samples: 0,
                 transcendentals: 2,
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
+                barriers: 0,
             }
         );
         // tint: 1 sample + height's 2 loads + a `pow`; the branch's sample; the loop body's
@@ -452,6 +470,7 @@ mod tests {
                 float_samples: 0,
                 transcendentals: 2,
                 arithmetic: 11 + 5 + 2 + 8,
+                barriers: 0,
             }
         );
         assert_eq!(of("plain"), ShaderOps::default());

@@ -287,6 +287,36 @@ fn cs_springs(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgro
     springs[k] = p + (rest - p) * 0.1;
 }
 
+// The `compute_barriers` workload's exchange: each invocation's element, read back by its
+// neighbour.
+var<workgroup> exchanged: array<vec4<f32>, 64>;
+
+// One exchange between neighbours: every invocation stores its value, waits for the whole
+// workgroup, takes its neighbour's, and waits again before the next exchange overwrites it: two
+// barriers.
+fn exchange(lid: u32, p: vec4<f32>) -> vec4<f32> {
+    exchanged[lid] = p;
+    workgroupBarrier();
+    let q = exchanged[(lid + 1u) % 64u];
+    workgroupBarrier();
+    return q;
+}
+
+// The spring step of the element four neighbours along (`BARRIER_CHAIN`: 8 barriers), as a
+// culling pass's workgroup waits for its counts.
+@compute @workgroup_size(64)
+fn cs_barriers(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) lid: u32, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    let k = i % arrayLength(&springs);
+    let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
+    var p = springs[k];
+    p = exchange(lid, p);
+    p = exchange(lid, p);
+    p = exchange(lid, p);
+    p = exchange(lid, p);
+    springs[k] = p + (rest - p) * 0.1;
+}
+
 // The spring step with the chain of 30 transcendentals, fed by the element, in its rest state.
 @compute @workgroup_size(64)
 fn cs_math(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {

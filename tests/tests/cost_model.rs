@@ -151,7 +151,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 /// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times, the same two of
 /// floating-point texels, 5k strips loading 32 floating-point texels a vertex, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
-/// more scalar operations each, 300 draws, 1M compute invocations, 8 MiB uploaded.
+/// more scalar operations each, 16k compute invocations reaching 8 barriers each, 300 draws,
+/// 1M compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
     let w = |name, term, shape| Workload { name, term, shape };
     let layers = |kind| Shape::Layers { kind, layers: 3 };
@@ -251,6 +252,14 @@ fn held_out_mix() -> Vec<Workload> {
             Shape::Compute {
                 groups: 1_024,
                 chain: Chain::Arithmetic,
+            },
+        ),
+        w(
+            "compute barriers",
+            Term::ComputeBarrier,
+            Shape::Compute {
+                groups: 256,
+                chain: Chain::Barriers,
             },
         ),
         w("draws", Term::Draw, Shape::Draws { draws: 300 }),

@@ -173,6 +173,7 @@ impl Config {
                 r.model_vertex_arithmetic_ms.unwrap_or(0.0),
                 r.model_fragment_arithmetic_ms.unwrap_or(0.0),
                 r.model_compute_arithmetic_ms.unwrap_or(0.0),
+                r.model_compute_barrier_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

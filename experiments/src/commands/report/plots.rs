@@ -372,6 +372,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU vertex arithmetic",
     "GPU fragment arithmetic",
     "GPU compute arithmetic",
+    "GPU compute barriers",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
