@@ -118,7 +118,7 @@
 //! on the meadow at 320x180 (8 frames after 8, alternating builds, 2026-12-05) frames of
 //! 47.8-48.7 ms against 51.4-52.2 (46.8-47.6 against 53.7-56.6 in a first pair of runs of
 //! three); the flyover's frames moved between 61 and 96 ms with either build. The cost model
-//! had priced the four samples, 10 ms of a 55 ms meadow frame for the two no pixel keeps.
+//! had priced the four samples, 13 ms of a 55 ms meadow frame for the two no pixel keeps.
 //!
 //! The level of detail on the scaling sweep's points (the meadow at 20 blades/m², terrain 80
 //! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core Intel Xeon on 2026-12-03
