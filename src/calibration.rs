@@ -214,26 +214,27 @@ pub fn calibrate(gpu: &GpuContext, size: Size) -> Result<Calibration> {
     let (empty_group, group) = bind_group;
 
     let time = |label: &str, record: &dyn Fn(&mut wgpu::CommandEncoder)| -> Result<f64> {
-        let mut medians = Vec::new();
-        for round in 0..ROUNDS {
-            let mut samples = Vec::new();
-            // One warm-up submission before the first round.
-            for k in usize::from(round > 0)..=RUNS {
-                let encoder = gpu.scoped(label, || {
-                    let mut encoder = device.create_command_encoder(&Default::default());
-                    record(&mut encoder);
-                    encoder.finish()
-                })?;
-                let t = Instant::now();
-                gpu.queue.submit([encoder]);
-                gpu.wait_idle(label)?;
-                if k > 0 {
-                    samples.push(t.elapsed().as_secs_f64());
-                }
+        // One submission of the workload, its submit-to-idle wall time in seconds.
+        let once = || -> Result<f64> {
+            let encoder = gpu.scoped(label, || {
+                let mut encoder = device.create_command_encoder(&Default::default());
+                record(&mut encoder);
+                encoder.finish()
+            })?;
+            let t = Instant::now();
+            gpu.queue.submit([encoder]);
+            gpu.wait_idle(label)?;
+            Ok(t.elapsed().as_secs_f64())
+        };
+        once()?; // the warm-up
+        let mut lowest = f64::NAN;
+        for _ in 0..ROUNDS {
+            let samples = (0..RUNS).map(|_| once()).collect::<Result<Vec<f64>>>()?;
+            if let Some(p) = crate::runner::Percentiles::of(samples) {
+                lowest = lowest.min(p.median);
             }
-            medians.extend(crate::runner::Percentiles::of(samples).map(|p| p.median));
         }
-        Ok(medians.into_iter().reduce(f64::min).unwrap_or(f64::NAN))
+        Ok(lowest)
     };
     let pass = |encoder: &mut wgpu::CommandEncoder,
                 pipeline: &wgpu::RenderPipeline,

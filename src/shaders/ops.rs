@@ -477,6 +477,35 @@ mod tests {
     }
 
     #[test]
+    fn barriers_count_per_call_site_and_a_uniform_load_twice() {
+        let module = naga::front::wgsl::parse_str(
+            "var<workgroup> cells: array<u32, 64>;
+             var<workgroup> total: u32;
+             fn exchange(lid: u32) -> u32 {
+                 workgroupBarrier();
+                 return cells[(lid + 1u) % 64u];
+             }
+             @compute @workgroup_size(64)
+             fn cs(@builtin(local_invocation_index) lid: u32) {
+                 cells[lid] = lid;
+                 let a = exchange(lid) + exchange(lid);
+                 for (var k = 0u; k < 4u; k++) { storageBarrier(); }
+                 let t = workgroupUniformLoad(&total);
+                 cells[lid] = a + t;
+             }
+             @compute @workgroup_size(64)
+             fn plain(@builtin(local_invocation_index) lid: u32) { cells[lid] = lid; }",
+        )
+        .unwrap();
+        let ops = entry_ops(&module, &[]);
+        let barriers = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, o)| o.barriers);
+        // Two calls of a one-barrier function, a loop's body once, and a uniform load's
+        // barrier before and after it.
+        assert_eq!(barriers("cs"), Some(2 + 1 + 2));
+        assert_eq!(barriers("plain"), Some(0));
+    }
+
+    #[test]
     fn fetches_of_textures_named_float_are_counted_apart() {
         // `t` bound to floating-point texels: its loads and samples move (in the callees
         // too); a name that is not a global changes nothing.
