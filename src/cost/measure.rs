@@ -78,9 +78,9 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic and barriers are the
+/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic, barriers and storage words are the
 /// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 17] = [
+pub const COUNTED_TERMS: [Term; 19] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -98,6 +98,8 @@ pub const COUNTED_TERMS: [Term; 17] = [
     Term::FragmentArithmetic,
     Term::ComputeArithmetic,
     Term::ComputeBarrier,
+    Term::ComputeStorage,
+    Term::VertexStorage,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -6,7 +6,7 @@
 //!   [`FragmentKind`], draws, compute invocations, bytes uploaded), from the GPU's own
 //!   counters and the harness's, and what its shaders did inside those invocations (texel
 //!   loads and samples, those of floating-point texels and the vertex stage's loads apart,
-//!   transcendentals and scalar arithmetic by stage, compute shaders' workgroup barriers: the
+//!   transcendentals and scalar arithmetic by stage, compute shaders' workgroup barriers, compute and vertex shaders' storage-buffer words: the
 //!   counted invocations times their entry points' operations,
 //!   `crate::shaders::ShaderOps`);
 //! - [`Term`]: the model's terms, one unit cost each, plus a fixed cost per submission;

@@ -18,6 +18,9 @@ use crate::{Error, GpuContext, RenderTarget, Result, shaders};
 const SPRING_COUNT: u64 = 1 << 20;
 /// Bytes of the upload workload's destination buffer (its largest size).
 const UPLOAD_CAPACITY: u64 = 64 << 20;
+/// Elements of the `vertex_storage` strips' instance data (16 bytes each: 4 MiB, more than a
+/// core's cache, as a meadow's blade arrays are).
+const INSTANCE_DATA_COUNT: u64 = 1 << 18;
 /// Side of the texture the `texture_*` workloads fetch from (mip-mapped down to 1 texel), the
 /// size of a technique's slice or blade texture.
 const FETCH_TEXTURE_SIDE: u32 = 512;
@@ -40,6 +43,8 @@ pub(super) struct Rig<'g> {
     /// The `vertex_*texture_loads` workloads': off-screen strips loading texels, RGBA8 and
     /// floating-point.
     load_strips: [crate::shaders::RenderPipeline; 2],
+    /// The `vertex_storage` workload's off-screen strips reading their instance's data.
+    storage_strips: crate::shaders::RenderPipeline,
     /// The spring update, plain and with each chain, in [`workloads::Chain::ALL`]'s order.
     springs: [crate::shaders::ComputePipeline; workloads::Chain::ALL.len()],
     upload: wgpu::Buffer,
@@ -89,6 +94,16 @@ impl<'g> Rig<'g> {
                         visibility: wgpu::ShaderStages::COMPUTE,
                         ty: wgpu::BindingType::Buffer {
                             ty: wgpu::BufferBindingType::Storage { read_only: false },
+                            has_dynamic_offset: false,
+                            min_binding_size: None,
+                        },
+                        count: None,
+                    },
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 6,
+                        visibility: wgpu::ShaderStages::VERTEX,
+                        ty: wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Storage { read_only: true },
                             has_dynamic_offset: false,
                             min_binding_size: None,
                         },
@@ -147,6 +162,15 @@ impl<'g> Rig<'g> {
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             });
+            let mut rng = crate::rng::Rng::new(0x5eed);
+            let instance_values: Vec<f32> = (0..INSTANCE_DATA_COUNT * 4)
+                .map(|_| (rng.next_u64() % 1000) as f32 / 1000.0)
+                .collect();
+            let instance_data = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("unit costs instance data"),
+                contents: bytemuck::cast_slice(&instance_values),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
             let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("unit costs globals"),
                 layout: &layout0,
@@ -172,6 +196,10 @@ impl<'g> Rig<'g> {
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: springs_buffer.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 6,
+                        resource: instance_data.as_entire_binding(),
                     },
                     wgpu::BindGroupEntry {
                         binding: 3,
@@ -308,6 +336,13 @@ impl<'g> Rig<'g> {
                         None,
                     )
                 }),
+                storage_strips: pipeline(
+                    "unit costs: vertex storage",
+                    "vs_storage",
+                    "fs_opaque",
+                    true,
+                    None,
+                ),
                 springs: workloads::Chain::ALL.map(|chain| {
                     let entry = chain.compute_entry();
                     let label = format!("unit costs: {entry}");
@@ -434,7 +469,8 @@ impl<'g> Rig<'g> {
                     | Shape::SubpixelStrips { instances }
                     | Shape::MathStrips { instances }
                     | Shape::ArithmeticStrips { instances }
-                    | Shape::LoadStrips { instances, .. } => {
+                    | Shape::LoadStrips { instances, .. }
+                    | Shape::StorageStrips { instances } => {
                         pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
                     }
                     Shape::Layers { layers, .. }
@@ -511,6 +547,7 @@ impl<'g> Rig<'g> {
             Shape::ArithmeticStrips { .. } => Some(&self.arithmetic[0]),
             Shape::ArithmeticLayers { .. } => Some(&self.arithmetic[1]),
             Shape::LoadStrips { float, .. } => Some(&self.load_strips[usize::from(float)]),
+            Shape::StorageStrips { .. } => Some(&self.storage_strips),
             Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => None,
         }
     }

@@ -46,6 +46,8 @@ impl Work {
                 + f(r.background_fragment_arithmetic).unwrap_or(0.0),
             compute_arithmetic: f(r.compute_arithmetic).unwrap_or(0.0),
             compute_barriers: f(r.compute_barriers).unwrap_or(0.0),
+            compute_storage: f(r.compute_storage).unwrap_or(0.0),
+            vertex_storage: f(r.vertex_storage).unwrap_or(0.0),
         })
     }
 
@@ -96,6 +98,8 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_fragment_arithmetic_ms = p.map(|p| p.fragment_arithmetic_ms);
     run.model_compute_arithmetic_ms = p.map(|p| p.compute_arithmetic_ms);
     run.model_compute_barrier_ms = p.map(|p| p.compute_barrier_ms);
+    run.model_compute_storage_ms = p.map(|p| p.compute_storage_ms);
+    run.model_vertex_storage_ms = p.map(|p| p.vertex_storage_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

@@ -96,11 +96,27 @@ pub enum Term {
     /// `grassbench calibrate` at 320x180, 2026-12-05). jahrmann's culling pass has three
     /// (a `workgroupBarrier` and a `workgroupUniformLoad`) in each invocation.
     ComputeBarrier,
+    /// A 32-bit word a compute shader invocation reads from or writes to a storage buffer
+    /// (`crate::shaders::ShaderOps::storage`). Not among the units issue 20 lists: the
+    /// compute term is calibrated on a spring update that reads and writes one `vec4`, and
+    /// a SIMD rasteriser moves a storage buffer's words one lane at a time where the index
+    /// differs between invocations (lavapipe: 8 more `vec4` reads an invocation, each from
+    /// the next element, raised the spring update from 4.9 to 18 ns; `grassbench calibrate`
+    /// at 320x180, 2026-12-05). jahrmann's culling pass reads four `vec4`s of each blade,
+    /// writes two and searches the frame's ranges in its storage block.
+    ComputeStorage,
+    /// A 32-bit word a vertex shader invocation reads from a storage buffer
+    /// (`crate::shaders::ShaderOps::storage`): a blade's or a patch's data pulled by its
+    /// vertices rather than fed as vertex attributes. Not among the units issue 20 lists: the
+    /// vertex term is calibrated on strips whose vertices read nothing from memory, and
+    /// jahrmann's vertices read 17 words each (the blade's index, its root, looks and
+    /// curve), perbet's 25 (its patch's and wind primitives' data).
+    VertexStorage,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 22] = [
+    pub const ALL: [Self; 24] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -123,6 +139,8 @@ impl Term {
         Self::FragmentArithmetic,
         Self::ComputeArithmetic,
         Self::ComputeBarrier,
+        Self::ComputeStorage,
+        Self::VertexStorage,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -150,6 +168,8 @@ impl Term {
             Self::FragmentArithmetic => "fragment_arithmetic",
             Self::ComputeArithmetic => "compute_arithmetic",
             Self::ComputeBarrier => "compute_barrier",
+            Self::ComputeStorage => "compute_storage",
+            Self::VertexStorage => "vertex_storage",
         }
     }
 
@@ -178,6 +198,7 @@ impl Term {
                 "scalar operation"
             }
             Self::ComputeBarrier => "invocation at a barrier",
+            Self::ComputeStorage | Self::VertexStorage => "storage word",
         }
     }
 

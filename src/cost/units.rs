@@ -108,6 +108,13 @@ pub struct UnitCosts {
     /// Per compute shader invocation reaching a workgroup barrier, ns (0 before the term).
     #[serde(default)]
     pub compute_barrier_ns: UnitCost,
+    /// Per 32-bit word a compute shader reads from or writes to a storage buffer, ns (0
+    /// before the term).
+    #[serde(default)]
+    pub compute_storage_ns: UnitCost,
+    /// Per 32-bit word a vertex shader reads from a storage buffer, ns (0 before the term).
+    #[serde(default)]
+    pub vertex_storage_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -175,6 +182,12 @@ pub struct Prediction {
     /// Compute shaders' workgroup barriers, ms.
     #[serde(default)]
     pub compute_barrier_ms: f64,
+    /// Compute shaders' storage-buffer words, ms.
+    #[serde(default)]
+    pub compute_storage_ms: f64,
+    /// Vertex shaders' storage-buffer words, ms.
+    #[serde(default)]
+    pub vertex_storage_ms: f64,
 }
 
 impl UnitCosts {
@@ -221,6 +234,8 @@ impl UnitCosts {
             fragment_arithmetic_ns: stored(Term::FragmentArithmetic),
             compute_arithmetic_ns: stored(Term::ComputeArithmetic),
             compute_barrier_ns: stored(Term::ComputeBarrier),
+            compute_storage_ns: stored(Term::ComputeStorage),
+            vertex_storage_ns: stored(Term::VertexStorage),
             fit,
         }
     }
@@ -250,6 +265,8 @@ impl UnitCosts {
             Term::FragmentArithmetic => self.fragment_arithmetic_ns,
             Term::ComputeArithmetic => self.compute_arithmetic_ns,
             Term::ComputeBarrier => self.compute_barrier_ns,
+            Term::ComputeStorage => self.compute_storage_ns,
+            Term::VertexStorage => self.vertex_storage_ns,
         }
     }
 
@@ -285,6 +302,8 @@ impl UnitCosts {
             fragment_arithmetic_ms: ms(Term::FragmentArithmetic),
             compute_arithmetic_ms: ms(Term::ComputeArithmetic),
             compute_barrier_ms: ms(Term::ComputeBarrier),
+            compute_storage_ms: ms(Term::ComputeStorage),
+            vertex_storage_ms: ms(Term::VertexStorage),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -367,6 +386,8 @@ impl Prediction {
             Term::FragmentArithmetic => self.fragment_arithmetic_ms,
             Term::ComputeArithmetic => self.compute_arithmetic_ms,
             Term::ComputeBarrier => self.compute_barrier_ms,
+            Term::ComputeStorage => self.compute_storage_ms,
+            Term::VertexStorage => self.vertex_storage_ms,
         }
     }
 
@@ -390,10 +411,11 @@ mod tests {
         // draw 1 µs, compute 5 ns, upload 0.5 ms per MB, texel load 1 ns (4 ns floating-point;
         // 2 and 8 ns more in a vertex shader), sample 6 ns (10 ns floating-point),
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
-        // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns.
+        // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns, a compute shader's storage word 0.5 ns,
+        // a vertex shader's 1 ns.
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -427,18 +449,20 @@ mod tests {
             fragment_arithmetic: 2e7,
             compute_arithmetic: 0.0,
             compute_barriers: 4e5,
+            compute_storage: 6e6,
+            vertex_storage: 2e6,
         };
         let p = costs.predict(&work);
         // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
-        // + 1 + 1 + 0 + 8 ms.
+        // + 1 + 1 + 0 + 8 + 3 + 2 ms.
         let expected = [
             1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
-            0.0, 1.0, 1.0, 0.0, 8.0,
+            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 27.81).abs() < 1e-9);
+        assert!((p.total_ms - 32.81).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -458,7 +482,7 @@ mod tests {
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -482,7 +506,9 @@ mod tests {
                     || l.starts_with("[vertex_float_texture_")
                     || l.contains("_transcendental_ns]")
                     || l.contains("_arithmetic_ns]")
-                    || l.starts_with("[compute_barrier_");
+                    || l.starts_with("[compute_barrier_")
+                    || l.starts_with("[compute_storage_")
+                    || l.starts_with("[vertex_storage_");
             }
             if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
                 older.push_str(l);
@@ -506,5 +532,8 @@ mod tests {
         assert!(!older.contains("arithmetic_ns"), "{older}");
         assert_eq!(read.compute_barrier_ns, UnitCost::default());
         assert!(!older.contains("barrier_ns"), "{older}");
+        assert_eq!(read.compute_storage_ns, UnitCost::default());
+        assert_eq!(read.vertex_storage_ns, UnitCost::default());
+        assert!(!older.contains("storage_ns"), "{older}");
     }
 }

@@ -74,6 +74,14 @@ pub struct Work {
     /// ([`crate::shaders::ShaderOps::barriers`]).
     #[serde(default)]
     pub compute_barriers: f64,
+    /// 32-bit words compute shader invocations read from or wrote to storage buffers
+    /// ([`crate::shaders::ShaderOps::storage`]).
+    #[serde(default)]
+    pub compute_storage: f64,
+    /// 32-bit words vertex shader invocations read from storage buffers
+    /// ([`crate::shaders::ShaderOps::storage`]).
+    #[serde(default)]
+    pub vertex_storage: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -123,6 +131,8 @@ impl Work {
             fragment_arithmetic: ops.fragment.arithmetic as f64,
             compute_arithmetic: ops.compute.arithmetic as f64,
             compute_barriers: ops.compute.barriers as f64,
+            compute_storage: ops.compute.storage as f64,
+            vertex_storage: ops.vertex.storage as f64,
         }
     }
 
@@ -152,6 +162,8 @@ impl Work {
             Term::FragmentArithmetic => self.fragment_arithmetic,
             Term::ComputeArithmetic => self.compute_arithmetic,
             Term::ComputeBarrier => self.compute_barriers,
+            Term::ComputeStorage => self.compute_storage,
+            Term::VertexStorage => self.vertex_storage,
         }
     }
 
@@ -179,6 +191,8 @@ impl Work {
             fragment_arithmetic: self.fragment_arithmetic * k,
             compute_arithmetic: self.compute_arithmetic * k,
             compute_barriers: self.compute_barriers * k,
+            compute_storage: self.compute_storage * k,
+            vertex_storage: self.vertex_storage * k,
         }
     }
 
@@ -217,6 +231,8 @@ impl std::ops::Add for Work {
             fragment_arithmetic: self.fragment_arithmetic + o.fragment_arithmetic,
             compute_arithmetic: self.compute_arithmetic + o.compute_arithmetic,
             compute_barriers: self.compute_barriers + o.compute_barriers,
+            compute_storage: self.compute_storage + o.compute_storage,
+            vertex_storage: self.vertex_storage + o.vertex_storage,
         }
     }
 }
@@ -249,13 +265,15 @@ mod tests {
             fragment_arithmetic: 12.0,
             compute_arithmetic: 13.0,
             compute_barriers: 14.0,
+            compute_storage: 15.0,
+            vertex_storage: 16.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -296,7 +314,8 @@ mod tests {
         // 11 vertices fetching 8 floating-point texels each (a bilinear height and wind) with
         // 5 transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and
         // 2 of floating-point texels) and loading 1 texel with 1 transcendental and 20
-        // operations, 64 compute invocations loading 4 with 2 and 3 and reaching 2 barriers.
+        // operations, 64 compute invocations loading 4 with 2 and 3 reaching 2 barriers
+        // and moving 10 words of storage.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
             vertex_ops: ShaderOps {
@@ -307,6 +326,7 @@ mod tests {
                 transcendentals: 5,
                 arithmetic: 40,
                 barriers: 0,
+                storage: 0,
             },
             fragment_ops: ShaderOps {
                 loads: 1,
@@ -316,6 +336,7 @@ mod tests {
                 transcendentals: 1,
                 arithmetic: 20,
                 barriers: 0,
+                storage: 0,
             },
             compute_ops: ShaderOps {
                 loads: 4,
@@ -325,6 +346,7 @@ mod tests {
                 transcendentals: 2,
                 arithmetic: 3,
                 barriers: 2,
+                storage: 10,
             },
         };
         assert_eq!(
@@ -346,6 +368,7 @@ mod tests {
                 fragment_arithmetic: 2000.0,
                 compute_arithmetic: 192.0,
                 compute_barriers: 128.0,
+                compute_storage: 640.0,
                 ..Work::default()
             }
         );

@@ -17,6 +17,8 @@
 //! | `vertex_texture_loads`, `vertex_float_texture_loads` | the off-screen strips with [`LOADS_PER_VERTEX`] `textureLoad`s per vertex of the RGBA8 / floating-point texture | what a load costs a vertex shader more |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
+//! | `vertex_storage` | the off-screen strips with [`STORAGE_CHAIN`] / 4 `vec4`s of the instance's data read from a storage buffer per vertex | a storage-buffer word of a vertex shader |
+//! | `compute_storage` | the spring update reading [`STORAGE_CHAIN`] / 4 more elements, each a workgroup's width along (the next invocation reads the next element) | a storage-buffer word of a compute shader |
 //! | `compute_barriers` | the spring update of the element [`BARRIER_CHAIN`] / 2 neighbours along, passed through workgroup memory with a barrier before and after each read | a compute invocation at a barrier |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
@@ -147,6 +149,10 @@ pub const ARITHMETIC_CHAIN: u32 = 256;
 /// Workgroup barriers of one invocation of the `compute_barriers` workload (`cs_barriers`:
 /// four exchanges with the neighbour, two barriers each).
 pub const BARRIER_CHAIN: u32 = 8;
+/// Storage-buffer words the `compute_storage` workload reads an invocation beyond the spring
+/// update's own (`cs_storage`: 8 more `vec4`s), and the `vertex_storage` strips a vertex
+/// (`vs_storage`).
+pub const STORAGE_CHAIN: u32 = 32;
 /// Transcendentals of one invocation of the strips' vertex shader (`blade_vertex`: the
 /// facing's `cos` and `sin`, the sway's `sin`).
 pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
@@ -184,6 +190,12 @@ pub enum Shape {
     LoadStrips {
         /// Whether the texels loaded are of the floating-point texture.
         float: bool,
+        /// Instances.
+        instances: u32,
+    },
+    /// `instances` off-screen blade strips whose vertex shader also reads [`STORAGE_CHAIN`]
+    /// words of its instance's data from a storage buffer, in one instanced draw.
+    StorageStrips {
         /// Instances.
         instances: u32,
     },
@@ -281,6 +293,8 @@ pub enum Chain {
     Arithmetic,
     /// [`BARRIER_CHAIN`] workgroup barriers.
     Barriers,
+    /// [`STORAGE_CHAIN`] more words read from the storage buffer.
+    Storage,
 }
 
 /// One sample's workload.
@@ -303,11 +317,12 @@ pub fn dispatch_grid(groups: u32) -> (u32, u32) {
 
 impl Chain {
     /// Every chain, in declaration order (`chain as usize` is its position).
-    pub const ALL: [Self; 4] = [
+    pub const ALL: [Self; 5] = [
         Self::None,
         Self::Transcendental,
         Self::Arithmetic,
         Self::Barriers,
+        Self::Storage,
     ];
 
     /// The compute entry point of the spring update with this chain.
@@ -317,6 +332,7 @@ impl Chain {
             Self::Transcendental => "cs_math",
             Self::Arithmetic => "cs_arithmetic",
             Self::Barriers => "cs_barriers",
+            Self::Storage => "cs_storage",
         }
     }
 }
@@ -365,6 +381,15 @@ impl Workload {
                     float_texture_loads: float,
                     vertex_texture_loads: normalised,
                     vertex_float_texture_loads: float,
+                    ..base
+                }
+            }
+            Shape::StorageStrips { instances } => {
+                let base = self.offscreen_strips(instances, size);
+                let ops = shader_ops("vs_storage");
+                Work {
+                    vertex_arithmetic: base.vertex_invocations * ops.arithmetic as f64,
+                    vertex_storage: base.vertex_invocations * ops.storage as f64,
                     ..base
                 }
             }
@@ -471,6 +496,7 @@ impl Workload {
                     compute_arithmetic: invocations * arithmetic(chain.compute_entry()),
                     compute_barriers: invocations
                         * shader_ops(chain.compute_entry()).barriers as f64,
+                    compute_storage: invocations * shader_ops(chain.compute_entry()).storage as f64,
                     ..none
                 }
             }
@@ -539,6 +565,9 @@ impl Workload {
             },
             Shape::LoadStrips { float, instances } => Shape::LoadStrips {
                 float,
+                instances: instances.saturating_mul(k),
+            },
+            Shape::StorageStrips { instances } => Shape::StorageStrips {
                 instances: instances.saturating_mul(k),
             },
             Shape::MathLayers { layers } => Shape::MathLayers {
@@ -703,6 +732,20 @@ pub fn families() -> Vec<Workload> {
             shape: Shape::Compute {
                 groups: 512,
                 chain: Chain::Barriers,
+            },
+        },
+        Workload {
+            name: "vertex_storage",
+            term: Term::VertexStorage,
+            shape: Shape::StorageStrips { instances: 5_000 },
+        },
+        // Each invocation reads 8 more `vec4`s: about 4 invocations' cost of the spring update.
+        Workload {
+            name: "compute_storage",
+            term: Term::ComputeStorage,
+            shape: Shape::Compute {
+                groups: 1_024,
+                chain: Chain::Storage,
             },
         },
         Workload {
@@ -948,8 +991,34 @@ mod tests {
             "cs_springs",
             "cs_math",
             "cs_barriers",
+            "cs_storage",
+            "vs_storage",
         ] {
             assert!(shader_ops(entry).arithmetic > 0, "{entry}");
+        }
+        // The vertex storage strips read their chain and nothing else costly more than the
+        // plain off-screen strips; no other vertex or fragment shader reads storage.
+        assert_eq!(shader_ops("vs_storage").storage, u64::from(STORAGE_CHAIN));
+        assert_eq!(
+            ShaderOps {
+                arithmetic: 0,
+                storage: 0,
+                ..shader_ops("vs_storage")
+            },
+            ShaderOps {
+                arithmetic: 0,
+                ..shader_ops("vs_offscreen")
+            }
+        );
+        for entry in [
+            "vs_offscreen",
+            "vs_subpixel",
+            "vs_layer",
+            "vs_loads",
+            "fs_opaque",
+            "fs_loads",
+        ] {
+            assert_eq!(shader_ops(entry).storage, 0, "{entry}");
         }
         // The barriers' workload reaches its barriers, and it alone: its exchanges' few
         // operations (the neighbour's index) are counted as any.
@@ -970,6 +1039,29 @@ mod tests {
             },
             ShaderOps {
                 arithmetic: 0,
+                ..shader_ops("cs_springs")
+            }
+        );
+        // Every spring update reads and writes its element's `vec4` (8 words); the storage
+        // workload reads its chain more, and does nothing else costly more.
+        for (i, chain) in Chain::ALL.iter().enumerate() {
+            let storage = shader_ops(chain.compute_entry()).storage;
+            let expected = 8 + if *chain == Chain::Storage {
+                STORAGE_CHAIN
+            } else {
+                0
+            };
+            assert_eq!(storage, u64::from(expected), "chain {i}");
+        }
+        assert_eq!(
+            ShaderOps {
+                arithmetic: 0,
+                storage: 0,
+                ..shader_ops("cs_storage")
+            },
+            ShaderOps {
+                arithmetic: 0,
+                storage: 0,
                 ..shader_ops("cs_springs")
             }
         );

@@ -357,6 +357,8 @@ impl<'g> World<'g> {
             background_vertex_arithmetic: background_ops.map(|f| f.vertex.arithmetic),
             background_fragment_arithmetic: background_ops.map(|f| f.fragment.arithmetic),
             compute_barriers: ops.map(|f| f.compute.barriers),
+            compute_storage: ops.map(|f| f.compute.storage),
+            vertex_storage: ops.map(|f| f.vertex.storage),
             upload_bytes: Some(upload_bytes),
             overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
             grass_pixels: None,

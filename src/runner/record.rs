@@ -187,6 +187,14 @@ pub struct FrameRecord {
     /// invocation at each ([`crate::shaders::ShaderOps::barriers`]).
     #[serde(default)]
     pub compute_barriers: Option<u64>,
+    /// 32-bit words the technique's compute shader invocations read from or wrote to storage
+    /// buffers ([`crate::shaders::ShaderOps::storage`]).
+    #[serde(default)]
+    pub compute_storage: Option<u64>,
+    /// 32-bit words the technique's vertex shader invocations read from storage buffers
+    /// ([`crate::shaders::ShaderOps::storage`]; the core's background shaders read none).
+    #[serde(default)]
+    pub vertex_storage: Option<u64>,
     /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
     /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
     /// [`crate::GpuContext::write_texture`].
@@ -408,6 +416,14 @@ pub struct RunSummary {
     /// Median workgroup barriers reached by the technique's compute shader invocations.
     #[serde(default)]
     pub compute_barriers: Option<u64>,
+    /// Median 32-bit words the technique's compute shader invocations read from or wrote to
+    /// storage buffers.
+    #[serde(default)]
+    pub compute_storage: Option<u64>,
+    /// Median 32-bit words the technique's vertex shader invocations read from storage
+    /// buffers.
+    #[serde(default)]
+    pub vertex_storage: Option<u64>,
     /// Median overdraw: the technique's fragment invocations per target pixel.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -489,6 +505,12 @@ pub struct RunSummary {
     /// Predicted ms of compute shader invocations at workgroup barriers.
     #[serde(default)]
     pub model_compute_barrier_ms: Option<f64>,
+    /// Predicted ms of compute shaders' storage-buffer words.
+    #[serde(default)]
+    pub model_compute_storage_ms: Option<f64>,
+    /// Predicted ms of vertex shaders' storage-buffer words.
+    #[serde(default)]
+    pub model_vertex_storage_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -601,6 +623,8 @@ impl RunSummary {
             fragment_arithmetic: median_u64(&|r| r.fragment_arithmetic),
             compute_arithmetic: median_u64(&|r| r.compute_arithmetic),
             compute_barriers: median_u64(&|r| r.compute_barriers),
+            compute_storage: median_u64(&|r| r.compute_storage),
+            vertex_storage: median_u64(&|r| r.vertex_storage),
             overdraw: median(&|r| r.overdraw),
             fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
@@ -633,6 +657,8 @@ impl RunSummary {
             model_fragment_arithmetic_ms: None,
             model_compute_arithmetic_ms: None,
             model_compute_barrier_ms: None,
+            model_compute_storage_ms: None,
+            model_vertex_storage_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -863,6 +889,8 @@ mod tests {
             background_vertex_arithmetic: None,
             background_fragment_arithmetic: None,
             compute_barriers: None,
+            compute_storage: None,
+            vertex_storage: None,
             upload_bytes: None,
             overdraw: None,
             grass_pixels: None,

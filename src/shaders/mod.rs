@@ -133,6 +133,7 @@ mod tests {
                 // alpha test (1).
                 arithmetic: 7,
                 barriers: 0,
+                storage: 0,
             })
         );
         // An unparsable source has neither.

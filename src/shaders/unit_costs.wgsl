@@ -17,6 +17,8 @@ struct Params {
 // (`FLOAT_SAMPLE_FORMAT`), `R32Float` for the loads (`FLOAT_LOAD_FORMAT`, as the terrain maps).
 @group(1) @binding(4) var fetched_float: texture_2d<f32>;
 @group(1) @binding(5) var fetched_r32: texture_2d<f32>;
+// Per-instance data the `vertex_storage` strips' vertices read (hashed `vec4`s, 4 MiB).
+@group(1) @binding(6) var<storage, read> instance_data: array<vec4<f32>>;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -248,6 +250,23 @@ fn vs_float_loads(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32
     return vertex_loads32(v, i, fetched_r32);
 }
 
+// Storage reads in the vertex stage: the off-screen strip whose vertex also reads 8 `vec4`s
+// of its instance's data (STORAGE_CHAIN words), from 8 arrays of 32 768 elements laid end to
+// end, as a pulled blade's vertex reads its blade's root, looks and curve; their sum sets the
+// depth (clamped into the clip volume: still off screen, still rejected).
+fn instance_word(i: u32, j: u32) -> vec4<f32> {
+    return instance_data[(i % 32768u + j * 32768u) % arrayLength(&instance_data)];
+}
+
+@vertex
+fn vs_storage(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    var out = offscreen_vertex(v, i);
+    let s = instance_word(i, 0u) + instance_word(i, 1u) + instance_word(i, 2u) + instance_word(i, 3u)
+        + instance_word(i, 4u) + instance_word(i, 5u) + instance_word(i, 6u) + instance_word(i, 7u);
+    out.position.z = clamp(out.position.z + 1e-3 * s.x, 0.0, 1.0);
+    return out;
+}
+
 // Filtered samples: 8 trilinear `textureSample`s of `t` per fragment (SAMPLES_PER_FRAGMENT),
 // the texture minified 2.5:1 at any target size (2.5 x 512 texels over the screen's width,
 // the layer's world x spanning 20 m: between mip levels 1 and 2, as far grass textures are),
@@ -289,6 +308,25 @@ fn cs_springs(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgro
 
 // The `compute_barriers` workload's exchange: each invocation's element, read back by its
 // neighbour.
+// Element `k`'s `j`-th neighbour a workgroup's width along: invocation after invocation reads
+// element after element, as jahrmann's culling pass reads each blade's arrays.
+fn neighbour(k: u32, j: u32) -> vec4<f32> {
+    return springs[(k + j * 64u) % arrayLength(&springs)];
+}
+
+// The spring update pulled towards the mean of 8 more elements' states: 8 more `vec4` reads
+// from the storage buffer an invocation.
+@compute @workgroup_size(64)
+fn cs_storage(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    let k = i % arrayLength(&springs);
+    let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
+    let near = neighbour(k, 1u) + neighbour(k, 2u) + neighbour(k, 3u) + neighbour(k, 4u);
+    let far = neighbour(k, 5u) + neighbour(k, 6u) + neighbour(k, 7u) + neighbour(k, 8u);
+    let p = springs[k];
+    springs[k] = p + (rest + (near + far) * 0.125 - 2.0 * p) * 0.05;
+}
+
 var<workgroup> exchanged: array<vec4<f32>, 64>;
 
 // One exchange between neighbours: every invocation stores its value, waits for the whole

@@ -151,7 +151,8 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 /// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times, the same two of
 /// floating-point texels, 5k strips loading 32 floating-point texels a vertex, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
-/// more scalar operations each, 16k compute invocations reaching 8 barriers each, 300 draws,
+/// more scalar operations each, 16k compute invocations reaching 8 barriers each, 32k reading
+/// 32 more storage words each, 5k strips reading 32 storage words a vertex, 300 draws,
 /// 1M compute invocations, 8 MiB uploaded.
 fn held_out_mix() -> Vec<Workload> {
     let w = |name, term, shape| Workload { name, term, shape };
@@ -261,6 +262,19 @@ fn held_out_mix() -> Vec<Workload> {
                 groups: 256,
                 chain: Chain::Barriers,
             },
+        ),
+        w(
+            "compute storage",
+            Term::ComputeStorage,
+            Shape::Compute {
+                groups: 512,
+                chain: Chain::Storage,
+            },
+        ),
+        w(
+            "vertex storage",
+            Term::VertexStorage,
+            Shape::StorageStrips { instances: 5_000 },
         ),
         w("draws", Term::Draw, Shape::Draws { draws: 300 }),
         w(

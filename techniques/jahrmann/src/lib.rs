@@ -118,6 +118,13 @@
 //! dominates wherever many blades survive; the compute pass is timed by wall clock only (lavapipe's
 //! compute timestamps are wrong: `shared/PLATFORM.md`).
 //!
+//! What a CPU rasteriser charges for the pulling: each vertex reads 17 words from storage buffers
+//! (the blade's draw-list entry, root, looks and the two curve points) and each compute invocation
+//! moves 42 (four `vec4`s of the blade read, two written, the ranges' search, the counters), and
+//! lavapipe moves them a lane at a time: 0.78-0.80 ns a word in the vertex stage and 0.37-0.38 in
+//! compute (`grassbench calibrate` at 320x180, 2026-12-05), 5.3 and 1.7 ms of the meadow's 320x180
+//! frame, which the cost model prices since its storage terms (`results/cost_model/README.md`).
+//!
 //! ## Known artifacts
 //! - The far level's widened blades are coarser: beyond the hand-over, four times fewer blades four
 //!   times wider show as larger patches of colour; inside the band, tile edges show where

@@ -174,6 +174,8 @@ impl Config {
                 r.model_fragment_arithmetic_ms.unwrap_or(0.0),
                 r.model_compute_arithmetic_ms.unwrap_or(0.0),
                 r.model_compute_barrier_ms.unwrap_or(0.0),
+                r.model_compute_storage_ms.unwrap_or(0.0),
+                r.model_vertex_storage_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

@@ -373,6 +373,8 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU fragment arithmetic",
     "GPU compute arithmetic",
     "GPU compute barriers",
+    "GPU compute storage",
+    "GPU vertex storage",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
