@@ -110,7 +110,7 @@ pub enum Term {
     /// vertices rather than fed as vertex attributes. Not among the units issue 20 lists: the
     /// vertex term is calibrated on strips whose vertices read nothing from memory, and
     /// jahrmann's vertices read 17 words each (the blade's index, its root, looks and
-    /// curve), perbet's 25 (its patch's and wind primitives' data).
+    /// curve), perbet's 12-26 (its patch's and wind primitives' data).
     VertexStorage,
 }
 
