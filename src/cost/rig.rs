@@ -63,15 +63,18 @@ impl<'g> Rig<'g> {
                 workloads::SHADER,
                 &workloads::texture_formats(),
             );
-            let uniform_entry = |binding, visibility| wgpu::BindGroupLayoutEntry {
+            let buffer_entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
                 binding,
                 visibility,
                 ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
+                    ty,
                     has_dynamic_offset: false,
                     min_binding_size: None,
                 },
                 count: None,
+            };
+            let uniform_entry = |binding, visibility| {
+                buffer_entry(binding, visibility, wgpu::BufferBindingType::Uniform)
             };
             let layout0 = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("unit costs globals"),
@@ -89,26 +92,17 @@ impl<'g> Rig<'g> {
                             | wgpu::ShaderStages::FRAGMENT
                             | wgpu::ShaderStages::COMPUTE,
                     ),
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 1,
-                        visibility: wgpu::ShaderStages::COMPUTE,
-                        ty: wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Storage { read_only: false },
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                        count: None,
-                    },
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 6,
-                        visibility: wgpu::ShaderStages::VERTEX,
-                        ty: wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Storage { read_only: true },
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                        count: None,
-                    },
+                    buffer_entry(
+                        1,
+                        wgpu::ShaderStages::COMPUTE,
+                        wgpu::BufferBindingType::Storage { read_only: false },
+                    ),
+                    // The `vertex_storage` strips' instance data.
+                    buffer_entry(
+                        6,
+                        wgpu::ShaderStages::VERTEX,
+                        wgpu::BufferBindingType::Storage { read_only: true },
+                    ),
                     wgpu::BindGroupLayoutEntry {
                         binding: 3,
                         visibility: wgpu::ShaderStages::FRAGMENT,

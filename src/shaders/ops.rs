@@ -360,7 +360,11 @@ fn function_ops(
             arithmetic,
             ..ShaderOps::default()
         },
-        |acc, (_, e)| match e {
+        |acc, (h, e)| match e {
+            naga::Expression::Load { pointer } if is_storage(types, info, *pointer) => ShaderOps {
+                storage: acc.storage + words(types, info, h),
+                ..acc
+            },
             naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
                 float_samples: acc.float_samples + 1,
                 ..acc
@@ -384,17 +388,9 @@ fn function_ops(
             _ => acc,
         },
     );
-    let loaded: u64 = function
-        .expressions
-        .iter()
-        .filter(|(_, e)| {
-            matches!(e, naga::Expression::Load { pointer } if is_storage(types, info, *pointer))
-        })
-        .map(|(h, _)| words(types, info, h))
-        .sum();
     let mut calls: Vec<CallKey> = Vec::new();
     let mut barriers = 0;
-    let mut storage = loaded;
+    let mut storage = own.storage;
     super::walk::for_each_statement(&function.body, &mut |s| {
         barriers += match s {
             naga::Statement::ControlBarrier(_) => 1,
