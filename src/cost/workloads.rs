@@ -96,7 +96,11 @@ pub fn shader_ops(entry: &str) -> ShaderOps {
     OPS.get_or_init(|| {
         naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
             .map(|m| {
-                crate::shaders::entry_ops(&m, &crate::shaders::float_textures(&texture_formats()))
+                crate::shaders::entry_ops(
+                    &m,
+                    &crate::shaders::float_textures(&texture_formats()),
+                    &[],
+                )
             })
             .unwrap_or_default()
     })
@@ -852,8 +856,11 @@ mod tests {
         // advance.
         let wgsl = crate::shaders::compose(SHADER);
         let module = naga::front::wgsl::parse_str(&wgsl).unwrap();
-        let ops =
-            crate::shaders::entry_ops(&module, &crate::shaders::float_textures(&texture_formats()));
+        let ops = crate::shaders::entry_ops(
+            &module,
+            &crate::shaders::float_textures(&texture_formats()),
+            &[],
+        );
         // Every texture the shader declares is named with its format (the prelude's by the
         // core), at the binding the rig binds it to.
         let mut named: Vec<&str> = texture_formats()

@@ -168,7 +168,8 @@ pub struct FrameRecord {
     #[serde(default)]
     pub background_fragment_transcendentals: Option<u64>,
     /// Scalar arithmetic operations of the technique's vertex shaders, counted the same way
-    /// ([`crate::shaders::ShaderOps::arithmetic`]: a loop's body once).
+    /// ([`crate::shaders::ShaderOps::arithmetic`]: a loop's body once per trip where its
+    /// pipeline fixes the trips, once where the data decide).
     #[serde(default)]
     pub vertex_arithmetic: Option<u64>,
     /// Scalar arithmetic operations of the technique's fragment shaders.

@@ -74,7 +74,7 @@ impl Background {
                 multiview_mask: None,
                 cache: None,
             });
-            RenderPipeline::from_raw(raw, PipelineCost::of(kind, &module, vs, fs))
+            RenderPipeline::from_raw(raw, PipelineCost::of(kind, &module, (vs, fs), &[]))
         };
         let (list, strip) = (
             wgpu::PrimitiveTopology::TriangleList,

@@ -54,13 +54,18 @@ impl FragmentKind {
     }
 }
 
-/// A shader module created by [`super::module`]: the wgpu module (what `Deref` gives) and
-/// which fragment entry points can discard.
+/// A shader module created by [`super::module`]: the wgpu module (what `Deref` gives), which
+/// fragment entry points can discard, and what its entry points' invocations do (counted
+/// per pipeline, whose overridable constants can set its loops' trips).
 #[derive(Debug)]
 pub struct Module {
     pub(super) raw: wgpu::ShaderModule,
     pub(super) discarding: Vec<String>,
-    pub(super) ops: Vec<(String, super::ShaderOps)>,
+    /// The parsed module and its validation (`None`: naga could not parse it, the device
+    /// reports why), what [`Module::ops`] counts in.
+    pub(super) parsed: Option<super::Parsed>,
+    /// Its textures of floating-point texels ([`super::float_textures`]).
+    pub(super) float: Vec<String>,
 }
 
 impl std::ops::Deref for Module {
@@ -77,14 +82,19 @@ impl Module {
         self.discarding.iter().any(|e| e == entry)
     }
 
-    /// The costly operations (texture fetches, transcendentals) of one invocation of entry
-    /// point `entry` (none for an unknown entry: the device reports it when the pipeline is
-    /// created).
-    pub fn ops(&self, entry: &str) -> super::ShaderOps {
-        self.ops
-            .iter()
+    /// The costly operations (texture fetches, transcendentals, ...) of one invocation of
+    /// entry point `entry` in a pipeline with these overridable `constants` (as
+    /// [`super::PipelineSpec::constants`]; its loops bounded by them run that many times);
+    /// none for an unknown entry: the device reports it when the pipeline is created.
+    pub fn ops(&self, entry: &str, constants: &[(&str, f64)]) -> super::ShaderOps {
+        let Some((module, info)) = &self.parsed else {
+            return super::ShaderOps::default();
+        };
+        let float: Vec<&str> = self.float.iter().map(String::as_str).collect();
+        super::ops::count_entries(module, info.as_ref(), &float, constants)
+            .into_iter()
             .find(|(e, _)| e == entry)
-            .map(|(_, f)| *f)
+            .map(|(_, f)| f)
             .unwrap_or_default()
     }
 }

@@ -122,7 +122,7 @@ impl Taint {
 }
 
 /// The local variable a pointer expression points into (`v`, `v[i]`, `v.x`), if any.
-fn root_local(
+pub(super) fn root_local(
     function: &naga::Function,
     mut pointer: naga::Handle<naga::Expression>,
 ) -> Option<naga::Handle<naga::LocalVariable>> {

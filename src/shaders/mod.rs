@@ -10,6 +10,7 @@ mod layout;
 mod loops;
 mod ops;
 pub mod pipeline;
+mod trips;
 mod walk;
 
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
@@ -67,14 +68,35 @@ pub fn module_with_formats(
     formats: &[(&str, wgpu::TextureFormat)],
 ) -> Module {
     let composed = compose(source);
-    let (discarding, ops) = analyse(&composed, &float_textures(formats));
+    let (discarding, parsed) = analyse(&composed);
     Module {
         raw: device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
             source: wgpu::ShaderSource::Wgsl(composed.into()),
         }),
         discarding,
-        ops,
+        parsed,
+        float: float_textures(formats)
+            .into_iter()
+            .map(String::from)
+            .collect(),
+    }
+}
+
+/// A parsed shader and its validation ([`ops::validate`]).
+type Parsed = (naga::Module, Option<naga::valid::ModuleInfo>);
+
+/// What [`module`] reads off a composed shader, naga parsing it once: the fragment entry points
+/// that can discard, and the parsed and validated module its pipelines' operations are
+/// counted in ([`Module::ops`]). A source naga cannot parse has neither: the device reports
+/// its errors when the module is created.
+fn analyse(wgsl: &str) -> (Vec<String>, Option<Parsed>) {
+    match naga::front::wgsl::parse_str(wgsl) {
+        Ok(parsed) => {
+            let info = ops::validate(&parsed);
+            (discarding_fragment_entries(&parsed), Some((parsed, info)))
+        }
+        Err(_) => (Vec::new(), None),
     }
 }
 
@@ -88,27 +110,23 @@ pub fn float_textures<'a>(formats: &[(&'a str, wgpu::TextureFormat)]) -> Vec<&'a
         .collect()
 }
 
-/// What [`module`] reads off a composed shader, naga parsing it once: the fragment entry points
-/// that can discard and every entry point's costly operations (the fetches of the textures
-/// named in `float` counted as floating-point ones). A source naga cannot parse has
-/// neither: the device reports its errors when the module is created.
-fn analyse(wgsl: &str, float: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
-    match naga::front::wgsl::parse_str(wgsl) {
-        Ok(parsed) => (
-            discarding_fragment_entries(&parsed),
-            entry_ops(&parsed, float),
-        ),
-        Err(_) => (Vec::new(), Vec::new()),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// The discarding entries and every entry's operations of `wgsl` (none where it does not
+    /// parse), the textures named in `float` floating-point.
+    fn analysed(wgsl: &str, float: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
+        let (discarding, parsed) = analyse(wgsl);
+        let ops = parsed
+            .map(|(m, info)| ops::count_entries(&m, info.as_ref(), float, &[]))
+            .unwrap_or_default();
+        (discarding, ops)
+    }
+
     #[test]
     fn a_shader_is_read_once_for_discards_and_ops() {
-        let (discarding, ops) = analyse(
+        let (discarding, ops) = analysed(
             &compose(
                 "@group(1) @binding(0) var t: texture_2d<f32>;
              @fragment fn cut(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
@@ -137,7 +155,7 @@ mod tests {
             })
         );
         // An unparsable source has neither.
-        assert_eq!(analyse("fn broken(", &[]), (Vec::new(), Vec::new()));
+        assert_eq!(analysed("fn broken(", &[]), (Vec::new(), Vec::new()));
     }
 
     #[test]
@@ -156,7 +174,7 @@ mod tests {
             ["height_map", "density_map", "wind_map", "blades"]
         );
         // A prelude function's bilinear height: four loads of floating-point texels.
-        let (_, ops) = analyse(
+        let (_, ops) = analysed(
             &compose(
                 "@vertex fn vs() -> @builtin(position) vec4<f32> {
                      return vec4(terrain_height(vec2(1.0, 2.0)));

@@ -10,10 +10,14 @@
 //! (`crate::cost`): a blade's vertex shader that bends it segment by segment costs several
 //! times a vertex that only projects.
 //!
-//! The count is static: a call counts its callee's operations once per call site, a loop's
-//! body once, and both sides of a branch. So it is exact for straight-line shaders (most of
-//! the harness's), an upper bound where a branch skips work (debug views, early returns) and
-//! a lower bound where a loop runs its body more than once (the reference's segment walk).
+//! The count is static: a call counts its callee's operations once per call site, both sides
+//! of a branch, and a loop's body as many times as the loop runs where that is known when the
+//! pipeline is made (a counter against a constant or a pipeline-overridable constant:
+//! [`super::trips`]), once where the data decide. So it is exact for straight-line shaders
+//! and loops of fixed length (most of the harness's), an upper bound where a branch skips
+//! work (debug views, early returns, a loop left early) and a lower bound where a loop whose
+//! trips the data decide runs more than once (the reference's segment walk up to its
+//! vertex's level, jahrmann's binary search over its ranges).
 //! On lavapipe, whose SIMD shaders run both sides of a branch for a whole batch, a branch's
 //! both sides are what is paid (the reference's early return for culled blades saved
 //! nothing: `techniques/reference/src/lib.rs`), so there the bound is the cost. That holds for
@@ -159,20 +163,41 @@ pub fn is_float(format: wgpu::TextureFormat) -> bool {
 /// The costly operations of every entry point of `module` (a parsed, composed shader), by
 /// name; the fetches of the textures named in `float` (global variables bound to textures of
 /// floating-point texels, [`is_float`]) counted as [`ShaderOps::float_loads`] and
-/// [`ShaderOps::float_samples`].
-pub fn entry_ops(module: &naga::Module, float: &[&str]) -> Vec<(String, ShaderOps)> {
-    // The expressions' types, which say how many components each operates on; a module the
-    // validator rejects (the device will say why) counts one per expression.
-    let info = naga::valid::Validator::new(
+/// [`ShaderOps::float_samples`]; the loops bounded by pipeline-overridable constants run as
+/// many times as `constants` (the pipeline's values, by name: [`super::PipelineSpec::constants`])
+/// or the constants' defaults say ([`super::trips`]).
+pub fn entry_ops(
+    module: &naga::Module,
+    float: &[&str],
+    constants: &[(&str, f64)],
+) -> Vec<(String, ShaderOps)> {
+    count_entries(module, validate(module).as_ref(), float, constants)
+}
+
+/// `module`'s expressions' types, which say how many components each operates on; `None` for a
+/// module the validator rejects (the device will say why; the op counter then counts one
+/// component an expression).
+pub(super) fn validate(module: &naga::Module) -> Option<naga::valid::ModuleInfo> {
+    naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
     )
     .validate(module)
-    .ok();
+    .ok()
+}
+
+/// [`entry_ops`] for a module already validated (`info`: [`validate`]'s answer).
+pub(super) fn count_entries(
+    module: &naga::Module,
+    info: Option<&naga::valid::ModuleInfo>,
+    float: &[&str],
+    constants: &[(&str, f64)],
+) -> Vec<(String, ShaderOps)> {
     let types = Types {
         module,
-        info: info.as_ref(),
+        info,
         float,
+        constants,
     };
     let mut memo = HashMap::new();
     module
@@ -180,7 +205,7 @@ pub fn entry_ops(module: &naga::Module, float: &[&str]) -> Vec<(String, ShaderOp
         .iter()
         .enumerate()
         .map(|(i, e)| {
-            let function_info = info.as_ref().map(|m| m.get_entry_point(i));
+            let function_info = info.map(|m| m.get_entry_point(i));
             (
                 e.name.clone(),
                 function_ops(&types, &e.function, function_info, &mut memo, 0, 0),
@@ -208,12 +233,13 @@ pub fn texture_globals(module: &naga::Module) -> Vec<String> {
     names
 }
 
-/// A module, where it validated its expressions' types, and its textures of floating-point
-/// texels.
+/// A module, where it validated its expressions' types, its textures of floating-point
+/// texels and the values of its pipeline-overridable constants.
 struct Types<'a> {
     module: &'a naga::Module,
     info: Option<&'a naga::valid::ModuleInfo>,
     float: &'a [&'a str],
+    constants: &'a [(&'a str, f64)],
 }
 
 impl Types<'_> {
@@ -350,60 +376,82 @@ fn function_ops(
 ) -> ShaderOps {
     let is_float = |image| types.is_float(function, image, float_args);
     let module = types.module;
+    let trips = super::trips::Trips::new(module, function, types.constants);
+    let trips = |s: &naga::Statement| trips.of(s);
+    // How many times each expression is evaluated an invocation: those a statement emits as
+    // often as that statement runs, the rest (constants, arguments, globals) once.
+    let mut weights = vec![1; function.expressions.len()];
+    super::walk::for_each_weighted(&function.body, 1, &trips, &mut |s, weight| {
+        if let naga::Statement::Emit(range) = s {
+            for h in range.clone() {
+                if let Some(w) = weights.get_mut(h.index()) {
+                    *w = weight;
+                }
+            }
+        }
+    });
+    let weight = |h: naga::Handle<naga::Expression>| weights[h.index()];
     let arithmetic = function
         .expressions
         .iter()
-        .map(|(h, _)| arithmetic_of(types, function, info, h))
+        .map(|(h, _)| arithmetic_of(types, function, info, h) * weight(h))
         .sum();
     let own = function.expressions.iter().fold(
         ShaderOps {
             arithmetic,
             ..ShaderOps::default()
         },
-        |acc, (h, e)| match e {
-            naga::Expression::Load { pointer } if is_storage(types, info, *pointer) => ShaderOps {
-                storage: acc.storage + words(types, info, h),
-                ..acc
-            },
-            naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
-                float_samples: acc.float_samples + 1,
-                ..acc
-            },
-            naga::Expression::ImageSample { .. } => ShaderOps {
-                samples: acc.samples + 1,
-                ..acc
-            },
-            naga::Expression::ImageLoad { image, .. } if is_float(*image) => ShaderOps {
-                float_loads: acc.float_loads + 1,
-                ..acc
-            },
-            naga::Expression::ImageLoad { .. } => ShaderOps {
-                loads: acc.loads + 1,
-                ..acc
-            },
-            naga::Expression::Math { fun, .. } if is_transcendental(*fun) => ShaderOps {
-                transcendentals: acc.transcendentals + 1,
-                ..acc
-            },
-            _ => acc,
+        |acc, (h, e)| {
+            let n = weight(h);
+            match e {
+                naga::Expression::Load { pointer } if is_storage(types, info, *pointer) => {
+                    ShaderOps {
+                        storage: acc.storage + words(types, info, h) * n,
+                        ..acc
+                    }
+                }
+                naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
+                    float_samples: acc.float_samples + n,
+                    ..acc
+                },
+                naga::Expression::ImageSample { .. } => ShaderOps {
+                    samples: acc.samples + n,
+                    ..acc
+                },
+                naga::Expression::ImageLoad { image, .. } if is_float(*image) => ShaderOps {
+                    float_loads: acc.float_loads + n,
+                    ..acc
+                },
+                naga::Expression::ImageLoad { .. } => ShaderOps {
+                    loads: acc.loads + n,
+                    ..acc
+                },
+                naga::Expression::Math { fun, .. } if is_transcendental(*fun) => ShaderOps {
+                    transcendentals: acc.transcendentals + n,
+                    ..acc
+                },
+                _ => acc,
+            }
         },
     );
-    let mut calls: Vec<CallKey> = Vec::new();
+    let mut calls: Vec<(CallKey, u64)> = Vec::new();
     let mut barriers = 0;
     let mut storage = own.storage;
-    super::walk::for_each_statement(&function.body, &mut |s| {
-        barriers += match s {
-            naga::Statement::ControlBarrier(_) => 1,
-            naga::Statement::WorkGroupUniformLoad { .. } => 2,
-            _ => 0,
-        };
-        storage += match s {
-            naga::Statement::Store { pointer, value } if is_storage(types, info, *pointer) => {
-                words(types, info, *value)
-            }
-            naga::Statement::Atomic { pointer, .. } if is_storage(types, info, *pointer) => 2,
-            _ => 0,
-        };
+    super::walk::for_each_weighted(&function.body, 1, &trips, &mut |s, weight| {
+        barriers += weight
+            * match s {
+                naga::Statement::ControlBarrier(_) => 1,
+                naga::Statement::WorkGroupUniformLoad { .. } => 2,
+                _ => 0,
+            };
+        storage += weight
+            * match s {
+                naga::Statement::Store { pointer, value } if is_storage(types, info, *pointer) => {
+                    words(types, info, *value)
+                }
+                naga::Statement::Atomic { pointer, .. } if is_storage(types, info, *pointer) => 2,
+                _ => 0,
+            };
         if let naga::Statement::Call {
             function: callee,
             arguments,
@@ -416,7 +464,7 @@ fn function_ops(
                 .enumerate()
                 .filter(|(_, a)| is_float(**a))
                 .fold(0u64, |m, (i, _)| m | 1 << i);
-            calls.push((*callee, mask));
+            calls.push(((*callee, mask), weight));
         }
     });
     let own = ShaderOps {
@@ -424,7 +472,7 @@ fn function_ops(
         storage,
         ..own
     };
-    calls.into_iter().fold(own, |acc, key| {
+    calls.into_iter().fold(own, |acc, (key, times)| {
         let ops = match memo.get(&key) {
             Some(f) => *f,
             None if depth < MAX_CALL_DEPTH => {
@@ -443,7 +491,7 @@ fn function_ops(
             }
             None => ShaderOps::default(),
         };
-        acc + ops
+        acc + ops.times(times)
     })
 }
 
@@ -492,7 +540,7 @@ mod tests {
     }
 
     fn of_with(name: &str, float: &[&str]) -> ShaderOps {
-        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), float)
+        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), float, &[])
             .into_iter()
             .find(|(n, _)| n == name)
             .map(|(_, f)| f)
@@ -500,7 +548,7 @@ mod tests {
     }
 
     #[test]
-    fn calls_count_per_call_site_and_loops_and_branches_once() {
+    fn calls_count_per_call_site_branches_once_and_loops_per_trip() {
         // Two calls of a two-load function; `sin` and `cos` (`sqrt` and `length` are not
         // transcendental). Arithmetic: each `height` call's `vec2<i32>` sum (2) and scalar
         // sum (1), the two `i32` and one `f32` conversions, the heights' sum, `sqrt`,
@@ -519,23 +567,66 @@ mod tests {
             }
         );
         // tint: 1 sample + height's 2 loads + a `pow`; the branch's sample; the loop body's
-        // sample and `exp2` once. Arithmetic: tint's two `vec4` products (8) and height's 3;
-        // the branch's test (1) and `vec4` sum (4); the loop's test and step (2) and its
-        // body's `vec4` product and sum (8), once.
+        // sample and `exp2` four times (its trips). Arithmetic: tint's two `vec4` products (8)
+        // and height's 3; the branch's test (1) and `vec4` sum (4); the loop's test and step
+        // (2) and its body's `vec4` product and sum (8), four times.
         assert_eq!(
             of("fs"),
             ShaderOps {
                 loads: 2,
                 float_loads: 0,
-                samples: 3,
+                samples: 1 + 1 + 4,
                 float_samples: 0,
-                transcendentals: 2,
-                arithmetic: 11 + 5 + 2 + 8,
+                transcendentals: 1 + 4,
+                arithmetic: 11 + 5 + 4 * (2 + 8),
                 barriers: 0,
                 storage: 0,
             }
         );
         assert_eq!(of("plain"), ShaderOps::default());
+    }
+
+    #[test]
+    fn loops_bounded_by_overrides_count_the_pipelines_trips_and_data_bound_ones_once() {
+        let module = naga::front::wgsl::parse_str(
+            "override SHELLS: u32 = 4u;
+             @group(0) @binding(0) var<storage, read_write> out: array<vec4<f32>>;
+             @group(0) @binding(1) var<storage, read> bounds: array<u32>;
+             fn shell(k: u32) -> f32 { return sin(f32(k)); }
+             @compute @workgroup_size(64)
+             fn cs(@builtin(global_invocation_id) id: vec3<u32>) {
+                 for (var k = 0u; k < SHELLS; k++) {
+                     out[k] = vec4(shell(k));
+                 }
+                 for (var k = 0u; k < bounds[id.x]; k++) {
+                     out[id.x] = vec4(cos(f32(k)));
+                 }
+             }",
+        )
+        .unwrap();
+        let cs = |constants: &[(&str, f64)]| {
+            entry_ops(&module, &[], constants)
+                .into_iter()
+                .find(|(n, _)| n == "cs")
+                .map(|(_, o)| o)
+                .unwrap_or_default()
+        };
+        // Each trip of the first loop: its test and step, and a call of `shell` (a
+        // conversion and a `sin`), a `vec4` stored. The second loop's trips are the data's:
+        // counted once, its test, step, conversion and `cos`, its bound's word and its `vec4`.
+        let of_shells = |shells: u64| ShaderOps {
+            transcendentals: shells + 1,
+            arithmetic: 3 * shells + 3,
+            storage: 4 * shells + 1 + 4,
+            ..ShaderOps::default()
+        };
+        assert_eq!(cs(&[]), of_shells(4), "the override's default");
+        assert_eq!(cs(&[("SHELLS", 16.0)]), of_shells(16));
+        assert_eq!(
+            cs(&[("SHELLS", 0.0)]),
+            of_shells(1),
+            "the exit test still runs"
+        );
     }
 
     #[test]
@@ -559,11 +650,11 @@ mod tests {
              fn plain(@builtin(local_invocation_index) lid: u32) { cells[lid] = lid; }",
         )
         .unwrap();
-        let ops = entry_ops(&module, &[]);
+        let ops = entry_ops(&module, &[], &[]);
         let barriers = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, o)| o.barriers);
-        // Two calls of a one-barrier function, a loop's body once, and a uniform load's
-        // barrier before and after it.
-        assert_eq!(barriers("cs"), Some(2 + 1 + 2));
+        // Two calls of a one-barrier function, a loop's body four times, and a uniform
+        // load's barrier before and after it.
+        assert_eq!(barriers("cs"), Some(2 + 4 + 2));
         assert_eq!(barriers("plain"), Some(0));
     }
 
@@ -592,7 +683,7 @@ mod tests {
              fn plain(@builtin(local_invocation_index) lid: u32) { cells[lid] = lid; }",
         )
         .unwrap();
-        let ops = entry_ops(&module, &[]);
+        let ops = entry_ops(&module, &[], &[]);
         let storage = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, o)| o.storage);
         // `ids[lid]` 1; `item` twice, a `vec4` each, 8; the `vec4` stored 4; the atomic add 2
         // (read and write); the component stored 1 and `block.n` read 1; the atomic load 1;
@@ -613,7 +704,7 @@ mod tests {
                 loads: 0,
                 float_loads: 2,
                 samples: 0,
-                float_samples: 3,
+                float_samples: 6,
                 ..normalised
             }
         );

@@ -30,7 +30,8 @@ pub struct PipelineSpec<'a> {
     pub targets: &'a [Option<wgpu::ColorTargetState>],
     /// Values of the module's pipeline-overridable constants (WGSL `override`), by name: the
     /// counts fixed when the technique is created that its loops run to, so no driver
-    /// re-specialises the shader when a uniform changes ([`super::uniform_bound_loops`]).
+    /// re-specialises the shader when a uniform changes ([`super::uniform_bound_loops`]),
+    /// and the op counter counts those loops' bodies once per trip (`shaders::trips`).
     pub constants: &'a [(&'a str, f64)],
 }
 
@@ -54,25 +55,27 @@ pub struct PipelineCost {
 
 impl PipelineCost {
     /// The cost of a pipeline whose fragments are of `fragments`' kind, with the operations
-    /// of `module`'s entry points `vertex` and `fragment`.
+    /// of `module`'s entry points `vertex` and `fragment` under the pipeline's overridable
+    /// `constants` ([`PipelineSpec::constants`]).
     pub fn of(
         fragments: FragmentKind,
         module: &super::Module,
-        vertex: &str,
-        fragment: &str,
+        (vertex, fragment): (&str, &str),
+        constants: &[(&str, f64)],
     ) -> Self {
         Self {
             fragments,
-            vertex_ops: module.ops(vertex),
-            fragment_ops: module.ops(fragment),
+            vertex_ops: module.ops(vertex, constants),
+            fragment_ops: module.ops(fragment, constants),
             compute_ops: ShaderOps::default(),
         }
     }
 
-    /// The cost of a compute pipeline running `module`'s entry point `entry`.
-    pub fn compute(module: &super::Module, entry: &str) -> Self {
+    /// The cost of a compute pipeline running `module`'s entry point `entry` under its
+    /// overridable `constants`.
+    pub fn compute(module: &super::Module, entry: &str, constants: &[(&str, f64)]) -> Self {
         Self {
-            compute_ops: module.ops(entry),
+            compute_ops: module.ops(entry, constants),
             ..Self::default()
         }
     }
@@ -169,7 +172,7 @@ pub fn compute_pipeline(
     });
     ComputePipeline {
         raw,
-        cost: PipelineCost::compute(module, entry),
+        cost: PipelineCost::compute(module, entry, constants),
     }
 }
 
@@ -244,7 +247,12 @@ pub fn render_pipeline(device: &wgpu::Device, spec: &PipelineSpec<'_>) -> Render
     });
     RenderPipeline {
         raw,
-        cost: PipelineCost::of(kind, spec.module, spec.vertex, spec.fragment),
+        cost: PipelineCost::of(
+            kind,
+            spec.module,
+            (spec.vertex, spec.fragment),
+            spec.constants,
+        ),
     }
 }
 

@@ -64,6 +64,24 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A loop bounded by a pipeline-overridable constant is counted for as many trips as the
+/// pipeline's value says (`shaders::trips`): bakay's bend pass walks up its `SHELLS` shells,
+/// writing each shell's offset (a `vec2`, 2 words) after reading its vertex's ground point
+/// and normal (6) and writing its wind (a `vec4`, 4), so its storage words an invocation
+/// follow the shell count the technique was created with.
+#[test]
+fn loops_count_the_trips_their_pipeline_sets() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    for shells in [8u64, 16] {
+        let b = frame_of(&gpu, "bakay", &format!("shells = {shells}"))?;
+        let cs = b.compute_invocations.context("compute")?;
+        let words = b.compute_storage.context("compute storage words")?;
+        assert!(cs > 0, "{b:?}");
+        assert_eq!(words, cs * (6 + 4 + 2 * shells), "{shells} shells");
+    }
+    Ok(())
+}
+
 /// A compute pipeline's texture fetches are counted like a render pipeline's (issue 20 §3):
 /// jahrmann's simulation reads the wind texture for every blade, so its floating-point texel
 /// loads (the wind is `Rgba32Float`) are at least its compute invocations times the loads
@@ -72,7 +90,7 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
 fn compute_shaders_texture_fetches_are_counted() -> anyhow::Result<()> {
     let gpu = gpu()?;
     let module = grassbench::shaders::module(&gpu.device, "jahrmann", grassbench_jahrmann::SHADER);
-    let per_invocation = module.ops("cs_simulate").float_loads;
+    let per_invocation = module.ops("cs_simulate", &[]).float_loads;
     assert!(
         per_invocation >= 4,
         "cs_simulate's wind lookup is bilinear: {per_invocation} loads"

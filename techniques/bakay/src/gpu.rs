@@ -358,7 +358,7 @@ mod tests {
         // The op counter counts both sides of a branch, as a SIMD rasteriser runs them: an
         // entry point that chose its lookup by a branch on the mode would count 4.
         let module = naga::front::wgsl::parse_str(&shaders::compose(SHADER)).unwrap();
-        let ops = shaders::entry_ops(&module, &[]);
+        let ops = shaders::entry_ops(&module, &[], &[]);
         for lod in [Lod::MinorAxis, Lod::Hardware] {
             let entry = fragment_entry(lod);
             let samples = ops.iter().find(|(e, _)| e == entry).map(|(_, o)| o.samples);
