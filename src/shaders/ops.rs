@@ -390,50 +390,41 @@ fn function_ops(
             }
         }
     });
-    let weight = |h: naga::Handle<naga::Expression>| weights[h.index()];
-    let arithmetic = function
+    let one = |h: naga::Handle<naga::Expression>, e: &naga::Expression| {
+        let none = ShaderOps::default();
+        let fetched = match e {
+            naga::Expression::Load { pointer } if is_storage(types, info, *pointer) => ShaderOps {
+                storage: words(types, info, h),
+                ..none
+            },
+            naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
+                float_samples: 1,
+                ..none
+            },
+            naga::Expression::ImageSample { .. } => ShaderOps { samples: 1, ..none },
+            naga::Expression::ImageLoad { image, .. } if is_float(*image) => ShaderOps {
+                float_loads: 1,
+                ..none
+            },
+            naga::Expression::ImageLoad { .. } => ShaderOps { loads: 1, ..none },
+            naga::Expression::Math { fun, .. } if is_transcendental(*fun) => ShaderOps {
+                transcendentals: 1,
+                ..none
+            },
+            _ => none,
+        };
+        ShaderOps {
+            arithmetic: arithmetic_of(types, function, info, h),
+            ..fetched
+        }
+    };
+    // Each expression's operations, as many times as it is evaluated.
+    let own = function
         .expressions
         .iter()
-        .map(|(h, _)| arithmetic_of(types, function, info, h) * weight(h))
-        .sum();
-    let own = function.expressions.iter().fold(
-        ShaderOps {
-            arithmetic,
-            ..ShaderOps::default()
-        },
-        |acc, (h, e)| {
-            let n = weight(h);
-            match e {
-                naga::Expression::Load { pointer } if is_storage(types, info, *pointer) => {
-                    ShaderOps {
-                        storage: acc.storage + words(types, info, h) * n,
-                        ..acc
-                    }
-                }
-                naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
-                    float_samples: acc.float_samples + n,
-                    ..acc
-                },
-                naga::Expression::ImageSample { .. } => ShaderOps {
-                    samples: acc.samples + n,
-                    ..acc
-                },
-                naga::Expression::ImageLoad { image, .. } if is_float(*image) => ShaderOps {
-                    float_loads: acc.float_loads + n,
-                    ..acc
-                },
-                naga::Expression::ImageLoad { .. } => ShaderOps {
-                    loads: acc.loads + n,
-                    ..acc
-                },
-                naga::Expression::Math { fun, .. } if is_transcendental(*fun) => ShaderOps {
-                    transcendentals: acc.transcendentals + n,
-                    ..acc
-                },
-                _ => acc,
-            }
-        },
-    );
+        .fold(ShaderOps::default(), |acc, (h, e)| {
+            acc + one(h, e).times(weights[h.index()])
+        });
     let mut calls: Vec<(CallKey, u64)> = Vec::new();
     let mut barriers = 0;
     let mut storage = own.storage;
