@@ -120,10 +120,15 @@
 //!
 //! What a CPU rasteriser charges for the pulling: each vertex reads 17 words from storage buffers
 //! (the blade's draw-list entry, root, looks and the two curve points) and each compute invocation
-//! moves 42 (four `vec4`s of the blade read, two written, the ranges' search, the counters), and
-//! lavapipe moves them a lane at a time: 0.78-0.80 ns a word in the vertex stage and 0.37-0.38 in
-//! compute (`grassbench calibrate` at 320x180, 2026-12-05), 5.3 and 1.7 ms of the meadow's 320x180
-//! frame, which the cost model prices since its storage terms (`results/cost_model/README.md`).
+//! moves 52 (four `vec4`s of the blade read, two written, the ranges' search, the counters with
+//! their loop over the six verdicts), and lavapipe moves them a lane at a time: 0.76-0.80 ns a word
+//! in the vertex stage and 0.38-0.41 in compute (`grassbench calibrate` at 320x180 and 640x360,
+//! 2026-12-05), 5.5 and 2.1-2.3 ms of the meadow's 320x180 frame, which the cost model prices
+//! since its storage terms (`results/cost_model/README.md`). The model still prices the compute
+//! pass at 38-41 ns an invocation where this host spends 44-245 ns (the time outside the
+//! timestamped passes beyond perbet's, which has no compute pass): what it does not count are
+//! the three atomic additions to workgroup counters each invocation makes, contended by its
+//! workgroup's 64 invocations, and the binary search's trips, which the data decide.
 //!
 //! ## Known artifacts
 //! - The far level's widened blades are coarser: beyond the hand-over, four times fewer blades four
