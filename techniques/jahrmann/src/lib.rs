@@ -126,9 +126,10 @@
 //! 2026-12-05), 5.5 and 2.1-2.3 ms of the meadow's 320x180 frame, which the cost model prices
 //! since its storage terms (`results/cost_model/README.md`). The model still prices the compute
 //! pass at 38-41 ns an invocation where this host spends 44-245 ns (the time outside the
-//! timestamped passes beyond perbet's, which has no compute pass): what it does not count are
-//! the three atomic additions to workgroup counters each invocation makes, contended by its
-//! workgroup's 64 invocations, and the binary search's trips, which the data decide.
+//! timestamped passes beyond perbet's, which has no compute pass). Not for its three atomic
+//! additions to workgroup counters an invocation: a probe priced one at 1.15-1.25 ns an
+//! invocation on that host (`results/cost_model/README.md`); the binary search's trips, which
+//! the data decide, are counted once, and the rest of the gap is not located.
 //!
 //! ## Known artifacts
 //! - The far level's widened blades are coarser: beyond the hand-over, four times fewer blades four
