@@ -91,9 +91,9 @@ impl Module {
             return super::ShaderOps::default();
         };
         let float: Vec<&str> = self.float.iter().map(String::as_str).collect();
-        super::ops::count_entries(module, info.as_ref(), &float, constants)
+        super::ops::count_entries(module, info.as_ref(), &float, constants, Some(entry))
             .into_iter()
-            .find(|(e, _)| e == entry)
+            .next()
             .map(|(_, f)| f)
             .unwrap_or_default()
     }

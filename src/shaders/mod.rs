@@ -119,7 +119,7 @@ mod tests {
     fn analysed(wgsl: &str, float: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
         let (discarding, parsed) = analyse(wgsl);
         let ops = parsed
-            .map(|(m, info)| ops::count_entries(&m, info.as_ref(), float, &[]))
+            .map(|(m, info)| ops::count_entries(&m, info.as_ref(), float, &[], None))
             .unwrap_or_default();
         (discarding, ops)
     }

@@ -171,7 +171,7 @@ pub fn entry_ops(
     float: &[&str],
     constants: &[(&str, f64)],
 ) -> Vec<(String, ShaderOps)> {
-    count_entries(module, validate(module).as_ref(), float, constants)
+    count_entries(module, validate(module).as_ref(), float, constants, None)
 }
 
 /// `module`'s expressions' types, which say how many components each operates on; `None` for a
@@ -186,12 +186,14 @@ pub(super) fn validate(module: &naga::Module) -> Option<naga::valid::ModuleInfo>
     .ok()
 }
 
-/// [`entry_ops`] for a module already validated (`info`: [`validate`]'s answer).
+/// [`entry_ops`] for a module already validated (`info`: [`validate`]'s answer), of the entry
+/// points `only` names (every one where `only` is `None`).
 pub(super) fn count_entries(
     module: &naga::Module,
     info: Option<&naga::valid::ModuleInfo>,
     float: &[&str],
     constants: &[(&str, f64)],
+    only: Option<&str>,
 ) -> Vec<(String, ShaderOps)> {
     let types = Types {
         module,
@@ -204,6 +206,7 @@ pub(super) fn count_entries(
         .entry_points
         .iter()
         .enumerate()
+        .filter(|(_, e)| only.is_none_or(|name| e.name == name))
         .map(|(i, e)| {
             let function_info = info.map(|m| m.get_entry_point(i));
             (
