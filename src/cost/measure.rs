@@ -78,9 +78,9 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic, barriers and storage words are the
+/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic, barriers, storage words and integer divisions are the
 /// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 19] = [
+pub const COUNTED_TERMS: [Term; 20] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -100,6 +100,7 @@ pub const COUNTED_TERMS: [Term; 19] = [
     Term::ComputeBarrier,
     Term::ComputeStorage,
     Term::VertexStorage,
+    Term::ComputeDivision,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -14,8 +14,10 @@ use crate::target::{COLOR_FORMAT, DEPTH_FORMAT, Size};
 use crate::technique::{PassKind, WorkCounter};
 use crate::{Error, GpuContext, RenderTarget, Result, shaders};
 
-/// Elements of the compute workload's buffer (16 bytes each: 16 MiB).
+/// Elements of the compute workload's buffer (16 bytes each: 16 MiB). A power of two: the
+/// spring updates wrap their index with a mask, not a division (`wrap` in the shader).
 const SPRING_COUNT: u64 = 1 << 20;
+const _: () = assert!(SPRING_COUNT.is_power_of_two());
 /// Bytes of the upload workload's destination buffer (its largest size).
 const UPLOAD_CAPACITY: u64 = 64 << 20;
 /// Elements of the `vertex_storage` strips' instance data (16 bytes each: 4 MiB, more than a

@@ -112,11 +112,20 @@ pub enum Term {
     /// jahrmann's vertices read 17 words each (the blade's index, its root, looks and
     /// curve), perbet's 12-26 (its patch's and wind primitives' data).
     VertexStorage,
+    /// An integer division or remainder by a divisor the pipeline does not fix, in a compute
+    /// shader invocation (`crate::shaders::ShaderOps::divisions`), on top of its arithmetic
+    /// operation. Not among the units issue 20 lists: the arithmetic term is calibrated on
+    /// multiply-adds, and no SIMD processor divides integers in one instruction (a GPU runs a
+    /// sequence of 20 to 40, a CPU rasteriser a scalar `div` a lane). jahrmann's culling pass
+    /// takes two remainders by a uniform's value (a blade's distance bucket and whether the
+    /// far level keeps it): making them remainders by a constant took 13 ns from its 92 ns
+    /// an invocation on lavapipe (2026-12-05).
+    ComputeDivision,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 24] = [
+    pub const ALL: [Self; 25] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -141,6 +150,7 @@ impl Term {
         Self::ComputeBarrier,
         Self::ComputeStorage,
         Self::VertexStorage,
+        Self::ComputeDivision,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -170,6 +180,7 @@ impl Term {
             Self::ComputeBarrier => "compute_barrier",
             Self::ComputeStorage => "compute_storage",
             Self::VertexStorage => "vertex_storage",
+            Self::ComputeDivision => "compute_division",
         }
     }
 
@@ -199,6 +210,7 @@ impl Term {
             }
             Self::ComputeBarrier => "invocation at a barrier",
             Self::ComputeStorage | Self::VertexStorage => "storage word",
+            Self::ComputeDivision => "integer division",
         }
     }
 

@@ -115,6 +115,10 @@ pub struct UnitCosts {
     /// Per 32-bit word a vertex shader reads from a storage buffer, ns (0 before the term).
     #[serde(default)]
     pub vertex_storage_ns: UnitCost,
+    /// Per integer division or remainder by a divisor the pipeline does not fix, in a compute
+    /// shader, ns (0 before the term).
+    #[serde(default)]
+    pub compute_division_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -188,6 +192,9 @@ pub struct Prediction {
     /// Vertex shaders' storage-buffer words, ms.
     #[serde(default)]
     pub vertex_storage_ms: f64,
+    /// Compute shaders' integer divisions, ms.
+    #[serde(default)]
+    pub compute_division_ms: f64,
 }
 
 impl UnitCosts {
@@ -236,6 +243,7 @@ impl UnitCosts {
             compute_barrier_ns: stored(Term::ComputeBarrier),
             compute_storage_ns: stored(Term::ComputeStorage),
             vertex_storage_ns: stored(Term::VertexStorage),
+            compute_division_ns: stored(Term::ComputeDivision),
             fit,
         }
     }
@@ -267,6 +275,7 @@ impl UnitCosts {
             Term::ComputeBarrier => self.compute_barrier_ns,
             Term::ComputeStorage => self.compute_storage_ns,
             Term::VertexStorage => self.vertex_storage_ns,
+            Term::ComputeDivision => self.compute_division_ns,
         }
     }
 
@@ -304,6 +313,7 @@ impl UnitCosts {
             compute_barrier_ms: ms(Term::ComputeBarrier),
             compute_storage_ms: ms(Term::ComputeStorage),
             vertex_storage_ms: ms(Term::VertexStorage),
+            compute_division_ms: ms(Term::ComputeDivision),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -388,6 +398,7 @@ impl Prediction {
             Term::ComputeBarrier => self.compute_barrier_ms,
             Term::ComputeStorage => self.compute_storage_ms,
             Term::VertexStorage => self.vertex_storage_ms,
+            Term::ComputeDivision => self.compute_division_ms,
         }
     }
 
@@ -412,10 +423,10 @@ mod tests {
         // 2 and 8 ns more in a vertex shader), sample 6 ns (10 ns floating-point),
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
         // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns, a compute shader's storage word 0.5 ns,
-        // a vertex shader's 1 ns.
+        // a vertex shader's 1 ns, a compute shader's integer division 4 ns.
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -451,18 +462,19 @@ mod tests {
             compute_barriers: 4e5,
             compute_storage: 6e6,
             vertex_storage: 2e6,
+            compute_divisions: 5e5,
         };
         let p = costs.predict(&work);
         // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
-        // + 1 + 1 + 0 + 8 + 3 + 2 ms.
+        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 ms.
         let expected = [
             1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
-            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0,
+            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 32.81).abs() < 1e-9);
+        assert!((p.total_ms - 34.81).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -482,7 +494,7 @@ mod tests {
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -508,7 +520,8 @@ mod tests {
                     || l.contains("_arithmetic_ns]")
                     || l.starts_with("[compute_barrier_")
                     || l.starts_with("[compute_storage_")
-                    || l.starts_with("[vertex_storage_");
+                    || l.starts_with("[vertex_storage_")
+                    || l.starts_with("[compute_division_");
             }
             if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
                 older.push_str(l);
@@ -535,5 +548,7 @@ mod tests {
         assert_eq!(read.compute_storage_ns, UnitCost::default());
         assert_eq!(read.vertex_storage_ns, UnitCost::default());
         assert!(!older.contains("storage_ns"), "{older}");
+        assert_eq!(read.compute_division_ns, UnitCost::default());
+        assert!(!older.contains("division_ns"), "{older}");
     }
 }

@@ -82,6 +82,10 @@ pub struct Work {
     /// ([`crate::shaders::ShaderOps::storage`]).
     #[serde(default)]
     pub vertex_storage: f64,
+    /// Integer divisions and remainders by divisors the pipeline does not fix, of compute
+    /// shader invocations ([`crate::shaders::ShaderOps::divisions`]).
+    #[serde(default)]
+    pub compute_divisions: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -133,6 +137,7 @@ impl Work {
             compute_barriers: ops.compute.barriers as f64,
             compute_storage: ops.compute.storage as f64,
             vertex_storage: ops.vertex.storage as f64,
+            compute_divisions: ops.compute.divisions as f64,
         }
     }
 
@@ -164,6 +169,7 @@ impl Work {
             Term::ComputeBarrier => self.compute_barriers,
             Term::ComputeStorage => self.compute_storage,
             Term::VertexStorage => self.vertex_storage,
+            Term::ComputeDivision => self.compute_divisions,
         }
     }
 
@@ -193,6 +199,7 @@ impl Work {
             compute_barriers: self.compute_barriers * k,
             compute_storage: self.compute_storage * k,
             vertex_storage: self.vertex_storage * k,
+            compute_divisions: self.compute_divisions * k,
         }
     }
 
@@ -233,6 +240,7 @@ impl std::ops::Add for Work {
             compute_barriers: self.compute_barriers + o.compute_barriers,
             compute_storage: self.compute_storage + o.compute_storage,
             vertex_storage: self.vertex_storage + o.vertex_storage,
+            compute_divisions: self.compute_divisions + o.compute_divisions,
         }
     }
 }
@@ -267,13 +275,14 @@ mod tests {
             compute_barriers: 14.0,
             compute_storage: 15.0,
             vertex_storage: 16.0,
+            compute_divisions: 17.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -314,8 +323,8 @@ mod tests {
         // 11 vertices fetching 8 floating-point texels each (a bilinear height and wind) with
         // 5 transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and
         // 2 of floating-point texels) and loading 1 texel with 1 transcendental and 20
-        // operations, 64 compute invocations loading 4 with 2 and 3 reaching 2 barriers
-        // and moving 10 words of storage.
+        // operations, 64 compute invocations loading 4 with 2 and 3 reaching 2 barriers,
+        // moving 10 words of storage and taking 3 integer divisions.
         let fetching = PipelineCost {
             fragments: FragmentKind::AlphaTested,
             vertex_ops: ShaderOps {
@@ -327,6 +336,7 @@ mod tests {
                 arithmetic: 40,
                 barriers: 0,
                 storage: 0,
+                divisions: 0,
             },
             fragment_ops: ShaderOps {
                 loads: 1,
@@ -337,6 +347,7 @@ mod tests {
                 arithmetic: 20,
                 barriers: 0,
                 storage: 0,
+                divisions: 0,
             },
             compute_ops: ShaderOps {
                 loads: 4,
@@ -347,6 +358,7 @@ mod tests {
                 arithmetic: 3,
                 barriers: 2,
                 storage: 10,
+                divisions: 3,
             },
         };
         assert_eq!(
@@ -369,6 +381,7 @@ mod tests {
                 compute_arithmetic: 192.0,
                 compute_barriers: 128.0,
                 compute_storage: 640.0,
+                compute_divisions: 192.0,
                 ..Work::default()
             }
         );

@@ -19,6 +19,7 @@
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
 //! | `vertex_storage` | the off-screen strips with [`STORAGE_CHAIN`] / 4 `vec4`s of the instance's data read from a storage buffer per vertex | a storage-buffer word of a vertex shader |
 //! | `compute_storage` | the spring update reading [`STORAGE_CHAIN`] / 4 more elements, each a workgroup's width along (the next invocation reads the next element) | a storage-buffer word of a compute shader |
+//! | `compute_divisions` | the spring update with [`DIVISION_CHAIN`] integer remainders by the buffer's length (a value the pipeline does not fix), each a hash step of the last | an integer division of a compute shader |
 //! | `compute_barriers` | the spring update of the element [`BARRIER_CHAIN`] / 2 neighbours along, passed through workgroup memory with a barrier before and after each read | a compute invocation at a barrier |
 //! | `draws` | one sub-pixel triangle per draw call | draw |
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
@@ -157,6 +158,9 @@ pub const BARRIER_CHAIN: u32 = 8;
 /// update's own (`cs_storage`: 8 more `vec4`s), and the `vertex_storage` strips a vertex
 /// (`vs_storage`).
 pub const STORAGE_CHAIN: u32 = 32;
+/// Integer remainders by a divisor the pipeline does not fix the `compute_divisions` workload
+/// takes an invocation (`cs_divisions`: a loop of 16); the other spring updates take none.
+pub const DIVISION_CHAIN: u32 = 16;
 /// Transcendentals of one invocation of the strips' vertex shader (`blade_vertex`: the
 /// facing's `cos` and `sin`, the sway's `sin`).
 pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
@@ -299,6 +303,8 @@ pub enum Chain {
     Barriers,
     /// [`STORAGE_CHAIN`] more words read from the storage buffer.
     Storage,
+    /// [`DIVISION_CHAIN`] more integer remainders.
+    Divisions,
 }
 
 /// One sample's workload.
@@ -321,12 +327,13 @@ pub fn dispatch_grid(groups: u32) -> (u32, u32) {
 
 impl Chain {
     /// Every chain, in declaration order (`chain as usize` is its position).
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 6] = [
         Self::None,
         Self::Transcendental,
         Self::Arithmetic,
         Self::Barriers,
         Self::Storage,
+        Self::Divisions,
     ];
 
     /// The compute entry point of the spring update with this chain.
@@ -337,6 +344,7 @@ impl Chain {
             Self::Arithmetic => "cs_arithmetic",
             Self::Barriers => "cs_barriers",
             Self::Storage => "cs_storage",
+            Self::Divisions => "cs_divisions",
         }
     }
 }
@@ -501,6 +509,8 @@ impl Workload {
                     compute_barriers: invocations
                         * shader_ops(chain.compute_entry()).barriers as f64,
                     compute_storage: invocations * shader_ops(chain.compute_entry()).storage as f64,
+                    compute_divisions: invocations
+                        * shader_ops(chain.compute_entry()).divisions as f64,
                     ..none
                 }
             }
@@ -752,6 +762,15 @@ pub fn families() -> Vec<Workload> {
                 chain: Chain::Storage,
             },
         },
+        // Each invocation takes 16 more remainders.
+        Workload {
+            name: "compute_divisions",
+            term: Term::ComputeDivision,
+            shape: Shape::Compute {
+                groups: 1_024,
+                chain: Chain::Divisions,
+            },
+        },
         Workload {
             name: "draws",
             term: Term::Draw,
@@ -999,17 +1018,25 @@ mod tests {
             "cs_math",
             "cs_barriers",
             "cs_storage",
+            "cs_divisions",
             "vs_storage",
         ] {
             assert!(shader_ops(entry).arithmetic > 0, "{entry}");
         }
         // The vertex storage strips read their chain and nothing else costly more than the
-        // plain off-screen strips; no other vertex or fragment shader reads storage.
+        // plain off-screen strips (each read's index a remainder by the buffer's length, a
+        // division the model prices as arithmetic in a vertex shader); no other vertex or
+        // fragment shader reads storage.
         assert_eq!(shader_ops("vs_storage").storage, u64::from(STORAGE_CHAIN));
+        assert_eq!(
+            shader_ops("vs_storage").divisions,
+            u64::from(STORAGE_CHAIN / 4)
+        );
         assert_eq!(
             ShaderOps {
                 arithmetic: 0,
                 storage: 0,
+                divisions: 0,
                 ..shader_ops("vs_storage")
             },
             ShaderOps {
@@ -1029,18 +1056,24 @@ mod tests {
         }
         // The barriers' workload reaches its barriers, and it alone: its exchanges' few
         // operations (the neighbour's index) are counted as any. Every spring update reads
-        // and writes its element's `vec4` (8 words); the storage workload reads its chain
-        // more.
+        // and writes its element's `vec4` (8 words), found by masking its index (no
+        // division); the storage workload reads its chain more, the division workload takes
+        // its chain of remainders.
         for (i, chain) in Chain::ALL.iter().enumerate() {
             let ops = shader_ops(chain.compute_entry());
-            let (barriers, storage) = match chain {
-                Chain::Barriers => (BARRIER_CHAIN, 8),
-                Chain::Storage => (0, 8 + STORAGE_CHAIN),
-                _ => (0, 8),
+            let (barriers, storage, divisions) = match chain {
+                Chain::Barriers => (BARRIER_CHAIN, 8, 0),
+                Chain::Storage => (0, 8 + STORAGE_CHAIN, 0),
+                Chain::Divisions => (0, 8, DIVISION_CHAIN),
+                _ => (0, 8, 0),
             };
             assert_eq!(
-                (ops.barriers, ops.storage),
-                (u64::from(barriers), u64::from(storage)),
+                (ops.barriers, ops.storage, ops.divisions),
+                (
+                    u64::from(barriers),
+                    u64::from(storage),
+                    u64::from(divisions)
+                ),
                 "chain {i}"
             );
         }
@@ -1055,19 +1088,25 @@ mod tests {
                 ..shader_ops("cs_springs")
             }
         );
-        // The storage workload does nothing else costly more than the spring update.
-        assert_eq!(
-            ShaderOps {
-                arithmetic: 0,
-                storage: 0,
-                ..shader_ops("cs_storage")
-            },
-            ShaderOps {
-                arithmetic: 0,
-                storage: 0,
-                ..shader_ops("cs_springs")
-            }
-        );
+        // The storage and division workloads do nothing else costly more than the spring
+        // update.
+        for entry in ["cs_storage", "cs_divisions"] {
+            assert_eq!(
+                ShaderOps {
+                    arithmetic: 0,
+                    storage: 0,
+                    divisions: 0,
+                    ..shader_ops(entry)
+                },
+                ShaderOps {
+                    arithmetic: 0,
+                    storage: 0,
+                    divisions: 0,
+                    ..shader_ops("cs_springs")
+                },
+                "{entry}"
+            );
+        }
     }
 
     #[test]

@@ -359,6 +359,7 @@ impl<'g> World<'g> {
             compute_barriers: ops.map(|f| f.compute.barriers),
             compute_storage: ops.map(|f| f.compute.storage),
             vertex_storage: ops.map(|f| f.vertex.storage),
+            compute_divisions: ops.map(|f| f.compute.divisions),
             upload_bytes: Some(upload_bytes),
             overdraw: grass.map(|w| w.fragment_invocations as f64 / pixels),
             grass_pixels: None,

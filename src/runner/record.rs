@@ -196,6 +196,10 @@ pub struct FrameRecord {
     /// ([`crate::shaders::ShaderOps::storage`]; the core's background shaders read none).
     #[serde(default)]
     pub vertex_storage: Option<u64>,
+    /// Integer divisions and remainders by divisors the pipeline does not fix, of the
+    /// technique's compute shader invocations ([`crate::shaders::ShaderOps::divisions`]).
+    #[serde(default)]
+    pub compute_divisions: Option<u64>,
     /// Bytes the frame uploaded (the core's wind texture and frame globals, and the
     /// technique's `prepare`), counted by [`crate::GpuContext::write_buffer`] and
     /// [`crate::GpuContext::write_texture`].
@@ -425,6 +429,10 @@ pub struct RunSummary {
     /// buffers.
     #[serde(default)]
     pub vertex_storage: Option<u64>,
+    /// Median integer divisions and remainders by divisors the pipeline does not fix, of the
+    /// technique's compute shader invocations.
+    #[serde(default)]
+    pub compute_divisions: Option<u64>,
     /// Median overdraw: the technique's fragment invocations per target pixel.
     #[serde(default)]
     pub overdraw: Option<f64>,
@@ -512,6 +520,9 @@ pub struct RunSummary {
     /// Predicted ms of vertex shaders' storage-buffer words.
     #[serde(default)]
     pub model_vertex_storage_ms: Option<f64>,
+    /// Predicted ms of compute shaders' integer divisions.
+    #[serde(default)]
+    pub model_compute_division_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -626,6 +637,7 @@ impl RunSummary {
             compute_barriers: median_u64(&|r| r.compute_barriers),
             compute_storage: median_u64(&|r| r.compute_storage),
             vertex_storage: median_u64(&|r| r.vertex_storage),
+            compute_divisions: median_u64(&|r| r.compute_divisions),
             overdraw: median(&|r| r.overdraw),
             fragments_per_grass_pixel: median(&|r| r.fragments_per_grass_pixel),
             params: params
@@ -660,6 +672,7 @@ impl RunSummary {
             model_compute_barrier_ms: None,
             model_compute_storage_ms: None,
             model_vertex_storage_ms: None,
+            model_compute_division_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -892,6 +905,7 @@ mod tests {
             compute_barriers: None,
             compute_storage: None,
             vertex_storage: None,
+            compute_divisions: None,
             upload_bytes: None,
             overdraw: None,
             grass_pixels: None,

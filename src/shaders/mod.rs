@@ -152,6 +152,7 @@ mod tests {
                 arithmetic: 7,
                 barriers: 0,
                 storage: 0,
+                divisions: 0,
             })
         );
         // An unparsable source has neither.

@@ -17,7 +17,8 @@
 //! and loops of fixed length (most of the harness's), an upper bound where a branch skips
 //! work (debug views, early returns, a loop left early) and a lower bound where a loop whose
 //! trips the data decide runs more than once (the reference's segment walk up to its
-//! vertex's level, jahrmann's binary search over its ranges).
+//! vertex's level; jahrmann's binary search over its ranges runs the halvings its pipeline
+//! sets, so it is counted by them).
 //! On lavapipe, whose SIMD shaders run both sides of a branch for a whole batch, a branch's
 //! both sides are what is paid (the reference's early return for culled blades saved
 //! nothing: `techniques/reference/src/lib.rs`), so there the bound is the cost. That holds for
@@ -77,6 +78,15 @@ pub struct ShaderOps {
     /// read from elements scattered over 16 MB). Uniform-buffer, workgroup and private
     /// memory are not counted.
     pub storage: u64,
+    /// Integer divisions and remainders (`/`, `%` of integers) by a divisor that is not a
+    /// constant, one per component. Also counted in [`ShaderOps::arithmetic`]; priced apart
+    /// because no SIMD processor divides integers in one instruction: a GPU runs a sequence of
+    /// 20 to 40 (a reciprocal and its corrections), a CPU rasteriser one scalar `div` a lane
+    /// (lavapipe: jahrmann's culling pass lost 13 ns an invocation, of 92, when its two
+    /// remainders by a uniform's value were made remainders by a constant, 2026-12-05). A
+    /// constant divisor, `const` or pipeline-overridable, is a multiply and a shift after
+    /// the driver's compilation, and is arithmetic only.
+    pub divisions: u64,
 }
 
 /// Whether `f` is a transcendental built-in: trigonometric and hyperbolic functions and
@@ -120,6 +130,7 @@ impl ShaderOps {
             arithmetic: self.arithmetic * n,
             barriers: self.barriers * n,
             storage: self.storage * n,
+            divisions: self.divisions * n,
         }
     }
 }
@@ -137,6 +148,7 @@ impl std::ops::Add for ShaderOps {
             arithmetic: self.arithmetic + o.arithmetic,
             barriers: self.barriers + o.barriers,
             storage: self.storage + o.storage,
+            divisions: self.divisions + o.divisions,
         }
     }
 }
@@ -359,6 +371,48 @@ fn arithmetic_of(
     }
 }
 
+/// Integer divisions and remainders of expression `e` of `function` by a divisor that is not a
+/// constant ([`ShaderOps::divisions`]): one per component of the widest operand.
+fn divisions_of(
+    types: &Types<'_>,
+    function: &naga::Function,
+    info: Option<&naga::valid::FunctionInfo>,
+    e: naga::Handle<naga::Expression>,
+) -> u64 {
+    use naga::BinaryOperator as B;
+    let naga::Expression::Binary {
+        op: B::Divide | B::Modulo,
+        left,
+        right,
+    } = function.expressions[e]
+    else {
+        return 0;
+    };
+    let Some(info) = info else { return 0 };
+    let integer = matches!(
+        info[e].ty.inner_with(&types.module.types).scalar_kind(),
+        Some(naga::ScalarKind::Sint | naga::ScalarKind::Uint)
+    );
+    if !integer || is_constant(function, right) {
+        return 0;
+    }
+    components(types, Some(info), left).max(components(types, Some(info), right))
+}
+
+/// Whether expression `e` of `function` is known when the pipeline is created: a literal, a
+/// `const`, a pipeline-overridable constant, or a vector built of them.
+fn is_constant(function: &naga::Function, e: naga::Handle<naga::Expression>) -> bool {
+    use naga::Expression as E;
+    match &function.expressions[e] {
+        E::Literal(_) | E::Constant(_) | E::Override(_) | E::ZeroValue(_) => true,
+        E::Splat { value, .. } => is_constant(function, *value),
+        E::Compose { components, .. } => components.iter().all(|&c| is_constant(function, c)),
+        E::AccessIndex { base, .. } => is_constant(function, *base),
+        E::Unary { expr, .. } => is_constant(function, *expr),
+        _ => false,
+    }
+}
+
 /// Deepest call chain followed (WGSL forbids recursion; this only bounds a malformed IR).
 const MAX_CALL_DEPTH: u32 = 64;
 
@@ -418,6 +472,7 @@ fn function_ops(
         };
         ShaderOps {
             arithmetic: arithmetic_of(types, function, info, h),
+            divisions: divisions_of(types, function, info, h),
             ..fetched
         }
     };
@@ -558,6 +613,7 @@ mod tests {
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
                 barriers: 0,
                 storage: 0,
+                divisions: 0,
             }
         );
         // tint: 1 sample + height's 2 loads + a `pow`; the branch's sample; the loop body's
@@ -575,6 +631,7 @@ mod tests {
                 arithmetic: 11 + 5 + 4 * (2 + 8),
                 barriers: 0,
                 storage: 0,
+                divisions: 0,
             }
         );
         assert_eq!(of("plain"), ShaderOps::default());
@@ -685,6 +742,45 @@ mod tests {
         // `arrayLength` (the binding's size, no memory read) count nothing.
         assert_eq!(storage("cs"), Some(1 + 8 + 4 + 2 + 1 + 1 + 1 + 4));
         assert_eq!(storage("plain"), Some(0));
+    }
+
+    #[test]
+    fn integer_divisions_by_values_unknown_to_the_pipeline_count_apart() {
+        let module = naga::front::wgsl::parse_str(
+            "const FOUR: u32 = 4u;
+             override lanes: u32 = 8u;
+             @group(0) @binding(0) var<uniform> u: vec4<u32>;
+             @group(0) @binding(1) var<storage, read_write> out: array<vec2<u32>>;
+             fn bucket(id: u32) -> u32 { return id % max(u.y, 1u); }
+             @compute @workgroup_size(64)
+             fn cs(@builtin(global_invocation_id) id: vec3<u32>) {
+                 let a = bucket(id.x) + bucket(id.y);
+                 let b = vec2(id.x, id.y) / vec2(u.x, u.z);
+                 let c = id.x / 3u + id.y % FOUR + id.z / lanes + id.x / vec2(2u, 5u).y;
+                 let d = i32(id.z) / -2;
+                 let f = f32(id.x) / f32(u.w);
+                 for (var k = 0u; k < 3u; k++) {
+                     out[k] = b + vec2(a + c + u32(d) + u32(f) + k % u.w);
+                 }
+             }
+             @compute @workgroup_size(64)
+             fn plain(@builtin(global_invocation_id) id: vec3<u32>) {
+                 out[id.x] = id.xy / 2u;
+             }",
+        )
+        .unwrap();
+        let ops = entry_ops(&module, &[], &[]);
+        let divisions = |name: &str| {
+            ops.iter()
+                .find(|(n, _)| n == name)
+                .map(|(_, o)| o.divisions)
+        };
+        // `bucket`'s remainder by a uniform's value at two call sites (2), a `vec2` divided
+        // by a `vec2` read from the uniform (2), the loop's remainder by `u.w` three times (3).
+        // Divisions by a literal, a `const`, an override, a component of a constant vector
+        // and a negative literal are a multiply and a shift; the `f32` one is arithmetic.
+        assert_eq!(divisions("cs"), Some(2 + 2 + 3));
+        assert_eq!(divisions("plain"), Some(0));
     }
 
     #[test]

@@ -296,11 +296,17 @@ fn fs_float_samples(in: VsOut) -> @location(0) vec4<f32> {
 }
 
 // Compute: one spring step per invocation towards a hashed rest state, read-modify-write of
-// 16 bytes (as a blade's simulation step). Invocations beyond the buffer wrap around it.
+// 16 bytes (as a blade's simulation step). Invocations beyond the buffer wrap around it: its
+// length is a power of two (`SPRING_COUNT`), so a mask wraps the index, and no spring update
+// divides but the `compute_divisions` workload's.
+fn wrap(i: u32) -> u32 {
+    return i & (arrayLength(&springs) - 1u);
+}
+
 @compute @workgroup_size(64)
 fn cs_springs(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = id.x + id.y * groups.x * 64u;
-    let k = i % arrayLength(&springs);
+    let k = wrap(i);
     let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
     let p = springs[k];
     springs[k] = p + (rest - p) * 0.1;
@@ -311,7 +317,7 @@ fn cs_springs(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgro
 // Element `k`'s `j`-th neighbour a workgroup's width along: invocation after invocation reads
 // element after element, as jahrmann's culling pass reads each blade's arrays.
 fn neighbour(k: u32, j: u32) -> vec4<f32> {
-    return springs[(k + j * 64u) % arrayLength(&springs)];
+    return springs[wrap(k + j * 64u)];
 }
 
 // The spring update pulled towards the mean of 8 more elements' states: 8 more `vec4` reads
@@ -319,7 +325,7 @@ fn neighbour(k: u32, j: u32) -> vec4<f32> {
 @compute @workgroup_size(64)
 fn cs_storage(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = id.x + id.y * groups.x * 64u;
-    let k = i % arrayLength(&springs);
+    let k = wrap(i);
     let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
     let near = neighbour(k, 1u) + neighbour(k, 2u) + neighbour(k, 3u) + neighbour(k, 4u);
     let far = neighbour(k, 5u) + neighbour(k, 6u) + neighbour(k, 7u) + neighbour(k, 8u);
@@ -345,7 +351,7 @@ fn exchange(lid: u32, p: vec4<f32>) -> vec4<f32> {
 @compute @workgroup_size(64)
 fn cs_barriers(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) lid: u32, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = id.x + id.y * groups.x * 64u;
-    let k = i % arrayLength(&springs);
+    let k = wrap(i);
     let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u), 0.0, 1.0);
     var p = springs[k];
     p = exchange(lid, p);
@@ -359,7 +365,7 @@ fn cs_barriers(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invo
 @compute @workgroup_size(64)
 fn cs_math(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = id.x + id.y * groups.x * 64u;
-    let k = i % arrayLength(&springs);
+    let k = wrap(i);
     let p = springs[k];
     let rest = vec4(hash_f32(i), math_chain(p.x) * 0.01, 0.0, 1.0);
     springs[k] = p + (rest - p) * 0.1;
@@ -369,8 +375,26 @@ fn cs_math(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups
 @compute @workgroup_size(64)
 fn cs_arithmetic(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = id.x + id.y * groups.x * 64u;
-    let k = i % arrayLength(&springs);
+    let k = wrap(i);
     let p = springs[k];
     let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u) + arith_chain(p).x * 0.01, 0.0, 1.0);
+    springs[k] = p + (rest - p) * 0.1;
+}
+
+// The spring step with a chain of integer remainders (DIVISION_CHAIN: 16) by the buffer's
+// length, a value the pipeline does not fix, as a culling pass buckets a blade by a count
+// its uniforms hold: each link a hash step of the last link's remainder, so none is folded
+// away; the last nudges the rest state.
+@compute @workgroup_size(64)
+fn cs_divisions(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = id.x + id.y * groups.x * 64u;
+    let n = arrayLength(&springs);
+    let k = wrap(i);
+    var h = i;
+    for (var link = 0u; link < 16u; link++) {
+        h = (h * 747796405u + 2891336453u) % (n + link);
+    }
+    let p = springs[k];
+    let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u) + f32(h) * 1e-9, 0.0, 1.0);
     springs[k] = p + (rest - p) * 0.1;
 }

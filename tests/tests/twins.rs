@@ -1455,6 +1455,11 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
         grassbench_jahrmann::gpu::uniform(&params, &meadow.config.grass, &camera, n as u32, gx);
     let bindings = Bindings::new()
         .scene(&scene_gpu)
+        // One range's room: the search's halvings for it (none run over every blade).
+        .constant(
+            "SEARCH_STEPS",
+            f64::from(grassbench_jahrmann::gpu::search_steps(1)),
+        )
         .uniform(1, 0, &uniform)
         .storage(1, 1, &arrays.v0)
         .storage(1, 2, &arrays.rest)

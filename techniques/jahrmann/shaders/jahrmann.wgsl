@@ -316,26 +316,30 @@ var<workgroup> wg_near: atomic<u32>;
 var<workgroup> wg_far: atomic<u32>;
 var<workgroup> wg_base: vec2<u32>;
 
+// Halvings of the binary search over the dispatched ranges: ⌈log₂⌉ of the most ranges a frame
+// can hold, set by the pipeline (`gpu.rs`), so every invocation runs the same trips and the
+// op counter counts them.
+override SEARCH_STEPS: u32;
+
 // The blade of invocation `lid` of flat workgroup `w`, and whether there is one: over the
-// ranges, invocation g = w·64 + lid falls in the last range starting at or before g (binary
-// search); else it is blade g.
+// ranges, invocation g = w·64 + lid falls in the last range starting at or before g (a
+// binary search of SEARCH_STEPS halvings, each keeping the upper half where its first range
+// starts at or before g); else it is blade g.
 fn blade_of(w: u32, lid: u32) -> vec2<u32> {
     let g = w * WORKGROUP + lid;
     if (params.counts.w == 0u) {
         return vec2(g, u32(g < params.counts.x));
     }
     var lo = 0u;
-    var hi = block.counts.ranges;
-    if (hi == 0u) {
+    var len = block.counts.ranges;
+    if (len == 0u) {
         return vec2(0u, 0u);
     }
-    while (hi - lo > 1u) {
-        let mid = (lo + hi) / 2u;
-        if (block.ranges[mid].x <= g) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
+    for (var step = 0u; step < SEARCH_STEPS; step++) {
+        let half = len / 2u;
+        let mid = lo + half;
+        lo = select(lo, mid, half > 0u && block.ranges[mid].x <= g);
+        len -= half;
     }
     let r = block.ranges[lo];
     let i = r.y + (g - r.x);

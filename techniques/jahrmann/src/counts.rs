@@ -38,7 +38,8 @@ pub struct GpuCounts {
     /// per-blade test saw (some would have been culled by orientation or the frustum).
     pub represented_untested: u32,
     /// The frame's dispatched ranges (`tiles.rs`), set by the CPU: what the compute pass's
-    /// binary search runs over. A storage value, not a uniform, so lavapipe does not
+    /// binary search runs over (its halvings fixed by the pipeline for the most ranges a
+    /// frame holds). A storage value, not a uniform, so lavapipe does not
     /// re-specialise the shader every frame (`grassbench::shaders::uniform_bound_loops`).
     pub ranges: u32,
 }

@@ -150,6 +150,12 @@ pub fn largest_buffer(blades: u64) -> u64 {
     blades.max(1) * ENTRY
 }
 
+/// Halvings of the compute pass's binary search over at most `max_ranges` ranges (the
+/// shader's `SEARCH_STEPS`): ⌈log₂ max_ranges⌉, enough to narrow any count up to it to one.
+pub fn search_steps(max_ranges: usize) -> u32 {
+    max_ranges.max(1).next_power_of_two().trailing_zeros()
+}
+
 /// Bytes of one entry of the table of dispatched ranges.
 const RANGE_ENTRY: u64 = 16;
 /// Byte offset of the table of dispatched ranges in the counters' buffer (the shader's
@@ -346,7 +352,7 @@ impl BladeGpu {
                 .pipeline_layout(device, "jahrmann simulate", &[&simulate_layout]),
             &module,
             "cs_simulate",
-            &[],
+            &[("SEARCH_STEPS", f64::from(search_steps(max_ranges)))],
         );
         let draw_pipeline_layout =
             ctx.scene_gpu
@@ -502,6 +508,33 @@ mod tests {
         // WGSL puts `CountBlock.ranges` (16-byte aligned) at the first multiple of 16 after
         // the 72-byte counts.
         assert_eq!(RANGES_OFFSET, 80);
+    }
+
+    #[test]
+    fn the_search_narrows_any_count_of_ranges_to_one() {
+        assert_eq!(search_steps(0), 0);
+        assert_eq!(search_steps(1), 0);
+        assert_eq!(search_steps(2), 1);
+        assert_eq!(search_steps(3), 2);
+        assert_eq!(search_steps(4096), 12);
+        assert_eq!(search_steps(4097), 13);
+        // The shader's halvings (`len -= len / 2`) leave one range of any count up to the
+        // most, and no fewer steps would for the most.
+        for max in 1..=2_000usize {
+            let steps = search_steps(max);
+            let narrowed = |mut len: usize, steps: u32| {
+                for _ in 0..steps {
+                    len -= len / 2;
+                }
+                len
+            };
+            for count in 1..=max {
+                assert_eq!(narrowed(count, steps), 1, "{count} of {max}");
+            }
+            if max > 1 {
+                assert!(narrowed(max, steps - 1) > 1, "{max}");
+            }
+        }
     }
 
     #[test]

@@ -36,7 +36,9 @@
 //!   survivors only. The ranges (at most two a tile) go to the GPU as a small table, one after the
 //!   other in invocation order (a far tile's few survivors share a workgroup with the next tile's:
 //!   one workgroup per range made 941 workgroups of 64 for 28 k blades at 400 m); each invocation
-//!   finds its range by a binary search. Every skip is one the per-blade tests would make (tested
+//!   finds its range by a binary search of a fixed number of halvings (`SEARCH_STEPS`, ⌈log₂⌉ of
+//!   the most ranges a frame holds, set by the pipeline: every invocation runs the same trips,
+//!   and the cost model counts them). Every skip is one the per-blade tests would make (tested
 //!   over random cameras and settings: `tiles::tests`), so the picture is the every-blade pass's:
 //!   FLIP 0.00000 on the three suite scenes (`tests/tests/gpu_jahrmann.rs`).
 //! - **Simulation** ([`sim`], the shader's `simulate`; forces (A), (C), alignment (R), validation

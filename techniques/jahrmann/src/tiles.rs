@@ -25,7 +25,7 @@
 //!
 //! The dispatched ranges go to the GPU as a table of `(first workgroup, first blade, end)`,
 //! each range starting a fresh workgroup of [`WORKGROUP`] blades; the shader finds its range
-//! by a binary search on the workgroup index. Every test here is conservative (a skipped
+//! by a binary search on its first invocation's index, of [`crate::gpu::search_steps`] halvings. Every test here is conservative (a skipped
 //! blade is one the per-blade tests would not draw), which `tests` checks over random cameras.
 
 use grassbench::glam::{Vec2, Vec3, Vec4};

@@ -375,6 +375,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU compute barriers",
     "GPU compute storage",
     "GPU vertex storage",
+    "GPU compute divisions",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
