@@ -84,9 +84,11 @@ pub enum Term {
     VertexArithmetic,
     /// A scalar arithmetic operation of a fragment shader invocation.
     FragmentArithmetic,
-    /// A scalar arithmetic operation of a compute shader invocation (lavapipe: jahrmann's
-    /// simulation, 578 operations an invocation, cost 60-75 ns an invocation where the
-    /// calibration's 39-operation spring update costs 4 ns).
+    /// A scalar arithmetic operation of a compute shader invocation. Calibrated on a chain of
+    /// multiply-adds, the cheapest operations a SIMD processor runs (lavapipe: 0.011-0.015 ns
+    /// an operation); comparisons, selections, square roots and values moved a lane at a time
+    /// cost more, which leaves jahrmann's compute pass, 772-796 operations an invocation,
+    /// under-priced (`results/cost_model/README.md`, *jahrmann's compute pass*).
     ComputeArithmetic,
     /// A workgroup barrier reached by a compute shader invocation
     /// (`crate::shaders::ShaderOps::barriers`). Not among the units issue 20 lists: the

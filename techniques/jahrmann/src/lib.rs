@@ -122,18 +122,20 @@
 //!
 //! What a CPU rasteriser charges for the pulling: each vertex reads 17 words from storage buffers
 //! (the blade's draw-list entry, root, looks and the two curve points) and each compute invocation
-//! moves 52 (four `vec4`s of the blade read, two written, the ranges' search, the counters with
-//! their loop over the six verdicts), and lavapipe moves them a lane at a time: 0.76-0.80 ns a word
-//! in the vertex stage and 0.38-0.41 in compute (`grassbench calibrate` at 320x180 and 640x360,
-//! 2026-12-05), 5.5 and 2.1-2.3 ms of the meadow's 320x180 frame, which the cost model prices
-//! since its storage terms (`results/cost_model/README.md`). The model still prices the compute
-//! pass at 38-41 ns an invocation where this host spends 44-245 ns (the time outside the
-//! timestamped passes beyond perbet's, which has no compute pass). Not for its three atomic
-//! additions to workgroup counters an invocation: a probe priced one at 1.15-1.25 ns an
-//! invocation on that host (`results/cost_model/README.md`). Nor for the work its invocations
-//! do: with this pass returning at its first line the time stayed (7.4 of 7.9-12.0 ms on the
-//! meadow at 320x180), a cost lavapipe charges for dispatching this compiled shader, about
-//! 4.2-4.5 µs a workgroup, which a small shader with the same bindings does not pay.
+//! moves 59-62 (four `vec4`s of the blade read, two written, the ranges' search of 8-11 halvings,
+//! the counters with their loop over the six verdicts), and lavapipe moves them a lane at a time:
+//! 0.75-0.90 ns a word in the vertex stage and 0.35-0.43 in compute (`grassbench calibrate` at
+//! 320x180 and 640x360, 2026-12-05), 5.4-6.3 and 2.3-2.7 ms of the meadow's 320x180 frame, which
+//! the cost model prices since its storage terms (`results/cost_model/README.md`). What the model
+//! still misses is the price of the pass's other operations. lavapipe runs the whole shader for
+//! every batch of 8 invocations whichever way their lanes branch: with every lane masked off
+//! after a uniform's test the pass still costs 67-71 of its 89-94 ns an invocation (`perf` on
+//! lavapipe's compute threads, the meadow at 320x180). Taken apart, its simulation costs 35 ns an
+//! invocation, its culling tests 19 (13 of them its two integer remainders by a uniform's value,
+//! a term of the model since), its range search 23, where the model prices the pieces' counted
+//! operations at a fraction of that: its arithmetic price comes from a chain of multiply-adds,
+//! and this pass's code is comparisons, selections, square roots, divisions, hashes and values
+//! moved a lane at a time. The model prices the pass at 50-61 ns an invocation on the meadow.
 //!
 //! ## Known artifacts
 //! - The far level's widened blades are coarser: beyond the hand-over, four times fewer blades four
