@@ -85,10 +85,10 @@ pub enum Term {
     /// A scalar arithmetic operation of a fragment shader invocation.
     FragmentArithmetic,
     /// A scalar arithmetic operation of a compute shader invocation. Calibrated on a chain of
-    /// multiply-adds, the cheapest operations a SIMD processor runs (lavapipe: 0.011-0.015 ns
-    /// an operation); comparisons, selections, square roots and values moved a lane at a time
-    /// cost more, which leaves jahrmann's compute pass, 772-796 operations an invocation,
-    /// under-priced (`results/cost_model/README.md`, *jahrmann's compute pass*).
+    /// multiply-adds (lavapipe: 0.011-0.015 ns an operation; a chain of comparisons,
+    /// selections, conversions and square roots priced the same in a probe). A large shader's
+    /// operations cost more (jahrmann's compute pass, 772-796 of them an invocation, with
+    /// values spilled to the stack: `results/cost_model/README.md`, *jahrmann's compute pass*).
     ComputeArithmetic,
     /// A workgroup barrier reached by a compute shader invocation
     /// (`crate::shaders::ShaderOps::barriers`). Not among the units issue 20 lists: the
