@@ -86,9 +86,10 @@ pub enum Term {
     FragmentArithmetic,
     /// A scalar arithmetic operation of a compute shader invocation. Calibrated on a chain of
     /// multiply-adds (lavapipe: 0.011-0.015 ns an operation; a chain of comparisons,
-    /// selections, conversions and square roots priced the same in a probe). A large shader's
-    /// operations cost more (jahrmann's compute pass, 772-796 of them an invocation, with
-    /// values spilled to the stack: `results/cost_model/README.md`, *jahrmann's compute pass*).
+    /// selections, conversions and square roots priced the same in a probe, one 16 `vec4`s
+    /// wide lower). jahrmann's compute pass, 772-796 of them an invocation, costs more than
+    /// this prices, for reasons not yet counted (`results/cost_model/README.md`, *jahrmann's
+    /// compute pass*).
     ComputeArithmetic,
     /// A workgroup barrier reached by a compute shader invocation
     /// (`crate::shaders::ShaderOps::barriers`). Not among the units issue 20 lists: the

@@ -134,10 +134,10 @@
 //! invocation, its culling tests 19 (13 of them its two integer remainders by a uniform's value,
 //! a term of the model since), its range search 23, where the model prices the pieces' counted
 //! operations at a fraction of that. Not for the kind of operation (a calibration chain of
-//! comparisons, selections, conversions and square roots prices one as the multiply-adds do) but,
-//! as far as was found, for the pass's size: 3 530 instructions a batch of 8, values spilled to
-//! the stack and moved a lane at a time. The model prices the pass at 50-61 ns an invocation on
-//! the meadow.
+//! comparisons, selections, conversions and square roots prices one as the multiply-adds do), nor
+//! for the values live at once (a chain 16 `vec4`s wide prices one lower); what is left, its short
+//! dependent runs (a length, a square root, a division) and masked control flow, is not counted
+//! yet. The model prices the pass at 50-61 ns an invocation on the meadow.
 //!
 //! ## Known artifacts
 //! - The far level's widened blades are coarser: beyond the hand-over, four times fewer blades four
