@@ -498,6 +498,7 @@ impl Workload {
             Shape::Compute { groups, chain } => {
                 let (x, y) = dispatch_grid(groups);
                 let invocations = f64::from(x) * f64::from(y) * f64::from(WORKGROUP_SIZE);
+                let ops = shader_ops(chain.compute_entry());
                 Work {
                     compute_invocations: invocations,
                     compute_transcendentals: if chain == Chain::Transcendental {
@@ -506,11 +507,9 @@ impl Workload {
                         0.0
                     },
                     compute_arithmetic: invocations * arithmetic(chain.compute_entry()),
-                    compute_barriers: invocations
-                        * shader_ops(chain.compute_entry()).barriers as f64,
-                    compute_storage: invocations * shader_ops(chain.compute_entry()).storage as f64,
-                    compute_divisions: invocations
-                        * shader_ops(chain.compute_entry()).divisions as f64,
+                    compute_barriers: invocations * ops.barriers as f64,
+                    compute_storage: invocations * ops.storage as f64,
+                    compute_divisions: invocations * ops.divisions as f64,
                     ..none
                 }
             }

@@ -371,32 +371,29 @@ fn arithmetic_of(
     }
 }
 
-/// Integer divisions and remainders of expression `e` of `function` by a divisor that is not a
-/// constant ([`ShaderOps::divisions`]): one per component of the widest operand.
-fn divisions_of(
+/// Whether expression `e` of `function` is an integer division or remainder by a divisor that
+/// is not a constant ([`ShaderOps::divisions`]; as many as its [`arithmetic_of`] components).
+fn divides_by_a_variable(
     types: &Types<'_>,
     function: &naga::Function,
     info: Option<&naga::valid::FunctionInfo>,
     e: naga::Handle<naga::Expression>,
-) -> u64 {
+) -> bool {
     use naga::BinaryOperator as B;
     let naga::Expression::Binary {
         op: B::Divide | B::Modulo,
-        left,
         right,
+        ..
     } = function.expressions[e]
     else {
-        return 0;
+        return false;
     };
-    let Some(info) = info else { return 0 };
-    let integer = matches!(
-        info[e].ty.inner_with(&types.module.types).scalar_kind(),
-        Some(naga::ScalarKind::Sint | naga::ScalarKind::Uint)
-    );
-    if !integer || is_constant(function, right) {
-        return 0;
-    }
-    components(types, Some(info), left).max(components(types, Some(info), right))
+    info.is_some_and(|info| {
+        matches!(
+            info[e].ty.inner_with(&types.module.types).scalar_kind(),
+            Some(naga::ScalarKind::Sint | naga::ScalarKind::Uint)
+        )
+    }) && !is_constant(function, right)
 }
 
 /// Whether expression `e` of `function` is known when the pipeline is created: a literal, a
@@ -470,9 +467,14 @@ fn function_ops(
             },
             _ => none,
         };
+        let arithmetic = arithmetic_of(types, function, info, h);
         ShaderOps {
-            arithmetic: arithmetic_of(types, function, info, h),
-            divisions: divisions_of(types, function, info, h),
+            arithmetic,
+            divisions: if divides_by_a_variable(types, function, info, h) {
+                arithmetic
+            } else {
+                0
+            },
             ..fetched
         }
     };
