@@ -88,9 +88,10 @@ pub enum Term {
     /// multiply-adds (lavapipe: 0.011-0.015 ns an operation; a chain of comparisons,
     /// selections, conversions and square roots priced the same in a probe, one 16 `vec4`s
     /// wide lower, a scalar chain whose every operation waits for the last 9-10 times
-    /// higher). So code of short dependent scalar runs, as jahrmann's compute pass (772-796
-    /// operations an invocation), costs more than this prices (`results/cost_model/README.md`,
-    /// *jahrmann's compute pass*).
+    /// higher). jahrmann's compute pass (772-796 operations an invocation) costs more than
+    /// this prices, for reasons its longest dependent chain does not explain (a term priced on
+    /// that chain was fitted and not landed: `results/cost_model/README.md`, *jahrmann's compute
+    /// pass* and *Probes after this version*).
     ComputeArithmetic,
     /// A workgroup barrier reached by a compute shader invocation
     /// (`crate::shaders::ShaderOps::barriers`). Not among the units issue 20 lists: the
