@@ -437,12 +437,13 @@ impl<'g> Rig<'g> {
     ) -> Vec<PipelineCost> {
         let mut costs = Vec::new();
         {
+            let occlusion = counter.as_deref().map(|c| c.occlusion_set().clone());
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("unit costs"),
                 color_attachments: &[Some(self.target.color_attachment(Some(wgpu::Color::BLACK)))],
                 depth_stencil_attachment: Some(self.target.depth_attachment(true)),
                 timestamp_writes: None,
-                occlusion_query_set: None,
+                occlusion_query_set: occlusion.as_ref(),
                 multiview_mask: None,
             });
             pass.set_bind_group(0, &self.group0, &[]);
@@ -455,8 +456,11 @@ impl<'g> Rig<'g> {
                 let query = counter.as_deref_mut().and_then(|c| {
                     c.next(w.name.to_owned(), PassKind::Render, Some(pipeline.cost()))
                 });
-                if let Some((set, index)) = &query {
-                    pass.begin_pipeline_statistics_query(set, *index);
+                if let Some(q) = &query {
+                    pass.begin_pipeline_statistics_query(&q.statistics.0, q.statistics.1);
+                    if let Some(o) = q.occlusion {
+                        pass.begin_occlusion_query(o);
+                    }
                     costs.push(pipeline.cost());
                 }
                 pass.set_pipeline(pipeline);
@@ -484,8 +488,11 @@ impl<'g> Rig<'g> {
                     }
                     Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => {}
                 }
-                if query.is_some() {
+                if let Some(q) = &query {
                     pass.end_pipeline_statistics_query();
+                    if q.occlusion.is_some() {
+                        pass.end_occlusion_query();
+                    }
                 }
             }
         }
@@ -510,8 +517,8 @@ impl<'g> Rig<'g> {
                 let query = counter.as_deref_mut().and_then(|c| {
                     c.next(w.name.to_owned(), PassKind::Compute, Some(pipeline.cost()))
                 });
-                if let Some((set, index)) = &query {
-                    pass.begin_pipeline_statistics_query(set, *index);
+                if let Some(q) = &query {
+                    pass.begin_pipeline_statistics_query(&q.statistics.0, q.statistics.1);
                     costs.push(pipeline.cost());
                 }
                 let (x, y) = dispatch_grid(groups);

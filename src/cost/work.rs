@@ -315,6 +315,7 @@ mod tests {
             clipper_primitives_out: 7,
             fragment_invocations: 100,
             compute_invocations: 64,
+            samples_passed: 40,
         };
         let kind = |fragments| PipelineCost {
             fragments,

@@ -329,6 +329,7 @@ impl<'g> World<'g> {
             fragments_opaque: fragments_of(crate::shaders::FragmentKind::Opaque),
             fragments_alpha_tested: fragments_of(crate::shaders::FragmentKind::AlphaTested),
             fragments_blended: fragments_of(crate::shaders::FragmentKind::Blended),
+            fragments_passed: grass.map(|w| w.samples_passed),
             compute_invocations: grass.map(|w| w.compute_invocations),
             background_vertex_invocations: background.map(|w| w.vertex_invocations),
             background_primitives: background.map(|w| w.clipper_primitives_out),

@@ -89,6 +89,12 @@ pub struct FrameRecord {
     /// Of `fragment_invocations`, those of blended pipelines.
     #[serde(default)]
     pub fragments_blended: Option<u64>,
+    /// Samples of the technique's render passes that passed the depth and stencil tests and
+    /// were not discarded (occlusion queries around the counted segments; one a pixel without
+    /// MSAA). Against `fragment_invocations`: the fragments hidden, discarded or only counted
+    /// (lavapipe counts whole 4x4 blocks, before its early depth test).
+    #[serde(default)]
+    pub fragments_passed: Option<u64>,
     /// Compute shader invocations of the technique's passes.
     #[serde(default)]
     pub compute_invocations: Option<u64>,
@@ -372,6 +378,10 @@ pub struct RunSummary {
     /// Median blended fragment invocations of the technique's passes.
     #[serde(default)]
     pub fragments_blended: Option<u64>,
+    /// Median samples of the technique's render passes that passed the depth and stencil
+    /// tests and were not discarded (occlusion queries).
+    #[serde(default)]
+    pub fragments_passed: Option<u64>,
     /// Median bytes uploaded per frame (core and technique).
     #[serde(default)]
     pub upload_bytes: Option<u64>,
@@ -619,6 +629,7 @@ impl RunSummary {
             fragments_opaque: median_u64(&|r| r.fragments_opaque),
             fragments_alpha_tested: median_u64(&|r| r.fragments_alpha_tested),
             fragments_blended: median_u64(&|r| r.fragments_blended),
+            fragments_passed: median_u64(&|r| r.fragments_passed),
             upload_bytes: median_u64(&|r| r.upload_bytes),
             compute_invocations: median_u64(&|r| r.compute_invocations),
             background_fragment_invocations: median_u64(&|r| r.background_fragment_invocations),
@@ -875,6 +886,7 @@ mod tests {
             fragments_opaque: None,
             fragments_alpha_tested: None,
             fragments_blended: None,
+            fragments_passed: None,
             compute_invocations: None,
             background_vertex_invocations: None,
             background_primitives: None,

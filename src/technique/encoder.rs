@@ -2,7 +2,7 @@
 //! pipeline-statistics queries (the work they did, [`super::work`]) added.
 
 use super::pass::{ComputePass, Counting, PassCounts, RenderPass};
-use super::work::WorkCounter;
+use super::work::{SegmentQueries, WorkCounter};
 use crate::scene::SceneGpu;
 use crate::{GpuContext, RenderTarget};
 
@@ -190,6 +190,7 @@ impl<'a> FrameEncoder<'a> {
         let timestamp_writes = self
             .next_queries(label, PassKind::Render)
             .map(|(q, i)| (q.clone(), i));
+        let occlusion = self.work.as_deref().map(|w| w.occlusion_set().clone());
         let mut pass = self.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&full),
             color_attachments: &[Some(target.color_attachment(clear))],
@@ -201,15 +202,12 @@ impl<'a> FrameEncoder<'a> {
                     end_of_pass_write_index: Some(i + 1),
                 }
             }),
-            occlusion_query_set: None,
+            occlusion_query_set: occlusion.as_ref(),
             multiview_mask: None,
         });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let (work, query) = start_counting(self.work.as_deref_mut(), full, PassKind::Render);
-        if let Some((queries, index)) = query {
-            pass.begin_pipeline_statistics_query(&queries, index);
-        }
-        RenderPass::new(pass, &mut self.counts, work)
+        let (work, queries) = start_counting(self.work.as_deref_mut(), full, PassKind::Render);
+        RenderPass::new(pass, &mut self.counts, work, queries)
     }
 
     /// Opens a compute pass with bind group 0 set.
@@ -232,8 +230,12 @@ impl<'a> FrameEncoder<'a> {
                 }),
             });
         pass.set_bind_group(0, &scene.bind_group, &[]);
-        let (work, query) = start_counting(self.work.as_deref_mut(), full, PassKind::Compute);
-        if let Some((queries, index)) = query {
+        let (work, queries) = start_counting(self.work.as_deref_mut(), full, PassKind::Compute);
+        if let Some(SegmentQueries {
+            statistics: (queries, index),
+            ..
+        }) = queries
+        {
             pass.begin_pipeline_statistics_query(&queries, index);
         }
         ComputePass::new(pass, &mut self.counts, work)
@@ -279,7 +281,7 @@ fn start_counting(
     work: Option<&mut WorkCounter>,
     full: String,
     kind: PassKind,
-) -> (Counting<'_>, Option<(wgpu::QuerySet, u32)>) {
+) -> (Counting<'_>, Option<SegmentQueries>) {
     let Some(work) = work else {
         return (None, None);
     };

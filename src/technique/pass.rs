@@ -11,20 +11,20 @@
 use std::ops::Range;
 
 use super::PassKind;
-use super::work::WorkCounter;
+use super::work::{SegmentQueries, WorkCounter};
 use crate::shaders::{ComputePipeline, PipelineCost, RenderPipeline};
 
 /// Where a pass's segments are counted, and the pass's label for new segments.
 pub(super) type Counting<'p> = Option<(&'p mut WorkCounter, String)>;
 
 /// Gives the running segment of a pass of `kind` the pipeline `cost`, or, where it has another
-/// (and the counter has room), starts the next segment: the query to begin after ending the
-/// running one.
+/// (and the counter has room), starts the next segment: the queries to begin after ending the
+/// running ones.
 fn segment_for(
     work: &mut Counting<'_>,
     kind: PassKind,
     cost: PipelineCost,
-) -> Option<(wgpu::QuerySet, u32)> {
+) -> Option<SegmentQueries> {
     let (work, label) = work.as_mut()?;
     match work.current_pipeline() {
         None => {
@@ -49,7 +49,7 @@ pub struct PassCounts {
 pub struct RenderPass<'p> {
     pass: wgpu::RenderPass<'p>,
     counts: &'p mut PassCounts,
-    /// A statistics query is open on the pass (ended on drop).
+    /// A statistics query and an occlusion query are open on the pass (ended on drop).
     counting: bool,
     /// Where the pass's segments are counted, and the pass's label for new segments.
     work: Counting<'p>,
@@ -59,21 +59,39 @@ impl Drop for RenderPass<'_> {
     fn drop(&mut self) {
         if self.counting {
             self.pass.end_pipeline_statistics_query();
+            self.pass.end_occlusion_query();
         }
     }
 }
 
 impl<'p> RenderPass<'p> {
+    /// Wraps `pass`, beginning the queries of its first segment (`first`, where counted; the
+    /// pass's descriptor must name the counter's occlusion query set).
     pub(super) fn new(
-        pass: wgpu::RenderPass<'p>,
+        mut pass: wgpu::RenderPass<'p>,
         counts: &'p mut PassCounts,
         work: Counting<'p>,
+        first: Option<SegmentQueries>,
     ) -> Self {
+        let counting = match (work.is_some(), first) {
+            (
+                true,
+                Some(SegmentQueries {
+                    statistics: (queries, index),
+                    occlusion: Some(occlusion),
+                }),
+            ) => {
+                pass.begin_pipeline_statistics_query(&queries, index);
+                pass.begin_occlusion_query(occlusion);
+                true
+            }
+            _ => false,
+        };
         Self {
             pass,
             counts,
-            counting: work.is_some(),
-            work,
+            counting,
+            work: if counting { work } else { None },
         }
     }
 
@@ -84,11 +102,15 @@ impl<'p> RenderPass<'p> {
     /// and the next begun, so work is counted by [`crate::shaders::PipelineCost`].
     pub fn set_pipeline(&mut self, pipeline: &RenderPipeline) {
         self.pass.set_pipeline(pipeline);
-        if let Some((queries, index)) =
-            segment_for(&mut self.work, PassKind::Render, pipeline.cost())
+        if let Some(SegmentQueries {
+            statistics: (queries, index),
+            occlusion: Some(occlusion),
+        }) = segment_for(&mut self.work, PassKind::Render, pipeline.cost())
         {
             self.pass.end_pipeline_statistics_query();
+            self.pass.end_occlusion_query();
             self.pass.begin_pipeline_statistics_query(&queries, index);
+            self.pass.begin_occlusion_query(occlusion);
         }
     }
 
@@ -190,8 +212,10 @@ impl<'p> ComputePass<'p> {
     /// begun, as in a render pass.
     pub fn set_pipeline(&mut self, pipeline: &ComputePipeline) {
         self.pass.set_pipeline(pipeline);
-        if let Some((queries, index)) =
-            segment_for(&mut self.work, PassKind::Compute, pipeline.cost())
+        if let Some(SegmentQueries {
+            statistics: (queries, index),
+            ..
+        }) = segment_for(&mut self.work, PassKind::Compute, pipeline.cost())
         {
             self.pass.end_pipeline_statistics_query();
             self.pass.begin_pipeline_statistics_query(&queries, index);

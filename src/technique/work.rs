@@ -13,6 +13,13 @@
 //! fetches by invocation. (Past [`MAX_COUNTED_PASSES`] segments in a frame, the last segment
 //! goes on counting whatever is drawn, under its own cost.)
 //!
+//! Each render segment also runs an occlusion query: the samples that passed the depth and
+//! stencil tests and were not discarded ([`PassWork::samples_passed`]). Set against the
+//! fragment invocations, it tells the fragments a pass shaded and kept from those it only
+//! counted: lavapipe counts fragment invocations per 4x4 block as it rasterises, before its
+//! early depth test, and a fragment that fails that test costs it a seventh of a shaded one
+//! (`results/cost_model/README.md`, *A counted fragment need not be a shaded one*).
+//!
 //! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
 //! recorded and the figures are `None`, never zeros.
 
@@ -46,16 +53,20 @@ pub struct PassWork {
     pub fragment_invocations: u64,
     /// Compute shader invocations (workgroups dispatched x workgroup size).
     pub compute_invocations: u64,
+    /// Samples that passed the depth and stencil tests and were not discarded (an occlusion
+    /// query; one a pixel without MSAA). 0 for compute passes.
+    pub samples_passed: u64,
 }
 
 impl PassWork {
-    fn from_counters(c: &[u64]) -> Self {
+    fn from_counters(c: &[u64], samples_passed: u64) -> Self {
         Self {
             vertex_invocations: c[0],
             clipper_invocations: c[1],
             clipper_primitives_out: c[2],
             fragment_invocations: c[3],
             compute_invocations: c[4],
+            samples_passed,
         }
     }
 }
@@ -70,6 +81,7 @@ impl std::ops::Add for PassWork {
             clipper_primitives_out: self.clipper_primitives_out + o.clipper_primitives_out,
             fragment_invocations: self.fragment_invocations + o.fragment_invocations,
             compute_invocations: self.compute_invocations + o.compute_invocations,
+            samples_passed: self.samples_passed + o.samples_passed,
         }
     }
 }
@@ -95,16 +107,34 @@ pub struct PassWorkRecord {
     pub work: PassWork,
 }
 
-/// A statistics query set and the buffers to read it back, reused frame after frame.
+/// A statistics query set, an occlusion query set and the buffers to read them back, reused
+/// frame after frame.
 pub struct WorkCounter {
     queries: wgpu::QuerySet,
+    occlusion: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
     pub(super) passes: Vec<Segment>,
+    /// Occlusion queries begun this frame (one for each render segment, numbered apart from
+    /// the statistics queries, so every query resolved was written).
+    occlusions: u32,
 }
 
-/// A query of the frame: its pass label, pass kind and pipeline cost.
-pub(super) type Segment = (String, PassKind, Option<PipelineCost>);
+/// A query of the frame: its pass label, pass kind, pipeline cost and, for a render segment,
+/// its occlusion query.
+pub(super) type Segment = (String, PassKind, Option<PipelineCost>, Option<u32>);
+
+/// The queries of one segment: its statistics query (set, index) and, in a render pass, the
+/// index of its occlusion query in [`WorkCounter::occlusion_set`].
+pub(crate) struct SegmentQueries {
+    pub(crate) statistics: (wgpu::QuerySet, u32),
+    pub(crate) occlusion: Option<u32>,
+}
+
+/// Bytes of the statistics results in the resolve and read-back buffers; the occlusion
+/// results follow (a multiple of 256, as `resolve_query_set` requires of an offset).
+const STATISTICS_BYTES: u64 = MAX_COUNTED_PASSES as u64 * COUNTERS * 8;
+const _: () = assert!(STATISTICS_BYTES.is_multiple_of(wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT));
 
 impl WorkCounter {
     /// A counter, or `None` when the device has no pipeline-statistics queries.
@@ -112,11 +142,16 @@ impl WorkCounter {
         if !gpu.has_pipeline_statistics() {
             return None;
         }
-        let size = u64::from(MAX_COUNTED_PASSES) * COUNTERS * 8;
+        let size = STATISTICS_BYTES + u64::from(MAX_COUNTED_PASSES) * 8;
         Some(Self {
             queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass work"),
                 ty: wgpu::QueryType::PipelineStatistics(TYPES),
+                count: MAX_COUNTED_PASSES,
+            }),
+            occlusion: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass work occlusion"),
+                ty: wgpu::QueryType::Occlusion,
                 count: MAX_COUNTED_PASSES,
             }),
             resolve: gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -132,27 +167,43 @@ impl WorkCounter {
                 mapped_at_creation: false,
             }),
             passes: Vec::new(),
+            occlusions: 0,
         })
+    }
+
+    /// The occlusion query set, for a render pass's descriptor.
+    pub(crate) fn occlusion_set(&self) -> &wgpu::QuerySet {
+        &self.occlusion
     }
 
     /// Forgets the passes of the last frame (their queries are reused).
     pub(crate) fn begin_frame(&mut self) {
         self.passes.clear();
+        self.occlusions = 0;
     }
 
-    /// The query of the next segment (`None` once [`MAX_COUNTED_PASSES`] are taken).
+    /// The queries of the next segment (`None` once [`MAX_COUNTED_PASSES`] are taken): a
+    /// render segment's occlusion query too, which the caller must begin and end with the
+    /// statistics query (every query resolved must have been written).
     pub(crate) fn next(
         &mut self,
         label: String,
         kind: PassKind,
         pipeline: Option<PipelineCost>,
-    ) -> Option<(wgpu::QuerySet, u32)> {
+    ) -> Option<SegmentQueries> {
         let index = self.passes.len() as u32;
         if index >= MAX_COUNTED_PASSES {
             return None;
         }
-        self.passes.push((label, kind, pipeline));
-        Some((self.queries.clone(), index))
+        let occlusion = (kind == PassKind::Render).then(|| {
+            self.occlusions += 1;
+            self.occlusions - 1
+        });
+        self.passes.push((label, kind, pipeline, occlusion));
+        Some(SegmentQueries {
+            statistics: (self.queries.clone(), index),
+            occlusion,
+        })
     }
 
     /// Whether another segment can be counted this frame.
@@ -185,6 +236,17 @@ impl WorkCounter {
                 u64::from(n) * COUNTERS * 8,
             );
         }
+        let m = self.occlusions;
+        if m > 0 {
+            encoder.resolve_query_set(&self.occlusion, 0..m, &self.resolve, STATISTICS_BYTES);
+            encoder.copy_buffer_to_buffer(
+                &self.resolve,
+                STATISTICS_BYTES,
+                &self.readback,
+                STATISTICS_BYTES,
+                u64::from(m) * 8,
+            );
+        }
     }
 
     /// Reads the last frame's work per pass. Call after the frame's submission completed;
@@ -194,7 +256,9 @@ impl WorkCounter {
         if n == 0 {
             return Some(Vec::new());
         }
-        let slice = self.readback.slice(..n * COUNTERS * 8);
+        let slice = self
+            .readback
+            .slice(..STATISTICS_BYTES + u64::from(self.occlusions) * 8);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
             let _ = tx.send(r);
@@ -203,15 +267,21 @@ impl WorkCounter {
             return None;
         }
         let records = slice.get_mapped_range().ok().map(|data| {
-            let counters: &[u64] = bytemuck::cast_slice(&data);
+            let all: &[u64] = bytemuck::cast_slice(&data);
+            let (counters, passed) = all.split_at((STATISTICS_BYTES / 8) as usize);
             self.passes
                 .iter()
                 .zip(counters.chunks_exact(COUNTERS as usize))
-                .map(|((label, kind, pipeline), c)| PassWorkRecord {
+                .map(|((label, kind, pipeline, occlusion), c)| PassWorkRecord {
                     label: label.clone(),
                     kind: *kind,
                     pipeline: *pipeline,
-                    work: PassWork::from_counters(c),
+                    work: PassWork::from_counters(
+                        c,
+                        occlusion
+                            .and_then(|i| passed.get(i as usize).copied())
+                            .unwrap_or(0),
+                    ),
                 })
                 .collect()
         });

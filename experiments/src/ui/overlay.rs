@@ -41,9 +41,12 @@ pub fn draw(ui: &egui::Ui, pane: &PaneDisplay, pic: egui::Rect, k: usize, figure
         {
             let mega = |n: u64| n as f64 / 1e6;
             lines.push(format!(
-                "work {:.2} M vertices · {:.2} M fragments · overdraw {overdraw:.2}{}",
+                "work {:.2} M vertices · {:.2} M fragments ({}) · overdraw {overdraw:.2}{}",
                 mega(vs),
                 mega(fs),
+                // Of them, the samples kept: passed the depth test, not discarded.
+                r.fragments_passed
+                    .map_or("-".to_owned(), |p| format!("{:.2} M kept", mega(p))),
                 r.compute_invocations
                     .filter(|&c| c > 0)
                     .map_or(String::new(), |c| format!(" · {:.2} M compute", mega(c)))
