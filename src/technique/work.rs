@@ -15,10 +15,11 @@
 //!
 //! Each render segment also runs an occlusion query: the samples that passed the depth and
 //! stencil tests and were not discarded ([`PassWork::samples_passed`]). Set against the
-//! fragment invocations, it tells the fragments a pass shaded and kept from those it only
-//! counted: lavapipe counts fragment invocations per 4x4 block as it rasterises, before its
-//! early depth test, and a fragment that fails that test costs it a seventh of a shaded one
-//! (`results/cost_model/README.md`, *A counted fragment need not be a shaded one*).
+//! fragment invocations, it tells the fragments a pass kept from those it counted: lavapipe
+//! counts every pixel of each 4x4 block a triangle touches, before its early depth test, so a
+//! thin blade's counted fragments are mostly lanes it covers not, and a hidden block's are
+//! counted though they skip the shader (`results/cost_model/README.md`, *A counted fragment
+//! need not be a shaded one* and *Fragments kept against fragments counted*).
 //!
 //! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
 //! recorded and the figures are `None`, never zeros.
