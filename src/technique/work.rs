@@ -17,7 +17,7 @@
 //! stencil tests and were not discarded ([`PassWork::samples_passed`]). Set against the
 //! fragment invocations, it tells the fragments a pass kept from those it counted: lavapipe
 //! counts every pixel of each 4x4 block a triangle touches, before its early depth test, so a
-//! thin blade's counted fragments are mostly lanes it covers not, and a hidden block's are
+//! thin blade's counted fragments are mostly lanes it does not cover, and a hidden block's are
 //! counted though they skip the shader (`results/cost_model/README.md`, *A counted fragment
 //! need not be a shaded one* and *Fragments kept against fragments counted*).
 //!
