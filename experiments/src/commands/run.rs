@@ -454,6 +454,9 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
          rasterisers); timestamp-query figures are in `runs.csv` beside them. Frame = CPU stages + GPU wall. \
          Fragments and overdraw (fragment shader invocations of the technique's passes, and those per \
          target pixel) are counted by the GPU's pipeline-statistics queries; empty where the adapter has none. \
+         *Kept* are the samples of those passes that passed the depth test and were not discarded (occlusion \
+         queries): lavapipe counts every pixel of each 4x4 block a triangle touches, so thin blades keep few of \
+         their counted fragments. \
          *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
          were measured: on a software rasteriser that time is taken from the GPU. Speed-up = the reference's \
          median GPU wall time over the technique's on the same scene, with its 95 % bootstrap interval over \
@@ -464,17 +467,17 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | model ms | measured / model | frame ms | blades drawn | blades represented | triangles | fragments (M) | overdraw | GPU MB | other processes (cores) |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | model ms | measured / model | frame ms | blades drawn | blades represented | triangles | fragments (M) | kept (M) | overdraw | GPU MB | other processes (cores) |"
     );
     let _ = writeln!(
         s,
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
@@ -494,6 +497,7 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
             count(r.blades_represented),
             count(r.triangles),
             fmt_opt(r.fragment_invocations.map(|f| f as f64 / 1e6), 2),
+            fmt_opt(r.fragments_passed.map(|f| f as f64 / 1e6), 3),
             fmt_opt(r.overdraw, 2),
             fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1),
             fmt_opt(r.host_other_cores, 2)
