@@ -457,10 +457,7 @@ impl<'g> Rig<'g> {
                     c.next(w.name.to_owned(), PassKind::Render, Some(pipeline.cost()))
                 });
                 if let Some(q) = &query {
-                    pass.begin_pipeline_statistics_query(&q.statistics.0, q.statistics.1);
-                    if let Some(o) = q.occlusion {
-                        pass.begin_occlusion_query(o);
-                    }
+                    q.begin_render(&mut pass);
                     costs.push(pipeline.cost());
                 }
                 pass.set_pipeline(pipeline);
@@ -488,11 +485,8 @@ impl<'g> Rig<'g> {
                     }
                     Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => {}
                 }
-                if let Some(q) = &query {
-                    pass.end_pipeline_statistics_query();
-                    if q.occlusion.is_some() {
-                        pass.end_occlusion_query();
-                    }
+                if query.is_some() {
+                    crate::technique::work::end_render(&mut pass);
                 }
             }
         }
@@ -518,7 +512,7 @@ impl<'g> Rig<'g> {
                     c.next(w.name.to_owned(), PassKind::Compute, Some(pipeline.cost()))
                 });
                 if let Some(q) = &query {
-                    pass.begin_pipeline_statistics_query(&q.statistics.0, q.statistics.1);
+                    q.begin_compute(&mut pass);
                     costs.push(pipeline.cost());
                 }
                 let (x, y) = dispatch_grid(groups);

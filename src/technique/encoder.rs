@@ -231,12 +231,8 @@ impl<'a> FrameEncoder<'a> {
             });
         pass.set_bind_group(0, &scene.bind_group, &[]);
         let (work, queries) = start_counting(self.work.as_deref_mut(), full, PassKind::Compute);
-        if let Some(SegmentQueries {
-            statistics: (queries, index),
-            ..
-        }) = queries
-        {
-            pass.begin_pipeline_statistics_query(&queries, index);
+        if let Some(q) = queries {
+            q.begin_compute(&mut pass);
         }
         ComputePass::new(pass, &mut self.counts, work)
     }

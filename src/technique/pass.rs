@@ -11,7 +11,7 @@
 use std::ops::Range;
 
 use super::PassKind;
-use super::work::{SegmentQueries, WorkCounter};
+use super::work::{SegmentQueries, WorkCounter, end_render};
 use crate::shaders::{ComputePipeline, PipelineCost, RenderPipeline};
 
 /// Where a pass's segments are counted, and the pass's label for new segments.
@@ -58,8 +58,7 @@ pub struct RenderPass<'p> {
 impl Drop for RenderPass<'_> {
     fn drop(&mut self) {
         if self.counting {
-            self.pass.end_pipeline_statistics_query();
-            self.pass.end_occlusion_query();
+            end_render(&mut self.pass);
         }
     }
 }
@@ -73,20 +72,10 @@ impl<'p> RenderPass<'p> {
         work: Counting<'p>,
         first: Option<SegmentQueries>,
     ) -> Self {
-        let counting = match (work.is_some(), first) {
-            (
-                true,
-                Some(SegmentQueries {
-                    statistics: (queries, index),
-                    occlusion: Some(occlusion),
-                }),
-            ) => {
-                pass.begin_pipeline_statistics_query(&queries, index);
-                pass.begin_occlusion_query(occlusion);
-                true
-            }
-            _ => false,
-        };
+        let counting = work.is_some() && first.is_some();
+        if let Some(q) = first.filter(|_| counting) {
+            q.begin_render(&mut pass);
+        }
         Self {
             pass,
             counts,
@@ -102,15 +91,9 @@ impl<'p> RenderPass<'p> {
     /// and the next begun, so work is counted by [`crate::shaders::PipelineCost`].
     pub fn set_pipeline(&mut self, pipeline: &RenderPipeline) {
         self.pass.set_pipeline(pipeline);
-        if let Some(SegmentQueries {
-            statistics: (queries, index),
-            occlusion: Some(occlusion),
-        }) = segment_for(&mut self.work, PassKind::Render, pipeline.cost())
-        {
-            self.pass.end_pipeline_statistics_query();
-            self.pass.end_occlusion_query();
-            self.pass.begin_pipeline_statistics_query(&queries, index);
-            self.pass.begin_occlusion_query(occlusion);
+        if let Some(next) = segment_for(&mut self.work, PassKind::Render, pipeline.cost()) {
+            end_render(&mut self.pass);
+            next.begin_render(&mut self.pass);
         }
     }
 
@@ -212,13 +195,9 @@ impl<'p> ComputePass<'p> {
     /// begun, as in a render pass.
     pub fn set_pipeline(&mut self, pipeline: &ComputePipeline) {
         self.pass.set_pipeline(pipeline);
-        if let Some(SegmentQueries {
-            statistics: (queries, index),
-            ..
-        }) = segment_for(&mut self.work, PassKind::Compute, pipeline.cost())
-        {
+        if let Some(next) = segment_for(&mut self.work, PassKind::Compute, pipeline.cost()) {
             self.pass.end_pipeline_statistics_query();
-            self.pass.begin_pipeline_statistics_query(&queries, index);
+            next.begin_compute(&mut self.pass);
         }
     }
 

@@ -115,21 +115,54 @@ pub struct WorkCounter {
     occlusion: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
-    pub(super) passes: Vec<Segment>,
+    passes: Vec<Segment>,
     /// Occlusion queries begun this frame (one for each render segment, numbered apart from
     /// the statistics queries, so every query resolved was written).
     occlusions: u32,
 }
 
-/// A query of the frame: its pass label, pass kind, pipeline cost and, for a render segment,
-/// its occlusion query.
-pub(super) type Segment = (String, PassKind, Option<PipelineCost>, Option<u32>);
+/// A segment of the frame: what its queries count and how to read them back.
+struct Segment {
+    /// Pass label (prefixed).
+    label: String,
+    kind: PassKind,
+    /// The cost of its pipelines (`None` until its first pipeline is set).
+    pipeline: Option<PipelineCost>,
+    /// Its occlusion query's index (render segments only).
+    occlusion: Option<u32>,
+}
 
 /// The queries of one segment: its statistics query (set, index) and, in a render pass, the
-/// index of its occlusion query in [`WorkCounter::occlusion_set`].
+/// index of its occlusion query in [`WorkCounter::occlusion_set`]. A render segment's two
+/// queries begin and end together ([`SegmentQueries::begin_render`], [`end_render`]).
 pub(crate) struct SegmentQueries {
-    pub(crate) statistics: (wgpu::QuerySet, u32),
-    pub(crate) occlusion: Option<u32>,
+    statistics: (wgpu::QuerySet, u32),
+    occlusion: Option<u32>,
+}
+
+impl SegmentQueries {
+    /// Begins the segment's queries on a render pass whose descriptor names the counter's
+    /// occlusion query set ([`WorkCounter::occlusion_set`]).
+    pub(crate) fn begin_render(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let (queries, index) = &self.statistics;
+        pass.begin_pipeline_statistics_query(queries, *index);
+        if let Some(occlusion) = self.occlusion {
+            pass.begin_occlusion_query(occlusion);
+        }
+    }
+
+    /// Begins the segment's statistics query on a compute pass.
+    pub(crate) fn begin_compute(&self, pass: &mut wgpu::ComputePass<'_>) {
+        let (queries, index) = &self.statistics;
+        pass.begin_pipeline_statistics_query(queries, *index);
+    }
+}
+
+/// Ends the queries a render segment began ([`SegmentQueries::begin_render`]; every render
+/// segment has an occlusion query, [`WorkCounter::next`]).
+pub(crate) fn end_render(pass: &mut wgpu::RenderPass<'_>) {
+    pass.end_pipeline_statistics_query();
+    pass.end_occlusion_query();
 }
 
 /// Bytes of the statistics results in the resolve and read-back buffers; the occlusion
@@ -184,7 +217,7 @@ impl WorkCounter {
     }
 
     /// The queries of the next segment (`None` once [`MAX_COUNTED_PASSES`] are taken): a
-    /// render segment's occlusion query too, which the caller must begin and end with the
+    /// render segment's occlusion query too, which the caller begins and ends with the
     /// statistics query (every query resolved must have been written).
     pub(crate) fn next(
         &mut self,
@@ -200,7 +233,12 @@ impl WorkCounter {
             self.occlusions += 1;
             self.occlusions - 1
         });
-        self.passes.push((label, kind, pipeline, occlusion));
+        self.passes.push(Segment {
+            label,
+            kind,
+            pipeline,
+            occlusion,
+        });
         Some(SegmentQueries {
             statistics: (self.queries.clone(), index),
             occlusion,
@@ -214,13 +252,13 @@ impl WorkCounter {
 
     /// The pipeline cost of the segment being counted (`None` before its first pipeline).
     pub(super) fn current_pipeline(&self) -> Option<PipelineCost> {
-        self.passes.last().and_then(|s| s.2)
+        self.passes.last().and_then(|s| s.pipeline)
     }
 
     /// Gives the segment being counted its pipeline cost (its first pipeline's).
     pub(super) fn set_current_pipeline(&mut self, cost: PipelineCost) {
         if let Some(s) = self.passes.last_mut() {
-            s.2 = Some(cost);
+            s.pipeline = Some(cost);
         }
     }
 
@@ -273,13 +311,13 @@ impl WorkCounter {
             self.passes
                 .iter()
                 .zip(counters.chunks_exact(COUNTERS as usize))
-                .map(|((label, kind, pipeline, occlusion), c)| PassWorkRecord {
-                    label: label.clone(),
-                    kind: *kind,
-                    pipeline: *pipeline,
+                .map(|(s, c)| PassWorkRecord {
+                    label: s.label.clone(),
+                    kind: s.kind,
+                    pipeline: s.pipeline,
                     work: PassWork::from_counters(
                         c,
-                        occlusion
+                        s.occlusion
                             .and_then(|i| passed.get(i as usize).copied())
                             .unwrap_or(0),
                     ),
