@@ -78,9 +78,9 @@ impl MeasuredSample {
 }
 
 /// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic, barriers, storage words and integer divisions are the
-/// counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 20] = [
+/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic, barriers, storage words, integer divisions and mip blends are
+/// the counted invocations times those of the shaders' entry points.
+pub const COUNTED_TERMS: [Term; 21] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -101,6 +101,7 @@ pub const COUNTED_TERMS: [Term; 20] = [
     Term::ComputeStorage,
     Term::VertexStorage,
     Term::ComputeDivision,
+    Term::TextureMipBlend,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -59,11 +59,12 @@ impl<'g> Rig<'g> {
         let target = RenderTarget::new(gpu, size, false)?;
         let device = &gpu.device;
         gpu.scoped("building the unit-cost workloads", || {
-            let module = shaders::module_with_formats(
+            let module = shaders::module_with_bindings(
                 device,
                 "unit costs",
                 workloads::SHADER,
                 &workloads::texture_formats(),
+                &[workloads::SINGLE_LEVEL_SAMPLER],
             );
             let buffer_entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
                 binding,
@@ -73,6 +74,12 @@ impl<'g> Rig<'g> {
                     has_dynamic_offset: false,
                     min_binding_size: None,
                 },
+                count: None,
+            };
+            let sampler_entry = |binding| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 count: None,
             };
             let uniform_entry = |binding, visibility| {
@@ -105,12 +112,9 @@ impl<'g> Rig<'g> {
                         wgpu::ShaderStages::VERTEX,
                         wgpu::BufferBindingType::Storage { read_only: true },
                     ),
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 3,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
-                        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                        count: None,
-                    },
+                    // The trilinear sampler (3) and the one-level one (7).
+                    sampler_entry(3),
+                    sampler_entry(7),
                 ]
                 .into_iter()
                 .chain(workloads::FETCH_TEXTURES.map(|t| {
@@ -181,6 +185,21 @@ impl<'g> Rig<'g> {
                     fetch_texture(gpu, t.format).create_view(&Default::default()),
                 )
             });
+            // Bilinear filtering within a level; between two levels (`trilinear`), or the
+            // nearer level alone (`single_level`, the shader's `SINGLE_LEVEL_SAMPLER`).
+            let sampler = |label, mipmap_filter| {
+                device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some(label),
+                    address_mode_u: wgpu::AddressMode::Repeat,
+                    address_mode_v: wgpu::AddressMode::Repeat,
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    mipmap_filter,
+                    ..Default::default()
+                })
+            };
+            let trilinear = sampler("unit costs trilinear", wgpu::MipmapFilterMode::Linear);
+            let single_level = sampler("unit costs one level", wgpu::MipmapFilterMode::Nearest);
             let group1 = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("unit costs"),
                 layout: &layout1,
@@ -199,17 +218,11 @@ impl<'g> Rig<'g> {
                     },
                     wgpu::BindGroupEntry {
                         binding: 3,
-                        resource: wgpu::BindingResource::Sampler(&device.create_sampler(
-                            &wgpu::SamplerDescriptor {
-                                label: Some("unit costs trilinear"),
-                                address_mode_u: wgpu::AddressMode::Repeat,
-                                address_mode_v: wgpu::AddressMode::Repeat,
-                                mag_filter: wgpu::FilterMode::Linear,
-                                min_filter: wgpu::FilterMode::Linear,
-                                mipmap_filter: wgpu::MipmapFilterMode::Linear,
-                                ..Default::default()
-                            },
-                        )),
+                        resource: wgpu::BindingResource::Sampler(&trilinear),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 7,
+                        resource: wgpu::BindingResource::Sampler(&single_level),
                     },
                 ]
                 .into_iter()

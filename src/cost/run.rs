@@ -49,6 +49,8 @@ impl Work {
             compute_storage: f(r.compute_storage).unwrap_or(0.0),
             vertex_storage: f(r.vertex_storage).unwrap_or(0.0),
             compute_divisions: f(r.compute_divisions).unwrap_or(0.0),
+            texture_mip_blends: f(r.texture_mip_blends).unwrap_or(0.0)
+                + f(r.background_texture_mip_blends).unwrap_or(0.0),
         })
     }
 
@@ -102,6 +104,7 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_compute_storage_ms = p.map(|p| p.compute_storage_ms);
     run.model_vertex_storage_ms = p.map(|p| p.vertex_storage_ms);
     run.model_compute_division_ms = p.map(|p| p.compute_division_ms);
+    run.model_texture_mip_blend_ms = p.map(|p| p.texture_mip_blend_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

@@ -126,11 +126,22 @@ pub enum Term {
     /// far level keeps it): making them remainders by a constant took 13 ns from its 92 ns
     /// an invocation on lavapipe (2026-12-05).
     ComputeDivision,
+    /// What a filtered sample costs more where it may read and blend two mip levels
+    /// (`crate::shaders::ShaderOps::mip_blends`), on top of [`Term::TextureSample`] or
+    /// [`Term::FloatTextureSample`], which every sample pays. Not among the units issue 20
+    /// lists: the sample terms were calibrated on samples minified between two levels, and a
+    /// sample at a whole level (a sampler whose mipmap filter is `Nearest`, as bakay's custom
+    /// mip levels need; a `textureSampleLevel` at level 0, as zhang's blades) filters one: a
+    /// second bilinear lookup and a blend saved (lavapipe: an `Rgba8Unorm` sample 2.6 ns
+    /// magnified against 4.4-4.6 between two levels, an `Rgba16Float` one 3.2 against 5.1-5.3,
+    /// `grassbench calibrate` at 320x180, 2026-12-05; most GPUs filter trilinearly at half
+    /// their bilinear rate).
+    TextureMipBlend,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 25] = [
+    pub const ALL: [Self; 26] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -156,6 +167,7 @@ impl Term {
         Self::ComputeStorage,
         Self::VertexStorage,
         Self::ComputeDivision,
+        Self::TextureMipBlend,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -186,6 +198,7 @@ impl Term {
             Self::ComputeStorage => "compute_storage",
             Self::VertexStorage => "vertex_storage",
             Self::ComputeDivision => "compute_division",
+            Self::TextureMipBlend => "texture_mip_blend",
         }
     }
 
@@ -216,6 +229,7 @@ impl Term {
             Self::ComputeBarrier => "invocation at a barrier",
             Self::ComputeStorage | Self::VertexStorage => "storage word",
             Self::ComputeDivision => "integer division",
+            Self::TextureMipBlend => "sample blending two mip levels",
         }
     }
 

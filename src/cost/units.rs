@@ -119,6 +119,10 @@ pub struct UnitCosts {
     /// shader, ns (0 before the term).
     #[serde(default)]
     pub compute_division_ns: UnitCost,
+    /// Per filtered sample that may blend two mip levels, on top of its sample's cost, ns (0
+    /// before the term).
+    #[serde(default)]
+    pub texture_mip_blend_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
 }
@@ -195,6 +199,9 @@ pub struct Prediction {
     /// Compute shaders' integer divisions, ms.
     #[serde(default)]
     pub compute_division_ms: f64,
+    /// Filtered samples' second mip level, ms.
+    #[serde(default)]
+    pub texture_mip_blend_ms: f64,
 }
 
 impl UnitCosts {
@@ -244,6 +251,7 @@ impl UnitCosts {
             compute_storage_ns: stored(Term::ComputeStorage),
             vertex_storage_ns: stored(Term::VertexStorage),
             compute_division_ns: stored(Term::ComputeDivision),
+            texture_mip_blend_ns: stored(Term::TextureMipBlend),
             fit,
         }
     }
@@ -276,6 +284,7 @@ impl UnitCosts {
             Term::ComputeStorage => self.compute_storage_ns,
             Term::VertexStorage => self.vertex_storage_ns,
             Term::ComputeDivision => self.compute_division_ns,
+            Term::TextureMipBlend => self.texture_mip_blend_ns,
         }
     }
 
@@ -314,6 +323,7 @@ impl UnitCosts {
             compute_storage_ms: ms(Term::ComputeStorage),
             vertex_storage_ms: ms(Term::VertexStorage),
             compute_division_ms: ms(Term::ComputeDivision),
+            texture_mip_blend_ms: ms(Term::TextureMipBlend),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -399,6 +409,7 @@ impl Prediction {
             Term::ComputeStorage => self.compute_storage_ms,
             Term::VertexStorage => self.vertex_storage_ms,
             Term::ComputeDivision => self.compute_division_ms,
+            Term::TextureMipBlend => self.texture_mip_blend_ms,
         }
     }
 
@@ -423,10 +434,11 @@ mod tests {
         // 2 and 8 ns more in a vertex shader), sample 6 ns (10 ns floating-point),
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
         // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns, a compute shader's storage word 0.5 ns,
-        // a vertex shader's 1 ns, a compute shader's integer division 4 ns.
+        // a vertex shader's 1 ns, a compute shader's integer division 4 ns, a sample's second
+        // mip level 2 ns.
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -463,18 +475,19 @@ mod tests {
             compute_storage: 6e6,
             vertex_storage: 2e6,
             compute_divisions: 5e5,
+            texture_mip_blends: 1.5e6,
         };
         let p = costs.predict(&work);
         // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
-        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 ms.
+        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 + 3 ms.
         let expected = [
             1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
-            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0,
+            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0, 3.0,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 34.81).abs() < 1e-9);
+        assert!((p.total_ms - 37.81).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -494,7 +507,7 @@ mod tests {
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -521,7 +534,8 @@ mod tests {
                     || l.starts_with("[compute_barrier_")
                     || l.starts_with("[compute_storage_")
                     || l.starts_with("[vertex_storage_")
-                    || l.starts_with("[compute_division_");
+                    || l.starts_with("[compute_division_")
+                    || l.starts_with("[texture_mip_blend_");
             }
             if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
                 older.push_str(l);
@@ -550,5 +564,7 @@ mod tests {
         assert!(!older.contains("storage_ns"), "{older}");
         assert_eq!(read.compute_division_ns, UnitCost::default());
         assert!(!older.contains("division_ns"), "{older}");
+        assert_eq!(read.texture_mip_blend_ns, UnitCost::default());
+        assert!(!older.contains("mip_blend_ns"), "{older}");
     }
 }

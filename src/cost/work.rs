@@ -86,6 +86,10 @@ pub struct Work {
     /// shader invocations ([`crate::shaders::ShaderOps::divisions`]).
     #[serde(default)]
     pub compute_divisions: f64,
+    /// Filtered samples, of any stage and format, that may blend two mip levels
+    /// ([`crate::shaders::ShaderOps::mip_blends`]).
+    #[serde(default)]
+    pub texture_mip_blends: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -138,6 +142,7 @@ impl Work {
             compute_storage: ops.compute.storage as f64,
             vertex_storage: ops.vertex.storage as f64,
             compute_divisions: ops.compute.divisions as f64,
+            texture_mip_blends: fetches.mip_blends as f64,
         }
     }
 
@@ -170,6 +175,7 @@ impl Work {
             Term::ComputeStorage => self.compute_storage,
             Term::VertexStorage => self.vertex_storage,
             Term::ComputeDivision => self.compute_divisions,
+            Term::TextureMipBlend => self.texture_mip_blends,
         }
     }
 
@@ -200,6 +206,7 @@ impl Work {
             compute_storage: self.compute_storage * k,
             vertex_storage: self.vertex_storage * k,
             compute_divisions: self.compute_divisions * k,
+            texture_mip_blends: self.texture_mip_blends * k,
         }
     }
 
@@ -241,6 +248,7 @@ impl std::ops::Add for Work {
             compute_storage: self.compute_storage + o.compute_storage,
             vertex_storage: self.vertex_storage + o.vertex_storage,
             compute_divisions: self.compute_divisions + o.compute_divisions,
+            texture_mip_blends: self.texture_mip_blends + o.texture_mip_blends,
         }
     }
 }
@@ -276,13 +284,14 @@ mod tests {
             compute_storage: 15.0,
             vertex_storage: 16.0,
             compute_divisions: 17.0,
+            texture_mip_blends: 18.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0,
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -323,7 +332,7 @@ mod tests {
         };
         // 11 vertices fetching 8 floating-point texels each (a bilinear height and wind) with
         // 5 transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and
-        // 2 of floating-point texels) and loading 1 texel with 1 transcendental and 20
+        // 2 of floating-point texels, 4 of the 5 blending two mip levels) and loading 1 texel with 1 transcendental and 20
         // operations, 64 compute invocations loading 4 with 2 and 3 reaching 2 barriers,
         // moving 10 words of storage and taking 3 integer divisions.
         let fetching = PipelineCost {
@@ -333,6 +342,7 @@ mod tests {
                 float_loads: 8,
                 samples: 0,
                 float_samples: 0,
+                mip_blends: 0,
                 transcendentals: 5,
                 arithmetic: 40,
                 barriers: 0,
@@ -344,6 +354,7 @@ mod tests {
                 float_loads: 0,
                 samples: 3,
                 float_samples: 2,
+                mip_blends: 4,
                 transcendentals: 1,
                 arithmetic: 20,
                 barriers: 0,
@@ -355,6 +366,7 @@ mod tests {
                 float_loads: 0,
                 samples: 0,
                 float_samples: 0,
+                mip_blends: 0,
                 transcendentals: 2,
                 arithmetic: 3,
                 barriers: 2,
@@ -374,6 +386,7 @@ mod tests {
                 vertex_float_texture_loads: 88.0,
                 texture_samples: 300.0,
                 float_texture_samples: 200.0,
+                texture_mip_blends: 400.0,
                 vertex_transcendentals: 55.0,
                 fragment_transcendentals: 100.0,
                 compute_transcendentals: 128.0,

@@ -12,8 +12,9 @@
 //! | `vertices` | instanced 11-vertex strips (a 5-segment blade) entirely off screen: the clipper rejects every triangle | vertex |
 //! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
-//! | `texture_loads`, `texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] trilinear `textureSample`s of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
-//! | `float_texture_loads`, `float_texture_samples` | the same loads of the texels in [`FLOAT_LOAD_FORMAT`], samples in [`FLOAT_SAMPLE_FORMAT`] | floating-point texel load, sample |
+//! | `texture_loads`, `single_level_texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] `textureSample`s of one mip level (a `Nearest` mipmap filter, [`SINGLE_LEVEL_SAMPLER`]) of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
+//! | `texture_samples` | the same samples trilinear, minified between two levels | a sample's second mip level |
+//! | `float_texture_loads`, `float_texture_samples` | the same loads of the texels in [`FLOAT_LOAD_FORMAT`], trilinear samples in [`FLOAT_SAMPLE_FORMAT`] | floating-point texel load, sample |
 //! | `vertex_texture_loads`, `vertex_float_texture_loads` | the off-screen strips with [`LOADS_PER_VERTEX`] `textureLoad`s per vertex of the RGBA8 / floating-point texture | what a load costs a vertex shader more |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
 //! | `arithmetic_vertex`, `_fragment`, `_compute` | the same with [`ARITHMETIC_CHAIN`] more scalar operations (multiply-adds and maxima of a `vec4`) | scalar arithmetic by stage |
@@ -84,8 +85,23 @@ pub const FETCH_TEXTURES: [FetchTexture; 3] = [
     },
 ];
 
+/// The shader's sampler that filters one mip level (binding 7 of group 1: mipmap filter
+/// `Nearest`), as the shader's module is created with
+/// ([`crate::shaders::module_with_bindings`]): its samples are not mip blends.
+pub const SINGLE_LEVEL_SAMPLER: &str = "single_level";
+
+/// What the shader's texture and sampler globals are bound to, as its module is created with
+/// ([`crate::shaders::module_with_bindings`]) and its operations are counted.
+fn bound<R>(f: impl FnOnce(crate::shaders::Bound<'_>) -> R) -> R {
+    let float = crate::shaders::float_textures(&texture_formats());
+    f(crate::shaders::Bound {
+        float: &float,
+        single_level: &[SINGLE_LEVEL_SAMPLER],
+    })
+}
+
 /// [`FETCH_TEXTURES`]' names and formats, as the shader's module is created with
-/// ([`crate::shaders::module_with_formats`]).
+/// ([`crate::shaders::module_with_bindings`]).
 pub fn texture_formats() -> [(&'static str, wgpu::TextureFormat); FETCH_TEXTURES.len()] {
     FETCH_TEXTURES.map(|t| (t.name, t.format))
 }
@@ -96,13 +112,7 @@ pub fn shader_ops(entry: &str) -> ShaderOps {
     static OPS: OnceLock<Vec<(String, ShaderOps)>> = OnceLock::new();
     OPS.get_or_init(|| {
         naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
-            .map(|m| {
-                crate::shaders::entry_ops(
-                    &m,
-                    &crate::shaders::float_textures(&texture_formats()),
-                    &[],
-                )
-            })
+            .map(|m| bound(|b| crate::shaders::entry_ops(&m, b, &[])))
             .unwrap_or_default()
     })
     .iter()
@@ -264,6 +274,8 @@ pub enum Fetch {
     Loads,
     /// [`SAMPLES_PER_FRAGMENT`] trilinear samples (`textureSample`) of the RGBA8 texture.
     Samples,
+    /// The same samples of one mip level ([`SINGLE_LEVEL_SAMPLER`]).
+    SingleLevelSamples,
     /// The same loads of the texture of floating-point texels ([`FLOAT_LOAD_FORMAT`]).
     FloatLoads,
     /// The same samples of the texture of floating-point texels ([`FLOAT_SAMPLE_FORMAT`]).
@@ -272,9 +284,10 @@ pub enum Fetch {
 
 impl Fetch {
     /// Every fetch, in declaration order (`fetch as usize` is its position).
-    pub const ALL: [Self; 4] = [
+    pub const ALL: [Self; 5] = [
         Self::Loads,
         Self::Samples,
+        Self::SingleLevelSamples,
         Self::FloatLoads,
         Self::FloatSamples,
     ];
@@ -284,6 +297,7 @@ impl Fetch {
         match self {
             Self::Loads => "fs_loads",
             Self::Samples => "fs_samples",
+            Self::SingleLevelSamples => "fs_single_level_samples",
             Self::FloatLoads => "fs_float_loads",
             Self::FloatSamples => "fs_float_samples",
         }
@@ -475,12 +489,16 @@ impl Workload {
                         0.0
                     }
                 };
+                let ops = shader_ops(fetch.fragment_entry());
                 Work {
-                    fragment_arithmetic: base.fragments_opaque * arithmetic(fetch.fragment_entry()),
+                    fragment_arithmetic: base.fragments_opaque * ops.arithmetic as f64,
                     texture_loads: per(LOADS_PER_FRAGMENT, Fetch::Loads),
                     float_texture_loads: per(LOADS_PER_FRAGMENT, Fetch::FloatLoads),
-                    texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::Samples),
+                    texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::Samples)
+                        + per(SAMPLES_PER_FRAGMENT, Fetch::SingleLevelSamples),
                     float_texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::FloatSamples),
+                    // Read off the shader: the trilinear samples' (tested below).
+                    texture_mip_blends: base.fragments_opaque * ops.mip_blends as f64,
                     ..base
                 }
             }
@@ -663,8 +681,16 @@ pub fn families() -> Vec<Workload> {
             },
         },
         Workload {
-            name: "texture_samples",
+            name: "single_level_texture_samples",
             term: Term::TextureSample,
+            shape: Shape::FetchLayers {
+                fetch: Fetch::SingleLevelSamples,
+                layers: 1,
+            },
+        },
+        Workload {
+            name: "texture_samples",
+            term: Term::TextureMipBlend,
             shape: Shape::FetchLayers {
                 fetch: Fetch::Samples,
                 layers: 1,
@@ -874,11 +900,7 @@ mod tests {
         // advance.
         let wgsl = crate::shaders::compose(SHADER);
         let module = naga::front::wgsl::parse_str(&wgsl).unwrap();
-        let ops = crate::shaders::entry_ops(
-            &module,
-            &crate::shaders::float_textures(&texture_formats()),
-            &[],
-        );
+        let ops = bound(|b| crate::shaders::entry_ops(&module, b, &[]));
         // Every texture the shader declares is named with its format (the prelude's by the
         // core), at the binding the rig binds it to.
         let mut named: Vec<&str> = texture_formats()
@@ -924,6 +946,23 @@ mod tests {
         let lit = LIT_TRANSCENDENTALS;
         assert_eq!(of("fs_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
         assert_eq!(of("fs_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
+        assert_eq!(
+            of("fs_single_level_samples"),
+            count(0, SAMPLES_PER_FRAGMENT, lit)
+        );
+        // The trilinear samples blend two mip levels; through the `Nearest` mipmap filter
+        // (`SINGLE_LEVEL_SAMPLER`, passed to the shader's functions) none does.
+        let blends = |entry: &str| shader_ops(entry).mip_blends;
+        assert_eq!(blends("fs_samples"), u64::from(SAMPLES_PER_FRAGMENT));
+        assert_eq!(blends("fs_float_samples"), u64::from(SAMPLES_PER_FRAGMENT));
+        assert_eq!(blends("fs_single_level_samples"), 0);
+        assert_eq!(
+            ShaderOps {
+                mip_blends: 0,
+                ..shader_ops("fs_samples")
+            },
+            shader_ops("fs_single_level_samples")
+        );
         assert_eq!(of("fs_float_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
         assert_eq!(of("fs_float_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
         for float in [false, true] {
@@ -1009,6 +1048,7 @@ mod tests {
             "fs_math",
             "fs_loads",
             "fs_samples",
+            "fs_single_level_samples",
             "fs_float_loads",
             "fs_float_samples",
             "vs_loads",

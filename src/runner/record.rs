@@ -134,6 +134,10 @@ pub struct FrameRecord {
     /// ([`crate::shaders::ShaderOps::float_samples`]), counted the same way.
     #[serde(default)]
     pub float_texture_samples: Option<u64>,
+    /// Of both kinds of samples, those that may blend two mip levels
+    /// ([`crate::shaders::ShaderOps::mip_blends`]), counted the same way.
+    #[serde(default)]
+    pub texture_mip_blends: Option<u64>,
     /// Texels of normalised or integer formats the core's background shaders read with
     /// `textureLoad`.
     #[serde(default)]
@@ -156,6 +160,9 @@ pub struct FrameRecord {
     /// took.
     #[serde(default)]
     pub background_float_texture_samples: Option<u64>,
+    /// Of the background's samples, those that may blend two mip levels.
+    #[serde(default)]
+    pub background_texture_mip_blends: Option<u64>,
     /// Transcendental built-ins (`sin`, `cos`, `pow`, `exp`, ...) the technique's vertex
     /// shaders evaluated, counted the same way ([`crate::shaders::ShaderOps`]: a loop's body
     /// once).
@@ -410,6 +417,9 @@ pub struct RunSummary {
     /// shaders.
     #[serde(default)]
     pub float_texture_samples: Option<u64>,
+    /// Median of both kinds of samples that may blend two mip levels.
+    #[serde(default)]
+    pub texture_mip_blends: Option<u64>,
     /// Median transcendental built-ins evaluated by the technique's vertex shaders.
     #[serde(default)]
     pub vertex_transcendentals: Option<u64>,
@@ -533,6 +543,9 @@ pub struct RunSummary {
     /// Predicted ms of compute shaders' integer divisions.
     #[serde(default)]
     pub model_compute_division_ms: Option<f64>,
+    /// Predicted ms of filtered samples' second mip level.
+    #[serde(default)]
+    pub model_texture_mip_blend_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -639,6 +652,7 @@ impl RunSummary {
             vertex_float_texture_loads: median_u64(&|r| r.vertex_float_texture_loads),
             texture_samples: median_u64(&|r| r.texture_samples),
             float_texture_samples: median_u64(&|r| r.float_texture_samples),
+            texture_mip_blends: median_u64(&|r| r.texture_mip_blends),
             vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
             fragment_transcendentals: median_u64(&|r| r.fragment_transcendentals),
             compute_transcendentals: median_u64(&|r| r.compute_transcendentals),
@@ -684,6 +698,7 @@ impl RunSummary {
             model_compute_storage_ms: None,
             model_vertex_storage_ms: None,
             model_compute_division_ms: None,
+            model_texture_mip_blend_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -898,6 +913,7 @@ mod tests {
             vertex_float_texture_loads: None,
             texture_samples: None,
             float_texture_samples: None,
+            texture_mip_blends: None,
             vertex_transcendentals: None,
             fragment_transcendentals: None,
             compute_transcendentals: None,
@@ -907,6 +923,7 @@ mod tests {
             background_vertex_float_texture_loads: None,
             background_texture_samples: None,
             background_float_texture_samples: None,
+            background_texture_mip_blends: None,
             background_vertex_transcendentals: None,
             background_fragment_transcendentals: None,
             vertex_arithmetic: None,

@@ -66,6 +66,8 @@ pub struct Module {
     pub(super) parsed: Option<super::Parsed>,
     /// Its textures of floating-point texels ([`super::float_textures`]).
     pub(super) float: Vec<String>,
+    /// Its textures and samplers that read one mip level ([`super::module_with_bindings`]).
+    pub(super) single_level: Vec<String>,
 }
 
 impl std::ops::Deref for Module {
@@ -91,7 +93,12 @@ impl Module {
             return super::ShaderOps::default();
         };
         let float: Vec<&str> = self.float.iter().map(String::as_str).collect();
-        super::ops::count_entries(module, info.as_ref(), &float, constants, Some(entry))
+        let single_level: Vec<&str> = self.single_level.iter().map(String::as_str).collect();
+        let bound = super::Bound {
+            float: &float,
+            single_level: &single_level,
+        };
+        super::ops::count_entries(module, info.as_ref(), bound, constants, Some(entry))
             .into_iter()
             .next()
             .map(|(_, f)| f)

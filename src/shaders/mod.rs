@@ -16,7 +16,7 @@ mod walk;
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
 pub use loops::uniform_bound_loops;
-pub use ops::{ShaderOps, entry_ops, is_float, texture_globals};
+pub use ops::{Bound, ShaderOps, entry_ops, is_float, texture_globals};
 pub use pipeline::{
     ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,
     depth_less, depth_test, render_pipeline,
@@ -67,6 +67,21 @@ pub fn module_with_formats(
     source: &str,
     formats: &[(&str, wgpu::TextureFormat)],
 ) -> Module {
+    module_with_bindings(device, label, source, formats, &[])
+}
+
+/// [`module_with_formats`] for a shader some of whose filtered samples read one mip level
+/// however their level falls: `single_level` names the texture globals bound to textures of
+/// one level and the sampler globals bound to samplers whose mipmap filter is `Nearest`, so
+/// their samples are not counted as [`ShaderOps::mip_blends`] (WGSL's types say neither). Name
+/// them where the texture or sampler is made the way they are, so the count follows a change.
+pub fn module_with_bindings(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    formats: &[(&str, wgpu::TextureFormat)],
+    single_level: &[&str],
+) -> Module {
     let composed = compose(source);
     let (discarding, parsed) = analyse(&composed);
     Module {
@@ -80,6 +95,7 @@ pub fn module_with_formats(
             .into_iter()
             .map(String::from)
             .collect(),
+        single_level: single_level.iter().map(|n| String::from(*n)).collect(),
     }
 }
 
@@ -119,7 +135,18 @@ mod tests {
     fn analysed(wgsl: &str, float: &[&str]) -> (Vec<String>, Vec<(String, ShaderOps)>) {
         let (discarding, parsed) = analyse(wgsl);
         let ops = parsed
-            .map(|(m, info)| ops::count_entries(&m, info.as_ref(), float, &[], None))
+            .map(|(m, info)| {
+                ops::count_entries(
+                    &m,
+                    info.as_ref(),
+                    Bound {
+                        float,
+                        single_level: &[],
+                    },
+                    &[],
+                    None,
+                )
+            })
             .unwrap_or_default();
         (discarding, ops)
     }
@@ -146,6 +173,7 @@ mod tests {
                 float_loads: 0,
                 samples: 0,
                 float_samples: 0,
+                mip_blends: 0,
                 transcendentals: 1,
                 // `p.xy`'s conversion to `vec2<i32>` (2), the product with `exp` (4), the
                 // alpha test (1).

@@ -52,6 +52,19 @@ pub struct ShaderOps {
     /// `textureSample*` and `textureGather*` calls of textures of floating-point texels
     /// ([`is_float`]; see [`ShaderOps::float_loads`]).
     pub float_samples: u64,
+    /// Filtered samples (of [`ShaderOps::samples`] and [`ShaderOps::float_samples`]) that
+    /// may read and blend two mip levels: all but a gather, a sample at a level the shader
+    /// fixes to a whole number (`textureSampleLevel(t, s, uv, 0.0)`), and a sample through
+    /// a texture or sampler the module's creator names as reading one level (a texture of
+    /// one mip level, a sampler whose mipmap filter is `Nearest`:
+    /// [`super::module_with_bindings`]). Whether a trilinear sample's level has a fraction is
+    /// the data's, so this is an upper bound where a technique's samples magnify. Blending
+    /// a second level is a second bilinear lookup and a blend: lavapipe runs it only where
+    /// some lane of the batch needs it (a magnified `Rgba8Unorm` sample 2.6 ns against 4.4-4.6
+    /// minified between two levels, `Rgba16Float` 3.2 against 5.1-5.3, `grassbench calibrate`
+    /// at 320x180 with the samples' texture magnified, 2026-12-05); most GPUs' texture units
+    /// filter trilinearly at half their bilinear rate.
+    pub mip_blends: u64,
     /// Calls of transcendental built-ins ([`is_transcendental`]).
     pub transcendentals: u64,
     /// Scalar arithmetic operations: every arithmetic, comparison, logical, selection,
@@ -126,6 +139,7 @@ impl ShaderOps {
             float_loads: self.float_loads * n,
             samples: self.samples * n,
             float_samples: self.float_samples * n,
+            mip_blends: self.mip_blends * n,
             transcendentals: self.transcendentals * n,
             arithmetic: self.arithmetic * n,
             barriers: self.barriers * n,
@@ -144,6 +158,7 @@ impl std::ops::Add for ShaderOps {
             float_loads: self.float_loads + o.float_loads,
             samples: self.samples + o.samples,
             float_samples: self.float_samples + o.float_samples,
+            mip_blends: self.mip_blends + o.mip_blends,
             transcendentals: self.transcendentals + o.transcendentals,
             arithmetic: self.arithmetic + o.arithmetic,
             barriers: self.barriers + o.barriers,
@@ -172,18 +187,31 @@ pub fn is_float(format: wgpu::TextureFormat) -> bool {
     )
 }
 
+/// What a module's WGSL does not say about the textures and samplers bound to it, and its
+/// fetches' count needs: WGSL's `texture_2d<f32>` is the same type for `Rgba8Unorm` and
+/// `R32Float` texels and for one mip level or ten, `sampler` the same for every filter.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Bound<'a> {
+    /// Texture globals bound to textures of floating-point texels ([`is_float`]): their
+    /// fetches count as [`ShaderOps::float_loads`] and [`ShaderOps::float_samples`].
+    pub float: &'a [&'a str],
+    /// Texture and sampler globals through which a filtered sample reads one mip level (a
+    /// texture of one level, a sampler whose mipmap filter is `Nearest`): their samples are
+    /// not [`ShaderOps::mip_blends`].
+    pub single_level: &'a [&'a str],
+}
+
 /// The costly operations of every entry point of `module` (a parsed, composed shader), by
-/// name; the fetches of the textures named in `float` (global variables bound to textures of
-/// floating-point texels, [`is_float`]) counted as [`ShaderOps::float_loads`] and
-/// [`ShaderOps::float_samples`]; the loops bounded by pipeline-overridable constants run as
+/// name; the fetches of the textures and samplers `bound` names counted as it says
+/// ([`Bound`]); the loops bounded by pipeline-overridable constants run as
 /// many times as `constants` (the pipeline's values, by name: [`super::PipelineSpec::constants`])
 /// or the constants' defaults say ([`super::trips`]).
 pub fn entry_ops(
     module: &naga::Module,
-    float: &[&str],
+    bound: Bound<'_>,
     constants: &[(&str, f64)],
 ) -> Vec<(String, ShaderOps)> {
-    count_entries(module, validate(module).as_ref(), float, constants, None)
+    count_entries(module, validate(module).as_ref(), bound, constants, None)
 }
 
 /// `module`'s expressions' types, which say how many components each operates on; `None` for a
@@ -203,14 +231,14 @@ pub(super) fn validate(module: &naga::Module) -> Option<naga::valid::ModuleInfo>
 pub(super) fn count_entries(
     module: &naga::Module,
     info: Option<&naga::valid::ModuleInfo>,
-    float: &[&str],
+    bound: Bound<'_>,
     constants: &[(&str, f64)],
     only: Option<&str>,
 ) -> Vec<(String, ShaderOps)> {
     let types = Types {
         module,
         info,
-        float,
+        bound,
         constants,
     };
     let mut memo = HashMap::new();
@@ -223,7 +251,14 @@ pub(super) fn count_entries(
             let function_info = info.map(|m| m.get_entry_point(i));
             (
                 e.name.clone(),
-                function_ops(&types, &e.function, function_info, &mut memo, 0, 0),
+                function_ops(
+                    &types,
+                    &e.function,
+                    function_info,
+                    &mut memo,
+                    0,
+                    Args::default(),
+                ),
             )
         })
         .collect()
@@ -248,37 +283,113 @@ pub fn texture_globals(module: &naga::Module) -> Vec<String> {
     names
 }
 
-/// A module, where it validated its expressions' types, its textures of floating-point
-/// texels and the values of its pipeline-overridable constants.
+/// A module, where it validated its expressions' types, what is bound to its textures and
+/// samplers and the values of its pipeline-overridable constants.
 struct Types<'a> {
     module: &'a naga::Module,
     info: Option<&'a naga::valid::ModuleInfo>,
-    float: &'a [&'a str],
+    bound: Bound<'a>,
     constants: &'a [(&'a str, f64)],
 }
 
+/// Which arguments of a function are textures and samplers [`Bound`] names (bit `i`: argument
+/// `i`), as its caller passed them: its fetches' count depends on them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+struct Args {
+    /// Textures of floating-point texels ([`Bound::float`]).
+    float: u64,
+    /// Textures and samplers that read one mip level ([`Bound::single_level`]).
+    single_level: u64,
+}
+
 impl Types<'_> {
+    /// Whether texture or sampler expression `e` of `function` is a global among `names`, an
+    /// argument whose bit is set in `args` (the caller passed one), or an element of either (a
+    /// binding array).
+    fn is_named(
+        &self,
+        function: &naga::Function,
+        e: naga::Handle<naga::Expression>,
+        names: &[&str],
+        args: u64,
+    ) -> bool {
+        match &function.expressions[e] {
+            naga::Expression::GlobalVariable(g) => self.module.global_variables[*g]
+                .name
+                .as_deref()
+                .is_some_and(|n| names.contains(&n)),
+            naga::Expression::FunctionArgument(i) => *i < 64 && args >> i & 1 == 1,
+            naga::Expression::Access { base, .. } | naga::Expression::AccessIndex { base, .. } => {
+                self.is_named(function, *base, names, args)
+            }
+            _ => false,
+        }
+    }
+
     /// Whether image expression `image` of `function` is one of the textures of
-    /// floating-point texels: a global named in [`Types::float`], an argument whose bit is set
-    /// in `float_args` (the caller passed such a texture), or an element of either (a binding
-    /// array).
+    /// floating-point texels ([`Bound::float`]; `args`: what the caller passed).
     fn is_float(
         &self,
         function: &naga::Function,
         image: naga::Handle<naga::Expression>,
-        float_args: u64,
+        args: Args,
     ) -> bool {
-        match &function.expressions[image] {
-            naga::Expression::GlobalVariable(g) => self.module.global_variables[*g]
-                .name
-                .as_deref()
-                .is_some_and(|n| self.float.contains(&n)),
-            naga::Expression::FunctionArgument(i) => *i < 64 && float_args >> i & 1 == 1,
-            naga::Expression::Access { base, .. } | naga::Expression::AccessIndex { base, .. } => {
-                self.is_float(function, *base, float_args)
-            }
-            _ => false,
+        self.is_named(function, image, self.bound.float, args.float)
+    }
+
+    /// Whether texture or sampler expression `e` of `function` reads one mip level
+    /// ([`Bound::single_level`]; `args`: what the caller passed).
+    fn is_single_level(
+        &self,
+        function: &naga::Function,
+        e: naga::Handle<naga::Expression>,
+        args: Args,
+    ) -> bool {
+        self.is_named(function, e, self.bound.single_level, args.single_level)
+    }
+
+    /// The [`Args`] of a call of `function`'s callee with `arguments`.
+    fn args_of(
+        &self,
+        function: &naga::Function,
+        arguments: &[naga::Handle<naga::Expression>],
+        args: Args,
+    ) -> Args {
+        let mask = |test: &dyn Fn(naga::Handle<naga::Expression>) -> bool| {
+            arguments
+                .iter()
+                .take(64)
+                .enumerate()
+                .filter(|(_, a)| test(**a))
+                .fold(0u64, |m, (i, _)| m | 1 << i)
+        };
+        Args {
+            float: mask(&|a| self.is_float(function, a, args)),
+            single_level: mask(&|a| self.is_single_level(function, a, args)),
         }
+    }
+}
+
+/// Whether a sample at `level` reads one mip level whatever the texture and sampler: level 0
+/// (`SampleLevel::Zero`) or a literal whole number (`textureSampleLevel(t, s, uv, 0.0)`).
+fn is_whole_level(function: &naga::Function, level: &naga::SampleLevel) -> bool {
+    let naga::SampleLevel::Exact(e) = level else {
+        return matches!(level, naga::SampleLevel::Zero);
+    };
+    let naga::Expression::Literal(literal) = function.expressions[*e] else {
+        return false;
+    };
+    match literal {
+        naga::Literal::F32(x) => x.fract() == 0.0,
+        naga::Literal::F64(x) | naga::Literal::AbstractFloat(x) => x.fract() == 0.0,
+        naga::Literal::I16(_)
+        | naga::Literal::U16(_)
+        | naga::Literal::I32(_)
+        | naga::Literal::U32(_)
+        | naga::Literal::I64(_)
+        | naga::Literal::U64(_)
+        | naga::Literal::AbstractInt(_) => true,
+        _ => false,
     }
 }
 
@@ -413,22 +524,28 @@ fn is_constant(function: &naga::Function, e: naga::Handle<naga::Expression>) -> 
 /// Deepest call chain followed (WGSL forbids recursion; this only bounds a malformed IR).
 const MAX_CALL_DEPTH: u32 = 64;
 
-/// A function and which of its arguments are textures of floating-point texels (bit `i`:
-/// argument `i`): its operations depend on both.
-type CallKey = (naga::Handle<naga::Function>, u64);
+/// A function and what its texture and sampler arguments are bound to: its operations depend
+/// on both.
+type CallKey = (naga::Handle<naga::Function>, Args);
 
 /// The operations of `function`: its own image and math expressions plus its callees', once
-/// per call site. Bit `i` of `float_args` says that argument `i` is a texture of
-/// floating-point texels (the prelude's `bilinear_r(height_map, uv)`).
+/// per call site. `args` says which arguments are textures of floating-point texels (the
+/// prelude's `bilinear_r(height_map, uv)`) and which textures or samplers read one level.
 fn function_ops(
     types: &Types<'_>,
     function: &naga::Function,
     info: Option<&naga::valid::FunctionInfo>,
     memo: &mut HashMap<CallKey, ShaderOps>,
     depth: u32,
-    float_args: u64,
+    args: Args,
 ) -> ShaderOps {
-    let is_float = |image| types.is_float(function, image, float_args);
+    let is_float = |image| types.is_float(function, image, args);
+    let blends = |image, sampler, gather: &Option<_>, level: &naga::SampleLevel| {
+        gather.is_none()
+            && !is_whole_level(function, level)
+            && !types.is_single_level(function, image, args)
+            && !types.is_single_level(function, sampler, args)
+    };
     let module = types.module;
     let trips = super::trips::Trips::new(module, function, types.constants);
     let trips = |s: &naga::Statement| trips.of(s);
@@ -451,11 +568,21 @@ fn function_ops(
                 storage: words(types, info, h),
                 ..none
             },
-            naga::Expression::ImageSample { image, .. } if is_float(*image) => ShaderOps {
-                float_samples: 1,
-                ..none
-            },
-            naga::Expression::ImageSample { .. } => ShaderOps { samples: 1, ..none },
+            naga::Expression::ImageSample {
+                image,
+                sampler,
+                gather,
+                level,
+                ..
+            } => {
+                let float = is_float(*image);
+                ShaderOps {
+                    samples: u64::from(!float),
+                    float_samples: u64::from(float),
+                    mip_blends: u64::from(blends(*image, *sampler, gather, level)),
+                    ..none
+                }
+            }
             naga::Expression::ImageLoad { image, .. } if is_float(*image) => ShaderOps {
                 float_loads: 1,
                 ..none
@@ -509,13 +636,7 @@ fn function_ops(
             ..
         } = s
         {
-            let mask = arguments
-                .iter()
-                .take(64)
-                .enumerate()
-                .filter(|(_, a)| is_float(**a))
-                .fold(0u64, |m, (i, _)| m | 1 << i);
-            calls.push(((*callee, mask), weight));
+            calls.push(((*callee, types.args_of(function, arguments, args)), weight));
         }
     });
     let own = ShaderOps {
@@ -527,7 +648,7 @@ fn function_ops(
         let ops = match memo.get(&key) {
             Some(f) => *f,
             None if depth < MAX_CALL_DEPTH => {
-                let (callee, mask) = key;
+                let (callee, callee_args) = key;
                 let callee_info = types.info.map(|m| &m[callee]);
                 let f = function_ops(
                     types,
@@ -535,7 +656,7 @@ fn function_ops(
                     callee_info,
                     memo,
                     depth + 1,
-                    mask,
+                    callee_args,
                 );
                 memo.insert(key, f);
                 f
@@ -591,7 +712,11 @@ mod tests {
     }
 
     fn of_with(name: &str, float: &[&str]) -> ShaderOps {
-        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), float, &[])
+        let bound = Bound {
+            float,
+            single_level: &[],
+        };
+        entry_ops(&naga::front::wgsl::parse_str(SOURCE).unwrap(), bound, &[])
             .into_iter()
             .find(|(n, _)| n == name)
             .map(|(_, f)| f)
@@ -611,6 +736,7 @@ mod tests {
                 float_loads: 0,
                 samples: 0,
                 float_samples: 0,
+                mip_blends: 0,
                 transcendentals: 2,
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
                 barriers: 0,
@@ -629,6 +755,8 @@ mod tests {
                 float_loads: 0,
                 samples: 1 + 1 + 4,
                 float_samples: 0,
+                // tint's and the loop's; the branch's is at level 1, a whole one.
+                mip_blends: 1 + 4,
                 transcendentals: 1 + 4,
                 arithmetic: 11 + 5 + 4 * (2 + 8),
                 barriers: 0,
@@ -658,7 +786,7 @@ mod tests {
         )
         .unwrap();
         let cs = |constants: &[(&str, f64)]| {
-            entry_ops(&module, &[], constants)
+            entry_ops(&module, Bound::default(), constants)
                 .into_iter()
                 .find(|(n, _)| n == "cs")
                 .map(|(_, o)| o)
@@ -703,7 +831,7 @@ mod tests {
              fn plain(@builtin(local_invocation_index) lid: u32) { cells[lid] = lid; }",
         )
         .unwrap();
-        let ops = entry_ops(&module, &[], &[]);
+        let ops = entry_ops(&module, Bound::default(), &[]);
         let barriers = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, o)| o.barriers);
         // Two calls of a one-barrier function, a loop's body four times, and a uniform
         // load's barrier before and after it.
@@ -736,7 +864,7 @@ mod tests {
              fn plain(@builtin(local_invocation_index) lid: u32) { cells[lid] = lid; }",
         )
         .unwrap();
-        let ops = entry_ops(&module, &[], &[]);
+        let ops = entry_ops(&module, Bound::default(), &[]);
         let storage = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, o)| o.storage);
         // `ids[lid]` 1; `item` twice, a `vec4` each, 8; the `vec4` stored 4; the atomic add 2
         // (read and write); the component stored 1 and `block.n` read 1; the atomic load 1;
@@ -771,7 +899,7 @@ mod tests {
              }",
         )
         .unwrap();
-        let ops = entry_ops(&module, &[], &[]);
+        let ops = entry_ops(&module, Bound::default(), &[]);
         let divisions = |name: &str| {
             ops.iter()
                 .find(|(n, _)| n == name)
@@ -783,6 +911,46 @@ mod tests {
         // and a negative literal are a multiply and a shift; the `f32` one is arithmetic.
         assert_eq!(divisions("cs"), Some(2 + 2 + 3));
         assert_eq!(divisions("plain"), Some(0));
+    }
+
+    #[test]
+    fn samples_blend_two_mip_levels_unless_their_level_or_binding_says_one() {
+        let module = naga::front::wgsl::parse_str(
+            "@group(0) @binding(0) var t: texture_2d<f32>;
+             @group(0) @binding(1) var one: texture_2d<f32>;
+             @group(0) @binding(2) var s: sampler;
+             @group(0) @binding(3) var nearest: sampler;
+             fn through(tex: texture_2d<f32>, smp: sampler, uv: vec2<f32>) -> vec4<f32> {
+                 return textureSample(tex, smp, uv);
+             }
+             @fragment fn fs(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+                 return textureSample(t, s, uv)                 // blends
+                     + textureSampleLevel(t, s, uv, 2.0)        // a whole level
+                     + textureSampleLevel(t, s, uv, uv.x)       // the data's level: blends
+                     + textureSampleLevel(t, s, uv, 0.5)        // between two levels
+                     + textureSampleBias(t, s, uv, 1.0)         // blends
+                     + textureGather(0, t, s, uv)               // four texels of one level
+                     + textureSample(one, s, uv)                // a texture of one level
+                     + textureSample(t, nearest, uv)            // a `Nearest` mipmap filter
+                     + through(t, s, uv)                        // blends
+                     + through(t, nearest, uv)                  // the caller's sampler
+                     + through(one, s, uv);                     // the caller's texture
+             }",
+        )
+        .unwrap();
+        let fs = |single_level: &[&str]| {
+            let bound = Bound {
+                float: &[],
+                single_level,
+            };
+            entry_ops(&module, bound, &[])
+                .into_iter()
+                .find(|(e, _)| e == "fs")
+                .map(|(_, o)| (o.samples, o.mip_blends))
+        };
+        assert_eq!(fs(&["one", "nearest"]), Some((11, 5)));
+        // Nothing named: every sample but the whole level's and the gather's may blend.
+        assert_eq!(fs(&[]), Some((11, 9)));
     }
 
     #[test]

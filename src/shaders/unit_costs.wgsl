@@ -19,6 +19,9 @@ struct Params {
 @group(1) @binding(5) var fetched_r32: texture_2d<f32>;
 // Per-instance data the `vertex_storage` strips' vertices read (hashed `vec4`s, 4 MiB).
 @group(1) @binding(6) var<storage, read> instance_data: array<vec4<f32>>;
+// A sampler that filters one mip level, the nearer (mipmap filter `Nearest`, as bakay's for
+// its custom levels): the `single_level_texture_samples` workload's.
+@group(1) @binding(7) var single_level: sampler;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -267,32 +270,39 @@ fn vs_storage(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) ->
     return out;
 }
 
-// Filtered samples: 8 trilinear `textureSample`s of `t` per fragment (SAMPLES_PER_FRAGMENT),
+// Filtered samples: 8 `textureSample`s of `t` through `s` per fragment (SAMPLES_PER_FRAGMENT),
 // the texture minified 2.5:1 at any target size (2.5 x 512 texels over the screen's width,
 // the layer's world x spanning 20 m: between mip levels 1 and 2, as far grass textures are),
-// each at its own offset.
-fn sample_at(t: texture_2d<f32>, uv: vec2<f32>, k: f32) -> vec4<f32> {
-    return textureSample(t, trilinear, uv + vec2(k * 0.013, k * 0.029));
+// each at its own offset. Through `trilinear` each blends levels 1 and 2; through
+// `single_level` each filters level 1 alone.
+fn sample_at(t: texture_2d<f32>, s: sampler, uv: vec2<f32>, k: f32) -> vec4<f32> {
+    return textureSample(t, s, uv + vec2(k * 0.013, k * 0.029));
 }
 
-// The 8 samples of `t` at the fragment, lit.
-fn samples8(in: VsOut, t: texture_2d<f32>) -> vec4<f32> {
+// The 8 samples of `t` through `s` at the fragment, lit.
+fn samples8(in: VsOut, t: texture_2d<f32>, s: sampler) -> vec4<f32> {
     let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
-    let s = sample_at(t, uv, 0.0) + sample_at(t, uv, 1.0) + sample_at(t, uv, 2.0)
-        + sample_at(t, uv, 3.0) + sample_at(t, uv, 4.0) + sample_at(t, uv, 5.0)
-        + sample_at(t, uv, 6.0) + sample_at(t, uv, 7.0);
-    return vec4(lit(in) + 0.01 * s.rgb, 1.0);
+    let c = sample_at(t, s, uv, 0.0) + sample_at(t, s, uv, 1.0) + sample_at(t, s, uv, 2.0)
+        + sample_at(t, s, uv, 3.0) + sample_at(t, s, uv, 4.0) + sample_at(t, s, uv, 5.0)
+        + sample_at(t, s, uv, 6.0) + sample_at(t, s, uv, 7.0);
+    return vec4(lit(in) + 0.01 * c.rgb, 1.0);
 }
 
 @fragment
 fn fs_samples(in: VsOut) -> @location(0) vec4<f32> {
-    return samples8(in, fetched);
+    return samples8(in, fetched, trilinear);
+}
+
+// The same samples of one mip level (the `single_level_texture_samples` workload).
+@fragment
+fn fs_single_level_samples(in: VsOut) -> @location(0) vec4<f32> {
+    return samples8(in, fetched, single_level);
 }
 
 // The same samples of floating-point texels (the `float_texture_samples` workload).
 @fragment
 fn fs_float_samples(in: VsOut) -> @location(0) vec4<f32> {
-    return samples8(in, fetched_float);
+    return samples8(in, fetched_float, trilinear);
 }
 
 // Compute: one spring step per invocation towards a hashed rest state, read-modify-write of

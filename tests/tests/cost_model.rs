@@ -169,6 +169,7 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             | Term::FloatTextureLoad
             | Term::TextureSample
             | Term::FloatTextureSample
+            | Term::TextureMipBlend
             | Term::FragmentTranscendental
             | Term::FragmentArithmetic => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
@@ -180,8 +181,9 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 }
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
-/// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times, the same two of
-/// floating-point texels, 5k strips loading 32 floating-point texels a vertex, 5k strips, a
+/// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times between two mip
+/// levels and one 8 times at one level, the loads and the first samples of floating-point
+/// texels, 5k strips loading 32 floating-point texels a vertex, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
 /// more scalar operations each, 16k compute invocations reaching 8 barriers each, 32k reading
 /// 32 more storage words each, 5k strips reading 32 storage words a vertex, 300 draws,
@@ -221,9 +223,17 @@ fn held_out_mix() -> Vec<Workload> {
         ),
         w(
             "samples",
-            Term::TextureSample,
+            Term::TextureMipBlend,
             Shape::FetchLayers {
                 fetch: Fetch::Samples,
+                layers: 1,
+            },
+        ),
+        w(
+            "single-level samples",
+            Term::TextureSample,
+            Shape::FetchLayers {
+                fetch: Fetch::SingleLevelSamples,
                 layers: 1,
             },
         ),

@@ -13,6 +13,10 @@ use crate::texture::{GrassTexture, Level};
 /// The shader (without the prelude): the bend pass and the shells.
 pub const SHADER: &str = include_str!("../shaders/bakay.wgsl");
 
+/// The shader's sampler of the shell texture (`grass_sampler`): where its mipmap filter is
+/// `Nearest` the module is created saying so ([`shaders::module_with_bindings`]).
+const SAMPLER: &str = "grass_sampler";
+
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -107,6 +111,11 @@ impl ShellGpu {
         let offsets = storage("bakay shell offsets", offset_bytes);
         let color_height = upload(ctx, "bakay colour+height", &texture.levels, true);
         let blade = upload(ctx, "bakay blade attributes", &texture.levels, false);
+        let mipmap_filter = if mipmaps == Mipmaps::Box {
+            wgpu::MipmapFilterMode::Linear
+        } else {
+            wgpu::MipmapFilterMode::Nearest
+        };
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("bakay grass"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -115,11 +124,7 @@ impl ShellGpu {
             min_filter: wgpu::FilterMode::Linear,
             // Blending two representative levels would average two different blades: the felt
             // custom mips avoid. Box levels are averages anyway.
-            mipmap_filter: if mipmaps == Mipmaps::Box {
-                wgpu::MipmapFilterMode::Linear
-            } else {
-                wgpu::MipmapFilterMode::Nearest
-            },
+            mipmap_filter,
             anisotropy_clamp: anisotropy,
             ..Default::default()
         });
@@ -193,7 +198,14 @@ impl ShellGpu {
             ],
         });
 
-        let module = shaders::module(device, "bakay", SHADER);
+        // Through a `Nearest` mipmap filter every lookup filters one level: the op counter
+        // must not count it as blending two (`shaders::ShaderOps::mip_blends`).
+        let single_level: &[&str] = if mipmap_filter == wgpu::MipmapFilterMode::Nearest {
+            &[SAMPLER]
+        } else {
+            &[]
+        };
+        let module = shaders::module_with_bindings(device, "bakay", SHADER, &[], single_level);
         let constants = [("SHELLS", f64::from(shells))];
         let bend = shaders::compute_pipeline(
             device,
@@ -358,12 +370,24 @@ mod tests {
         // The op counter counts both sides of a branch, as a SIMD rasteriser runs them: an
         // entry point that chose its lookup by a branch on the mode would count 4.
         let module = naga::front::wgsl::parse_str(&shaders::compose(SHADER)).unwrap();
-        let ops = shaders::entry_ops(&module, &[], &[]);
-        for lod in [Lod::MinorAxis, Lod::Hardware] {
-            let entry = fragment_entry(lod);
-            let samples = ops.iter().find(|(e, _)| e == entry).map(|(_, o)| o.samples);
-            // The colour and height, then (for the texels kept) the blade's attributes.
-            assert_eq!(samples, Some(2), "{entry}");
+        let ops = |single_level: &[&str]| {
+            let bound = shaders::Bound {
+                float: &[],
+                single_level,
+            };
+            shaders::entry_ops(&module, bound, &[])
+        };
+        for (single_level, blends) in [(&[][..], 2), (&[SAMPLER][..], 0)] {
+            for lod in [Lod::MinorAxis, Lod::Hardware] {
+                let entry = fragment_entry(lod);
+                let samples = ops(single_level)
+                    .into_iter()
+                    .find(|(e, _)| e == entry)
+                    .map(|(_, o)| (o.samples, o.mip_blends));
+                // The colour and height, then (for the texels kept) the blade's attributes;
+                // each blending two levels unless the sampler reads one.
+                assert_eq!(samples, Some((2, blends)), "{entry}");
+            }
         }
     }
 }

@@ -298,7 +298,12 @@ mod tests {
         assert_eq!(shaders::texture_globals(&module), named);
         // The slices' samples are the floating-point ones; both also sample the ambient
         // occlusion map (one byte a texel).
-        let ops = shaders::entry_ops(&module, &shaders::float_textures(&TEXTURE_FORMATS), &[]);
+        let float = shaders::float_textures(&TEXTURE_FORMATS);
+        let bound = shaders::Bound {
+            float: &float,
+            single_level: &[],
+        };
+        let ops = shaders::entry_ops(&module, bound, &[]);
         let of = |entry: &str| {
             ops.iter()
                 .find(|(e, _)| e == entry)

@@ -177,6 +177,7 @@ impl Config {
                 r.model_compute_storage_ms.unwrap_or(0.0),
                 r.model_vertex_storage_ms.unwrap_or(0.0),
                 r.model_compute_division_ms.unwrap_or(0.0),
+                r.model_texture_mip_blend_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

@@ -376,6 +376,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU compute storage",
     "GPU vertex storage",
     "GPU compute divisions",
+    "GPU texture mip blends",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
