@@ -52,16 +52,17 @@ pub enum Term {
     /// terrain's height and the wind at its root (the EPYC probe: 5.1-6.1 ns an `R32Float`
     /// load in the vertex stage against 2.1-2.8 fitted on fragments).
     VertexFloatTextureLoad,
-    /// A filtered texture sample (`textureSample*`) by a vertex or fragment shader invocation:
-    /// on a software rasteriser the filtering (mip level, bilinear or trilinear taps) is code
-    /// run per sample, several times a plain fragment's cost.
+    /// A filtered texture sample (`textureSample*`) by a vertex or fragment shader invocation,
+    /// of one mip level: on a software rasteriser the filtering (the level, the bilinear taps)
+    /// is code run per sample. Where a sample may blend two levels, the second is
+    /// [`Term::TextureMipBlend`].
     TextureSample,
     /// A filtered sample of a texture of floating-point texels (`Rgba16Float`;
     /// `crate::shaders::ShaderOps::float_samples`). Not among the units issue 20 lists: the
     /// sample term is calibrated on an RGBA8 texture, and filtering floating-point texels
-    /// costs more (lavapipe: 5.4-5.7 ns against 3.2, a conversion per texel outside its 8-bit
-    /// fast path; half-rate filtering of 64-bit texels on most GPUs). boulanger's slices are
-    /// `Rgba16Float`.
+    /// costs more (lavapipe: 5.4-5.7 ns against 3.2 trilinear, 2.7-3.1 against 2.1-2.5 at one
+    /// level, a conversion per texel outside its 8-bit fast path; half-rate filtering of
+    /// 64-bit texels on most GPUs). boulanger's slices are `Rgba16Float`.
     FloatTextureSample,
     /// A transcendental built-in (`sin`, `cos`, `pow`, `exp`, ...) evaluated by a vertex
     /// shader invocation (counted from the shader, `crate::shaders::ShaderOps`). Not among

@@ -377,6 +377,13 @@ mod tests {
             };
             shaders::entry_ops(&module, bound, &[])
         };
+        // The sampler named as reading one level is the shader's.
+        assert!(
+            module
+                .global_variables
+                .iter()
+                .any(|(_, g)| g.name.as_deref() == Some(SAMPLER))
+        );
         for (single_level, blends) in [(&[][..], 2), (&[SAMPLER][..], 0)] {
             for lod in [Lod::MinorAxis, Lod::Hardware] {
                 let entry = fragment_entry(lod);

@@ -119,6 +119,12 @@
 //! 47.8-48.7 ms against 51.4-52.2 (46.8-47.6 against 53.7-56.6 in a first pair of runs of
 //! three); the flyover's frames moved between 61 and 96 ms with either build. The cost model
 //! had priced the four samples, 13 ms of a 55 ms meadow frame for the two no pixel keeps.
+//! Each lookup filters one mip level at the default custom levels, whose sampler's mipmap
+//! filter is `Nearest` (blending two representative levels would average two different
+//! blades): the module says so when it is made (`shaders::module_with_bindings`), so the cost
+//! model prices no second level for them. Priced as trilinear samples, as every sample was
+//! until `7c6575e`, they had bakay over-predicted on every run (0.68-0.95 of the model on the
+//! 2.6 GHz EPYC; 0.85-1.23 since: `results/cost_model/`).
 //!
 //! The level of detail on the scaling sweep's points (the meadow at 20 blades/m², terrain 80
 //! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core Intel Xeon on 2026-12-03
