@@ -6,7 +6,8 @@
 //!   [`FragmentKind`], draws, compute invocations, bytes uploaded), from the GPU's own
 //!   counters and the harness's, and what its shaders did inside those invocations (texel
 //!   loads and samples, those of floating-point texels and the vertex stage's loads apart,
-//!   transcendentals and scalar arithmetic by stage, compute shaders' workgroup barriers, compute and vertex shaders' storage-buffer words: the
+//!   transcendentals and scalar arithmetic by stage, compute shaders' workgroup barriers, compute and vertex shaders' storage-buffer words,
+//!   compute shaders' integer divisions, samples that blend two mip levels: the
 //!   counted invocations times their entry points' operations,
 //!   `crate::shaders::ShaderOps`);
 //! - [`Term`]: the model's terms, one unit cost each, plus a fixed cost per submission;
@@ -40,3 +41,8 @@ pub use run::{apply_model, predict_run};
 pub use term::Term;
 pub use units::{Prediction, UnitCost, UnitCosts};
 pub use work::{BYTES_PER_MB, FragmentKind, Work};
+
+/// Whether the calibration's workloads draw into a multisampled target: they do not, so its
+/// costs price single-sampled runs only ([`UnitCosts::prices`]). MSAA multiplies coverage and
+/// depth work per sample and adds a resolve, none of which the terms count.
+pub const CALIBRATION_MSAA: bool = false;

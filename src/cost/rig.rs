@@ -56,7 +56,7 @@ pub(super) struct Rig<'g> {
 impl<'g> Rig<'g> {
     /// Builds the target, pipelines and buffers at `size`.
     pub(super) fn new(gpu: &'g GpuContext, size: Size) -> Result<Self> {
-        let target = RenderTarget::new(gpu, size, false)?;
+        let target = RenderTarget::new(gpu, size, super::CALIBRATION_MSAA)?;
         let device = &gpu.device;
         gpu.scoped("building the unit-cost workloads", || {
             let module = shaders::module_with_bindings(

@@ -75,9 +75,14 @@ pub fn predict_run(costs: &UnitCosts, frames: &[FrameRecord]) -> Option<Predicti
 
 /// Writes the model's prediction for `frames` into `run`: `model_ms`, each term's share and
 /// `model_ratio` (measured median GPU wall time over predicted). Left empty where the frames
-/// have no counted work.
+/// have no counted work, and where the run was drawn with MSAA and the costs without, or the
+/// other way round ([`UnitCosts::prices`]): no number rather than one that leaves out work.
 pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecord]) {
-    let p = predict_run(costs, frames);
+    let p = if costs.prices(run.msaa) {
+        predict_run(costs, frames)
+    } else {
+        None
+    };
     run.model_ms = p.map(|p| p.total_ms);
     run.model_fixed_ms = p.map(|p| p.fixed_ms);
     run.model_vertex_ms = p.map(|p| p.vertex_ms);
@@ -110,4 +115,77 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
         .zip(run.model_ms)
         .filter(|(_, m)| *m > 0.0)
         .map(|(w, m)| w / m);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cost::{FitSummary, Term, UnitCost};
+
+    /// One frame of `msaa` whose technique's passes counted 1 000 vertices, 300 primitives
+    /// and 20 000 opaque fragments, drawn in 10 ms.
+    fn frame(msaa: bool) -> FrameRecord {
+        toml::from_str(&format!(
+            r#"
+            run_id = "r"
+            technique = "t"
+            scene = "s"
+            width = 320
+            height = 180
+            msaa = {msaa}
+            frame = 0
+            time_s = 0.0
+            wind_ms = 0.0
+            update_ms = 0.0
+            upload_ms = 0.0
+            encode_ms = 0.0
+            gpu_wall_ms = 10.0
+            triangles = 300
+            draw_calls = 1
+            gpu_bytes = 0
+            vertex_invocations = 1000
+            clipper_invocations = 300
+            clipper_primitives_out = 300
+            fragment_invocations = 20000
+            fragments_opaque = 20000
+            fragments_alpha_tested = 0
+            fragments_blended = 0
+            compute_invocations = 0
+            background_vertex_invocations = 0
+            background_primitives = 0
+            background_fragment_invocations = 0
+            background_draw_calls = 0
+            upload_bytes = 0
+            counters = ""
+            levels = []
+            "#
+        ))
+        .expect("a frame record")
+    }
+
+    #[test]
+    fn a_run_drawn_unlike_the_calibration_is_not_priced() {
+        // Every unit 1 µs: a submission, a draw, 1 000 vertices, 300 primitives and 20 000
+        // fragments are 0.001 + 0.001 + 1 + 0.3 + 20 ms.
+        let costs = UnitCosts::from_ms_per_unit(
+            "320x180".into(),
+            "test".into(),
+            [UnitCost::exact(1e-3); Term::ALL.len()],
+            FitSummary::default(),
+        );
+        assert!(!costs.msaa, "the calibration draws single-sampled");
+        let priced = |msaa: bool| {
+            let frames = [frame(msaa)];
+            let mut run = RunSummary::from_frames(&frames, &toml::Table::new());
+            apply_model(&mut run, &costs, &frames);
+            (run.msaa, run.model_ms, run.model_ratio)
+        };
+        let (msaa, model, ratio) = priced(false);
+        assert!(!msaa);
+        let model = model.expect("a single-sampled run is priced");
+        assert!((model - 21.302).abs() < 1e-9, "{model}");
+        assert!(ratio.is_some_and(|r| (r - 10.0 / 21.302).abs() < 1e-9));
+        // With MSAA: no figure rather than one that leaves the per-sample work out.
+        assert_eq!(priced(true), (true, None, None));
+    }
 }

@@ -40,6 +40,17 @@ pub struct UnitCosts {
     pub size: String,
     /// Which clock timed the samples.
     pub clock: String,
+    /// Whether the workloads drew into a multisampled target (4x MSAA, as
+    /// [`crate::RenderTarget::new`] makes one). The calibration draws single-sampled
+    /// ([`crate::cost::CALIBRATION_MSAA`]): a run drawn with MSAA does work no term counts
+    /// (per-sample coverage and depth tests, the resolve; lavapipe on the 2.6 GHz EPYC: the
+    /// reference on the papers' meadows at 320x180 with 4x MSAA took 1.35-1.64 times the
+    /// single-sampled model of its work, `results/papers/`, against 1.12-1.22 on the meadow
+    /// single-sampled, `results/cost_model/epyc_zen4/`), so the model prices only
+    /// runs drawn as its costs were ([`UnitCosts::prices`]). Files from before the field were
+    /// single-sampled.
+    #[serde(default)]
+    pub msaa: bool,
     /// Cores other processes kept busy, on average, while the samples ran (0 on a quiet
     /// host): on a software rasteriser they slow every figure and widen the residuals.
     /// `None` where not measured (no `/proc`, or costs fitted elsewhere).
@@ -205,6 +216,12 @@ pub struct Prediction {
 }
 
 impl UnitCosts {
+    /// Whether these costs price a run drawn with `msaa` (4x MSAA) or without: only one
+    /// drawn as the calibration drew ([`UnitCosts::msaa`]).
+    pub fn prices(&self, msaa: bool) -> bool {
+        self.msaa == msaa
+    }
+
     /// Builds the record from one cost per term in **ms per unit** ([`Term::unit`]), in the
     /// order of [`Term::ALL`], converting each to the unit its field stores.
     pub fn from_ms_per_unit(
@@ -225,6 +242,7 @@ impl UnitCosts {
         Self {
             size,
             clock,
+            msaa: super::CALIBRATION_MSAA,
             host_other_cores: None,
             fixed_ms: stored(Term::Fixed),
             vertex_ns: stored(Term::Vertex),
@@ -537,7 +555,11 @@ mod tests {
                     || l.starts_with("[compute_division_")
                     || l.starts_with("[texture_mip_blend_");
             }
-            if !skipping && !l.starts_with("host_other_cores") && !l.starts_with("at_zero") {
+            if !skipping
+                && !l.starts_with("host_other_cores")
+                && !l.starts_with("at_zero")
+                && !l.starts_with("msaa")
+            {
                 older.push_str(l);
                 older.push('\n');
             }
@@ -547,6 +569,8 @@ mod tests {
             (read.host_other_cores, read.vertex_ns.at_zero),
             (None, false)
         );
+        // Files from before the field were calibrated single-sampled.
+        assert!(!read.msaa && !older.contains("msaa"), "{older}");
         assert_eq!(read.texture_sample_ns, UnitCost::default());
         assert_eq!(read.float_texture_sample_ns, UnitCost::default());
         assert_eq!(read.float_texture_load_ns, UnitCost::default());

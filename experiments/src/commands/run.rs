@@ -170,6 +170,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
             .map(|scene| size.unwrap_or(scene.resolution()))
             .collect();
         let (c, costs) = super::calibrate::adapter_at(&gpu, None, &sizes)?;
+        if costs.iter().any(|u| !u.prices(args.msaa)) {
+            eprintln!(
+                "cost model: the unit costs are calibrated single-sampled, so these MSAA runs get no model columns (MSAA's per-sample coverage, depth tests and resolve are work no term counts)"
+            );
+        }
         (Some(c), costs)
     };
     write_atomic(&args.out.join("meta.toml"), |f| {

@@ -138,6 +138,12 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
             .map(|run| size_of(run))
             .collect::<anyhow::Result<Vec<_>>>()?;
         let (c, all) = super::calibrate::adapter_at(&gpu, raw, &sizes)?;
+        let multisampled = mine.iter().filter(|r| r.msaa).count();
+        if multisampled > 0 && all.iter().any(|u| !u.prices(true)) {
+            eprintln!(
+                "cost model: the unit costs are calibrated single-sampled, so the {multisampled} run(s) drawn with MSAA get no model columns (MSAA's per-sample coverage, depth tests and resolve are work no term counts)"
+            );
+        }
         (Some(c), all)
     };
     let meta = SweepMeta {

@@ -109,8 +109,27 @@ pub(super) fn projection(
         "Each run's measured work (per frame, from frames.csv) priced with the unit costs of `{}`: **predicted** times on that adapter, not measurements. A size marked * was priced with costs calibrated at another size (its fixed cost per frame differs).\n",
         other.path
     );
+    // Only runs drawn as the other adapter's costs were (with MSAA or without) are priced.
+    let priced = |c: &Config| other.for_size(&c.size).0.prices(c.msaa);
+    let unpriced = configs
+        .values()
+        .filter(|c| c.work.is_some() && !priced(c))
+        .count();
+    if unpriced > 0 {
+        let _ = writeln!(
+            md,
+            "{unpriced} configuration(s) drawn with{} MSAA are not priced: those costs were calibrated {}, and MSAA's per-sample coverage, depth tests and resolve are work no term counts.\n",
+            if other.costs[0].msaa { "out" } else { "" },
+            if other.costs[0].msaa {
+                "with 4x MSAA"
+            } else {
+                "single-sampled"
+            },
+        );
+    }
     let predicted: HashMap<String, f64> = configs
         .iter()
+        .filter(|(_, c)| priced(c))
         .filter_map(|(id, c)| {
             Some((
                 id.clone(),
