@@ -36,6 +36,9 @@ pub struct Options {
     pub repeats: usize,
     /// A family whose largest size takes less than this (ms) is scaled up.
     pub min_largest_ms: f64,
+    /// Draw into a 4x multisampled target (as [`crate::RenderTarget::new`] makes one), so the
+    /// costs price runs drawn with MSAA ([`UnitCosts::msaa`]).
+    pub msaa: bool,
 }
 
 impl Default for Options {
@@ -45,6 +48,7 @@ impl Default for Options {
         Self {
             repeats: 5,
             min_largest_ms: 20.0,
+            msaa: false,
         }
     }
 }
@@ -145,7 +149,7 @@ pub fn calibrate_units_with(
             "at least one repeat and a non-negative minimum time",
         ));
     }
-    let rig = Rig::new(gpu, size)?;
+    let rig = Rig::new(gpu, size, options.msaa)?;
     let mut counter = WorkCounter::new(gpu);
     // Scale each family, then lay out every sample.
     let mut plan: Vec<Workload> = Vec::new();
@@ -214,6 +218,7 @@ pub fn calibrate_units_with(
     let fitted: Vec<Sample> = samples.iter().map(|s| s.sample.clone()).collect();
     let mut unit_costs = fit(&fitted, &size.to_string(), &clock(options.repeats))?;
     unit_costs.host_other_cores = host.map(|h| h.other_cores);
+    unit_costs.msaa = options.msaa;
     Ok(UnitCalibration {
         unit_costs,
         samples,

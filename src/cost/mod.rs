@@ -41,8 +41,3 @@ pub use run::{apply_model, predict_run};
 pub use term::Term;
 pub use units::{Prediction, UnitCost, UnitCosts};
 pub use work::{BYTES_PER_MB, FragmentKind, Work};
-
-/// Whether the calibration's workloads draw into a multisampled target: they do not, so its
-/// costs price single-sampled runs only ([`UnitCosts::prices`]). MSAA multiplies coverage and
-/// depth work per sample and adds a resolve, none of which the terms count.
-pub const CALIBRATION_MSAA: bool = false;

@@ -54,9 +54,9 @@ pub(super) struct Rig<'g> {
 }
 
 impl<'g> Rig<'g> {
-    /// Builds the target, pipelines and buffers at `size`.
-    pub(super) fn new(gpu: &'g GpuContext, size: Size) -> Result<Self> {
-        let target = RenderTarget::new(gpu, size, super::CALIBRATION_MSAA)?;
+    /// Builds the target (4x multisampled where `msaa`), pipelines and buffers at `size`.
+    pub(super) fn new(gpu: &'g GpuContext, size: Size, msaa: bool) -> Result<Self> {
+        let target = RenderTarget::new(gpu, size, msaa)?;
         let device = &gpu.device;
         gpu.scoped("building the unit-cost workloads", || {
             let module = shaders::module_with_bindings(
@@ -252,7 +252,10 @@ impl<'g> Rig<'g> {
                             wgpu::CompareFunction::LessEqual,
                             write,
                         ),
-                        multisample: Default::default(),
+                        multisample: wgpu::MultisampleState {
+                            count: target.sample_count,
+                            ..Default::default()
+                        },
                         targets: &[Some(wgpu::ColorTargetState {
                             format: COLOR_FORMAT,
                             blend,

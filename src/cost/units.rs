@@ -41,8 +41,8 @@ pub struct UnitCosts {
     /// Which clock timed the samples.
     pub clock: String,
     /// Whether the workloads drew into a multisampled target (4x MSAA, as
-    /// [`crate::RenderTarget::new`] makes one). The calibration draws single-sampled
-    /// ([`crate::cost::CALIBRATION_MSAA`]): a run drawn with MSAA does work no term counts
+    /// [`crate::RenderTarget::new`] makes one; [`crate::cost::Options::msaa`]). A run drawn
+    /// with MSAA does work a single-sampled calibration does not
     /// (per-sample coverage and depth tests, the resolve; lavapipe on the 2.6 GHz EPYC: the
     /// reference on the papers' meadows at 320x180 with 4x MSAA took 1.35-1.64 times the
     /// single-sampled model of its work, `results/papers/`, against 1.12-1.22 on the meadow
@@ -242,7 +242,7 @@ impl UnitCosts {
         Self {
             size,
             clock,
-            msaa: super::CALIBRATION_MSAA,
+            msaa: false,
             host_other_cores: None,
             fixed_ms: stored(Term::Fixed),
             vertex_ns: stored(Term::Vertex),

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use grassbench::calibration::{Calibration, calibrate as measure};
-use grassbench::cost::{COUNTED_TERMS, MeasuredSample, UnitCosts, calibrate_units};
+use grassbench::cost::{COUNTED_TERMS, MeasuredSample, Options, UnitCosts, calibrate_units_with};
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
 
@@ -19,6 +19,10 @@ pub struct CalibrateArgs {
     /// Also write the figures with provenance to this TOML file.
     #[arg(long, short)]
     pub out: Option<PathBuf>,
+    /// Draw the unit costs' workloads into a 4x multisampled target: the costs then price runs
+    /// drawn with `--msaa` (and only those).
+    #[arg(long)]
+    pub msaa: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -44,7 +48,8 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     let gpu = args.gpu.context()?;
     let calibration = measure(&gpu, size)?;
     let started = std::time::Instant::now();
-    let units = calibrate_units(&gpu, size).context("measuring the unit costs")?;
+    let units = calibrate_units_with(&gpu, size, options(args.msaa), &[])
+        .context("measuring the unit costs")?;
     eprint!("{}", summary(&units.unit_costs, &units.samples));
     eprintln!(
         "Unit costs measured in {:.1} s.",
@@ -64,9 +69,18 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The calibration's options, drawing into a 4x multisampled target where `msaa`.
+fn options(msaa: bool) -> Options {
+    Options {
+        msaa,
+        ..Options::default()
+    }
+}
+
 /// What `run` and `sweep` calibrate before measuring: the adapter's raw limits at `raw` (by
-/// default the first of `sizes`, or 640x360 where there is none), then its unit costs at each
-/// distinct size of `sizes` (in their first order), each figure printed as it is measured.
+/// default the first of `targets`' sizes, or 640x360 where there is none), then its unit costs
+/// for each distinct target of `targets` (size, and whether drawn with 4x MSAA; in their first
+/// order), each figure printed as it is measured.
 ///
 /// The raw limits come first, and not only for their figures: a process's first
 /// primitive-heavy submissions on lavapipe find its rasteriser slow at triangle setup until a
@@ -79,9 +93,9 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
 pub(crate) fn adapter_at(
     gpu: &grassbench::GpuContext,
     raw: Option<Size>,
-    sizes: &[Size],
+    targets: &[(Size, bool)],
 ) -> anyhow::Result<(Calibration, Vec<UnitCosts>)> {
-    let raw = raw.or(sizes.first().copied()).unwrap_or(Size {
+    let raw = raw.or(targets.first().map(|t| t.0)).unwrap_or(Size {
         width: 640,
         height: 360,
     });
@@ -94,25 +108,26 @@ pub(crate) fn adapter_at(
         c.compute_bytes_per_s / 1e9,
         c.raw_blade_cost_ns
     );
-    Ok((c, unit_costs_at(gpu, sizes.iter().copied())?))
+    Ok((c, unit_costs_at(gpu, targets)?))
 }
 
-/// The adapter's unit costs at each distinct size of `sizes` (in their first order), each
-/// fit's summary printed as it is measured.
+/// The adapter's unit costs for each distinct target of `targets` (size, MSAA; in their first
+/// order), each fit's summary printed as it is measured.
 fn unit_costs_at(
     gpu: &grassbench::GpuContext,
-    sizes: impl IntoIterator<Item = Size>,
+    targets: &[(Size, bool)],
 ) -> anyhow::Result<Vec<UnitCosts>> {
-    let mut done: Vec<Size> = Vec::new();
+    let mut done: Vec<(Size, bool)> = Vec::new();
     let mut all = Vec::new();
-    for size in sizes {
-        if done.contains(&size) {
+    for &(size, msaa) in targets {
+        if done.contains(&(size, msaa)) {
             continue;
         }
-        done.push(size);
-        eprintln!("unit costs of {} at {size} …", gpu.summary.name);
-        let units = calibrate_units(gpu, size)
-            .with_context(|| format!("measuring the unit costs at {size}"))?;
+        done.push((size, msaa));
+        let samples = if msaa { ", 4x MSAA" } else { "" };
+        eprintln!("unit costs of {} at {size}{samples} …", gpu.summary.name);
+        let units = calibrate_units_with(gpu, size, options(msaa), &[])
+            .with_context(|| format!("measuring the unit costs at {size}{samples}"))?;
         eprint!("{}", summary(&units.unit_costs, &units.samples));
         all.push(units.unit_costs);
     }

@@ -165,16 +165,12 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         // The finished scenes' model figures were computed with these: keep them.
         earlier
     } else {
-        let sizes: Vec<Size> = scenes
+        // Unit costs for every target drawn: each scene's size, with MSAA where asked.
+        let targets: Vec<(Size, bool)> = scenes
             .iter()
-            .map(|scene| size.unwrap_or(scene.resolution()))
+            .map(|scene| (size.unwrap_or(scene.resolution()), args.msaa))
             .collect();
-        let (c, costs) = super::calibrate::adapter_at(&gpu, None, &sizes)?;
-        if costs.iter().any(|u| !u.prices(args.msaa)) {
-            eprintln!(
-                "cost model: the unit costs are calibrated single-sampled, so these MSAA runs get no model columns (MSAA's per-sample coverage, depth tests and resolve are work no term counts)"
-            );
-        }
+        let (c, costs) = super::calibrate::adapter_at(&gpu, None, &targets)?;
         (Some(c), costs)
     };
     write_atomic(&args.out.join("meta.toml"), |f| {
@@ -236,7 +232,9 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         let mut out = SceneOutput {
             dir: &dir,
             name: &name,
-            unit_costs: unit_costs.iter().find(|c| c.size == size.to_string()),
+            unit_costs: unit_costs
+                .iter()
+                .find(|c| c.size == size.to_string() && c.prices(args.msaa)),
             backgrounds: &backgrounds,
             frames: Vec::new(),
             levels: Vec::new(),

@@ -133,17 +133,12 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
         };
         // The raw limits at the plan's first size (every shard alike).
         let raw = plan.first().map(size_of).transpose()?;
-        let sizes = mine
+        // Unit costs for every target the shard draws: its size, with MSAA or without.
+        let targets = mine
             .iter()
-            .map(|run| size_of(run))
+            .map(|run| Ok((size_of(run)?, run.msaa)))
             .collect::<anyhow::Result<Vec<_>>>()?;
-        let (c, all) = super::calibrate::adapter_at(&gpu, raw, &sizes)?;
-        let multisampled = mine.iter().filter(|r| r.msaa).count();
-        if multisampled > 0 && all.iter().any(|u| !u.prices(true)) {
-            eprintln!(
-                "cost model: the unit costs are calibrated single-sampled, so the {multisampled} run(s) drawn with MSAA get no model columns (MSAA's per-sample coverage, depth tests and resolve are work no term counts)"
-            );
-        }
+        let (c, all) = super::calibrate::adapter_at(&gpu, raw, &targets)?;
         (Some(c), all)
     };
     let meta = SweepMeta {
@@ -339,7 +334,10 @@ fn execute(
     let result = runner::run(&mut harness, technique.as_mut(), &options, &mut |_, _| {})?;
     let mut row = result.summary;
     row.params = grassbench::technique::label_params(&run.params, &row.params);
-    if let Some(costs) = unit_costs.iter().find(|c| c.size == size.to_string()) {
+    if let Some(costs) = unit_costs
+        .iter()
+        .find(|c| c.size == size.to_string() && c.prices(run.msaa))
+    {
         apply_model(&mut row, costs, &result.frames);
     }
     row.repetition = run.repetition;

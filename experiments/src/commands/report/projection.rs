@@ -85,13 +85,15 @@ impl Calibration {
         })
     }
 
-    /// The costs calibrated at `size`, else the first (the fixed cost per frame then belongs
-    /// to another size: flagged in the table).
-    fn for_size(&self, size: &str) -> (&UnitCosts, bool) {
-        self.costs
-            .iter()
+    /// The costs calibrated at `size` drawn as `msaa` says, else the first drawn so (the
+    /// fixed cost per frame then belongs to another size: flagged in the table, `false`);
+    /// `None` where none was drawn so (with MSAA or without: [`UnitCosts::prices`]).
+    fn for_target(&self, size: &str, msaa: bool) -> Option<(&UnitCosts, bool)> {
+        let drawn_so = || self.costs.iter().filter(|c| c.prices(msaa));
+        drawn_so()
             .find(|c| c.size == size)
-            .map_or((&self.costs[0], false), |c| (c, true))
+            .map(|c| (c, true))
+            .or_else(|| drawn_so().next().map(|c| (c, false)))
     }
 }
 
@@ -109,32 +111,22 @@ pub(super) fn projection(
         "Each run's measured work (per frame, from frames.csv) priced with the unit costs of `{}`: **predicted** times on that adapter, not measurements. A size marked * was priced with costs calibrated at another size (its fixed cost per frame differs).\n",
         other.path
     );
-    // Only runs drawn as the other adapter's costs were (with MSAA or without) are priced.
-    let priced = |c: &Config| other.for_size(&c.size).0.prices(c.msaa);
+    // Only runs drawn as some of the other adapter's costs were (with MSAA or without).
     let unpriced = configs
         .values()
-        .filter(|c| c.work.is_some() && !priced(c))
+        .filter(|c| c.work.is_some() && other.for_target(&c.size, c.msaa).is_none())
         .count();
     if unpriced > 0 {
         let _ = writeln!(
             md,
-            "{unpriced} configuration(s) drawn with{} MSAA are not priced: those costs were calibrated {}, and MSAA's per-sample coverage, depth tests and resolve are work no term counts.\n",
-            if other.costs[0].msaa { "out" } else { "" },
-            if other.costs[0].msaa {
-                "with 4x MSAA"
-            } else {
-                "single-sampled"
-            },
+            "{unpriced} configuration(s) are not priced: drawn with MSAA or without, where every cost in that file was calibrated the other way (MSAA's per-sample coverage, depth tests and resolve are work a single-sampled calibration does not do).\n"
         );
     }
     let predicted: HashMap<String, f64> = configs
         .iter()
-        .filter(|(_, c)| priced(c))
         .filter_map(|(id, c)| {
-            Some((
-                id.clone(),
-                other.for_size(&c.size).0.predict(&c.work?).total_ms,
-            ))
+            let (costs, _) = other.for_target(&c.size, c.msaa)?;
+            Some((id.clone(), costs.predict(&c.work?).total_ms))
         })
         .collect();
     if predicted.is_empty() {
@@ -183,7 +175,9 @@ pub(super) fn projection(
     let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|");
     for (id, c) in configs {
         let Some(p) = predicted.get(id) else { continue };
-        let exact = other.for_size(&c.size).1;
+        let exact = other
+            .for_target(&c.size, c.msaa)
+            .is_some_and(|(_, exact)| exact);
         let measured_there = there.get(id).copied();
         let _ = writeln!(
             md,
