@@ -222,6 +222,12 @@ impl UnitCosts {
         self.msaa == msaa
     }
 
+    /// Of `all` (one calibration's costs, one per target it drew), those calibrated at `size`
+    /// (`640x360`) drawn as `msaa` says: the costs that price a run on that target.
+    pub fn for_target<'a>(all: &'a [Self], size: &str, msaa: bool) -> Option<&'a Self> {
+        all.iter().find(|c| c.size == size && c.prices(msaa))
+    }
+
     /// Builds the record from one cost per term in **ms per unit** ([`Term::unit`]), in the
     /// order of [`Term::ALL`], converting each to the unit its field stores.
     pub fn from_ms_per_unit(
@@ -519,6 +525,32 @@ mod tests {
             md.contains("| draw | 1000 | 0 | ns per draw call |"),
             "{md}"
         );
+    }
+
+    #[test]
+    fn a_run_is_priced_by_the_costs_of_its_size_drawn_as_it_was() {
+        let costs = |size: &str, msaa| UnitCosts {
+            msaa,
+            ..UnitCosts::from_ms_per_unit(
+                size.into(),
+                "test".into(),
+                [UnitCost::exact(1e-6); Term::ALL.len()],
+                FitSummary::default(),
+            )
+        };
+        let all = [
+            costs("320x180", false),
+            costs("640x360", false),
+            costs("320x180", true),
+        ];
+        let found =
+            |size, msaa| UnitCosts::for_target(&all, size, msaa).map(|c| (c.size.as_str(), c.msaa));
+        assert_eq!(found("640x360", false), Some(("640x360", false)));
+        assert_eq!(found("320x180", true), Some(("320x180", true)));
+        assert_eq!(found("320x180", false), Some(("320x180", false)));
+        // No costs of that size drawn so: none, not another target's.
+        assert_eq!(found("640x360", true), None);
+        assert_eq!(found("1280x720", false), None);
     }
 
     #[test]

@@ -232,9 +232,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         let mut out = SceneOutput {
             dir: &dir,
             name: &name,
-            unit_costs: unit_costs
-                .iter()
-                .find(|c| c.size == size.to_string() && c.prices(args.msaa)),
+            unit_costs: UnitCosts::for_target(&unit_costs, &size.to_string(), args.msaa),
             backgrounds: &backgrounds,
             frames: Vec::new(),
             levels: Vec::new(),

@@ -334,10 +334,7 @@ fn execute(
     let result = runner::run(&mut harness, technique.as_mut(), &options, &mut |_, _| {})?;
     let mut row = result.summary;
     row.params = grassbench::technique::label_params(&run.params, &row.params);
-    if let Some(costs) = unit_costs
-        .iter()
-        .find(|c| c.size == size.to_string() && c.prices(run.msaa))
-    {
+    if let Some(costs) = UnitCosts::for_target(unit_costs, &size.to_string(), run.msaa) {
         apply_model(&mut row, costs, &result.frames);
     }
     row.repetition = run.repetition;

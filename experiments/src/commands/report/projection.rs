@@ -89,11 +89,14 @@ impl Calibration {
     /// fixed cost per frame then belongs to another size: flagged in the table, `false`);
     /// `None` where none was drawn so (with MSAA or without: [`UnitCosts::prices`]).
     fn for_target(&self, size: &str, msaa: bool) -> Option<(&UnitCosts, bool)> {
-        let drawn_so = || self.costs.iter().filter(|c| c.prices(msaa));
-        drawn_so()
-            .find(|c| c.size == size)
+        UnitCosts::for_target(&self.costs, size, msaa)
             .map(|c| (c, true))
-            .or_else(|| drawn_so().next().map(|c| (c, false)))
+            .or_else(|| {
+                self.costs
+                    .iter()
+                    .find(|c| c.prices(msaa))
+                    .map(|c| (c, false))
+            })
     }
 }
 
