@@ -567,13 +567,19 @@ fn list_shows_values_as_written_and_variants() {
 /// are too small to time and are scaled up (the path a fast GPU takes). The strips that load
 /// texels in their vertex shader did so as counted: the GPU's vertex invocations times the
 /// shader's loads are the work known in advance, all of it the vertex stage's, and no
-/// fragment.
+/// fragment. With `--checks` it writes the coverage checks too, each priced.
 #[test]
 fn calibrate_writes_unit_costs_samples_and_provenance() {
     let dir = temp("calibrate");
     let file = dir.join("calibration.toml");
-    let (ok, out, err) =
-        grassbench(&["calibrate", "--size", "64x36", "-o", file.to_str().unwrap()]);
+    let (ok, out, err) = grassbench(&[
+        "calibrate",
+        "--size",
+        "64x36",
+        "--checks",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
     assert!(ok, "{err}");
     assert!(err.contains("| fragment_blended |"), "{err}");
     assert!(err.contains("| vertex_float_texture_load |"), "{err}");
@@ -582,6 +588,16 @@ fn calibrate_writes_unit_costs_samples_and_provenance() {
     let read: grassbench_cli::commands::CalibrationFile = toml::from_str(&text).unwrap();
     assert_eq!(read.unit_costs.size, "64x36");
     assert_eq!(read.samples.len(), read.unit_costs.fit.samples);
+    // The checks: held out (not among the fitted samples), each timed and priced.
+    let checks = grassbench::cost::checks::coverage_checks();
+    assert_eq!(read.checks.len(), checks.len());
+    assert_eq!(read.check_samples.len(), checks.len());
+    assert!(err.contains("Coverage checks (not fitted)"), "{err}");
+    for (c, r) in checks.iter().zip(&read.checks) {
+        assert_eq!(c.name, r.check);
+        assert!(r.ratio.is_finite() && r.ratio > 0.0, "{r:?}");
+        assert!(r.kept_per_fragment.is_some(), "lavapipe counts: {r:?}");
+    }
     assert!(read.provenance.command.starts_with("grassbench calibrate"));
     assert!(!read.provenance.adapter.name.is_empty());
     // The layers were scaled: 2 layers of 64x36 are some 0.5 ms on lavapipe, under the

@@ -22,7 +22,7 @@
 //!   shaders do much more (texture lookups for wind or terrain) cost more per unit than this:
 //!   their runs' residuals against the model say so.
 
-use super::rig::Rig;
+use super::rig::{Counted, Rig};
 use super::workloads::{self, Workload};
 use super::{Sample, Term, UnitCosts, Work, fit};
 use crate::target::Size;
@@ -68,6 +68,10 @@ pub struct MeasuredSample {
     /// The work the GPU's pipeline-statistics counters measured in the warm-up run (draw
     /// calls and uploads copied from `known`); `None` where the adapter has no counters.
     pub counted: Option<Work>,
+    /// Samples that passed the depth test and were not discarded in the warm-up run (an
+    /// occlusion query; four a pixel where drawn with 4x MSAA); `None` without counters.
+    #[serde(default)]
+    pub samples_passed: Option<u64>,
     /// Every timed run, ms, in round order.
     pub runs_ms: Vec<f64>,
 }
@@ -245,16 +249,23 @@ fn shuffle(order: &mut [usize], rng: &mut crate::rng::Rng) {
 }
 
 /// A sample from its runs: the median time, fitted on the counted work where there is one.
-fn measured(name: &str, known: Work, counted: Option<Work>, runs_ms: Vec<f64>) -> MeasuredSample {
+fn measured(
+    name: &str,
+    known: Work,
+    counted: Option<Counted>,
+    runs_ms: Vec<f64>,
+) -> MeasuredSample {
+    let work = counted.as_ref().map(|c| c.work);
     MeasuredSample {
         sample: Sample {
             workload: name.to_owned(),
             measured_ms: crate::runner::Percentiles::of(runs_ms.iter().copied())
                 .map_or(f64::NAN, |p| p.median),
-            work: counted.unwrap_or(known),
+            work: work.unwrap_or(known),
         },
         known,
-        counted,
+        counted: work,
+        samples_passed: counted.map(|c| c.samples_passed),
         runs_ms,
     }
 }

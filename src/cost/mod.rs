@@ -18,11 +18,14 @@
 //! - [`fit`]: the joint, weighted, non-negative least-squares fit of [`Sample`]s;
 //! - [`workloads`]: the micro-workloads and their work known in advance; [`measure`] runs and
 //!   times them on a GPU ([`calibrate_units`]) and checks their work against the counters;
+//! - [`checks`]: the coverage checks, timed with the calibration and not fitted: blades on
+//!   screen and hidden layers, fragments unlike the fitted layers', priced and compared;
 //!
 //! Costs are in the clock the samples were timed with: submit-to-`poll(wait)` wall time, the
 //! ground truth on lavapipe (see `shared/PLATFORM.md`), the same clock as the runner's
 //! `gpu_wall_ms`.
 
+pub mod checks;
 pub mod fit;
 mod lstsq;
 pub mod measure;

@@ -27,6 +27,15 @@ const INSTANCE_DATA_COUNT: u64 = 1 << 18;
 /// size of a technique's slice or blade texture.
 const FETCH_TEXTURE_SIDE: u32 = 512;
 
+/// What the GPU's counters measured of one submission.
+pub(super) struct Counted {
+    /// Its work (draw calls and uploads as known: no counter sees them).
+    pub work: Work,
+    /// Samples that passed the depth test and were not discarded (occlusion queries around
+    /// the render workloads).
+    pub samples_passed: u64,
+}
+
 /// The GPU resources of the workloads.
 pub(super) struct Rig<'g> {
     gpu: &'g GpuContext,
@@ -36,6 +45,11 @@ pub(super) struct Rig<'g> {
     offscreen: crate::shaders::RenderPipeline,
     subpixel: crate::shaders::RenderPipeline,
     layers: [crate::shaders::RenderPipeline; 3],
+    /// The coverage checks' hidden layers, by fragment kind (as `layers`).
+    hidden: [crate::shaders::RenderPipeline; 3],
+    /// The coverage checks' blades on screen, by width ([`workloads::BladeWidth::ALL`]) and
+    /// fragment kind (as `layers`).
+    blades: [[crate::shaders::RenderPipeline; 3]; workloads::BladeWidth::ALL.len()],
     /// Opaque layers fetching texels, in [`workloads::Fetch::ALL`]'s order.
     fetch_layers: [crate::shaders::RenderPipeline; workloads::Fetch::ALL.len()],
     /// The `transcendentals_*` workloads': off-screen strips, opaque layers.
@@ -232,7 +246,7 @@ impl<'g> Rig<'g> {
                 }))
                 .collect::<Vec<_>>(),
             });
-            let pipeline = |label, vs, fs, write: bool, blend| {
+            let pipeline_with = |label, vs, fs, write: bool, blend, constants: &[(&str, f64)]| {
                 shaders::render_pipeline(
                     device,
                     &shaders::PipelineSpec {
@@ -261,10 +275,12 @@ impl<'g> Rig<'g> {
                             blend,
                             write_mask: wgpu::ColorWrites::ALL,
                         })],
-                        constants: &[],
+                        constants,
                     },
                 )
             };
+            let pipeline =
+                |label, vs, fs, write, blend| pipeline_with(label, vs, fs, write, blend, &[]);
             Self {
                 gpu,
                 offscreen: pipeline(
@@ -281,23 +297,39 @@ impl<'g> Rig<'g> {
                     true,
                     None,
                 ),
-                layers: [
-                    pipeline("unit costs: opaque", "vs_layer", "fs_opaque", true, None),
+                layers: FragmentKind::ALL.map(|kind| {
+                    let blended = kind == FragmentKind::Blended;
                     pipeline(
-                        "unit costs: alpha-tested",
+                        "unit costs: layers",
                         "vs_layer",
-                        "fs_alpha_tested",
-                        true,
-                        None,
-                    ),
+                        workloads::layer_fragment_entry(kind),
+                        !blended,
+                        blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
+                    )
+                }),
+                hidden: FragmentKind::ALL.map(|kind| {
+                    let blended = kind == FragmentKind::Blended;
                     pipeline(
-                        "unit costs: blended",
-                        "vs_layer",
-                        "fs_blended",
-                        false,
-                        Some(wgpu::BlendState::ALPHA_BLENDING),
-                    ),
-                ],
+                        "unit costs: hidden layers",
+                        "vs_hidden_layer",
+                        workloads::layer_fragment_entry(kind),
+                        !blended,
+                        blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
+                    )
+                }),
+                blades: workloads::BladeWidth::ALL.map(|width| {
+                    FragmentKind::ALL.map(|kind| {
+                        let blended = kind == FragmentKind::Blended;
+                        pipeline_with(
+                            "unit costs: blades on screen",
+                            workloads::ONSCREEN_BLADE_VERTEX,
+                            workloads::layer_fragment_entry(kind),
+                            !blended,
+                            blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
+                            &width.constants(),
+                        )
+                    })
+                }),
                 fetch_layers: workloads::Fetch::ALL.map(|fetch| {
                     pipeline(
                         "unit costs: fetches",
@@ -382,7 +414,7 @@ impl<'g> Rig<'g> {
         &self,
         mix: &[Workload],
         mut counter: Option<&mut WorkCounter>,
-    ) -> Result<(f64, Option<Work>)> {
+    ) -> Result<(f64, Option<Counted>)> {
         let gpu = self.gpu;
         let names: Vec<&str> = mix.iter().map(|w| w.name).collect();
         let label = format!("unit-cost workload `{}`", names.join(" + "));
@@ -432,10 +464,13 @@ impl<'g> Rig<'g> {
             });
         Ok((
             ms,
-            Some(Work {
-                draw_calls: known.draw_calls,
-                upload_bytes: known.upload_bytes,
-                ..counted
+            Some(Counted {
+                work: Work {
+                    draw_calls: known.draw_calls,
+                    upload_bytes: known.upload_bytes,
+                    ..counted
+                },
+                samples_passed: records.iter().map(|r| r.work.samples_passed).sum(),
             }),
         ))
     }
@@ -483,10 +518,12 @@ impl<'g> Rig<'g> {
                     | Shape::MathStrips { instances }
                     | Shape::ArithmeticStrips { instances }
                     | Shape::LoadStrips { instances, .. }
-                    | Shape::StorageStrips { instances } => {
+                    | Shape::StorageStrips { instances }
+                    | Shape::OnscreenBlades { instances, .. } => {
                         pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
                     }
                     Shape::Layers { layers, .. }
+                    | Shape::HiddenLayers { layers, .. }
                     | Shape::FetchLayers { layers, .. }
                     | Shape::MathLayers { layers }
                     | Shape::ArithmeticLayers { layers } => {
@@ -546,13 +583,13 @@ impl<'g> Rig<'g> {
         match w.shape {
             Shape::OffscreenStrips { .. } => Some(&self.offscreen),
             Shape::SubpixelStrips { .. } | Shape::Draws { .. } => Some(&self.subpixel),
-            Shape::Layers { kind, .. } => Some(
-                &self.layers[match kind {
-                    FragmentKind::Opaque => 0,
-                    FragmentKind::AlphaTested => 1,
-                    FragmentKind::Blended => 2,
-                }],
-            ),
+            // In bounds: one pipeline per kind (`FragmentKind::ALL`) and width
+            // (`BladeWidth::ALL`).
+            Shape::Layers { kind, .. } => Some(&self.layers[kind as usize]),
+            Shape::HiddenLayers { kind, .. } => Some(&self.hidden[kind as usize]),
+            Shape::OnscreenBlades { kind, width, .. } => {
+                Some(&self.blades[width as usize][kind as usize])
+            }
             // In bounds: one pipeline per fetch (`Fetch::ALL`).
             Shape::FetchLayers { fetch, .. } => Some(&self.fetch_layers[fetch as usize]),
             Shape::MathStrips { .. } => Some(&self.math[0]),

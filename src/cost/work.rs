@@ -96,33 +96,28 @@ pub use crate::shaders::FragmentKind;
 use crate::shaders::PipelineCost;
 
 impl Work {
+    /// The fragments of `kind`, to set.
+    pub fn fragments_mut(&mut self, kind: FragmentKind) -> &mut f64 {
+        match kind {
+            FragmentKind::Opaque => &mut self.fragments_opaque,
+            FragmentKind::AlphaTested => &mut self.fragments_alpha_tested,
+            FragmentKind::Blended => &mut self.fragments_blended,
+        }
+    }
+
     /// The work the GPU's pipeline-statistics counters measured over some passes, all drawn
     /// with pipelines of `pipeline`'s cost: fragments of its kind, texture fetches and
     /// transcendentals its shaders' per invocation times the invocations counted. Draw calls and uploads are not among the
     /// counters: they are 0 here, for the caller to set from the harness's counts.
     pub fn from_counters(counted: &PassWork, pipeline: PipelineCost) -> Self {
-        let f = counted.fragment_invocations as f64;
-        let fragments = pipeline.fragments;
         let ops = pipeline.ops(counted);
         let fetches = ops.all();
-        Self {
+        let mut work = Self {
             vertex_invocations: counted.vertex_invocations as f64,
             primitives: counted.clipper_primitives_out as f64,
-            fragments_opaque: if fragments == FragmentKind::Opaque {
-                f
-            } else {
-                0.0
-            },
-            fragments_alpha_tested: if fragments == FragmentKind::AlphaTested {
-                f
-            } else {
-                0.0
-            },
-            fragments_blended: if fragments == FragmentKind::Blended {
-                f
-            } else {
-                0.0
-            },
+            fragments_opaque: 0.0,
+            fragments_alpha_tested: 0.0,
+            fragments_blended: 0.0,
             draw_calls: 0.0,
             compute_invocations: counted.compute_invocations as f64,
             upload_bytes: 0.0,
@@ -143,7 +138,9 @@ impl Work {
             vertex_storage: ops.vertex.storage as f64,
             compute_divisions: ops.compute.divisions as f64,
             texture_mip_blends: fetches.mip_blends as f64,
-        }
+        };
+        *work.fragments_mut(pipeline.fragments) = counted.fragment_invocations as f64;
+        work
     }
 
     /// The amount of `term` in this frame, in the term's unit ([`Term::unit`]): the fixed term

@@ -26,6 +26,11 @@
 //! | `compute` | a spring update of a 16-byte element per invocation, 64-wide workgroups | compute |
 //! | `upload` | `queue.write_buffer` of 1 to 64 MB | upload |
 //!
+//! Besides the families fitted, the coverage checks ([`super::checks`]) are timed with them
+//! and not fitted: blades drawn on screen ([`Shape::OnscreenBlades`]) and layers hidden behind
+//! the first ([`Shape::HiddenLayers`]), fragments unlike the layers' whole 4x4 blocks that
+//! every fragment term is fitted on.
+//!
 //! Every sample is one submission holding one render pass that clears the target, plus the
 //! workload: the fixed term is what a frame with nothing in it costs at this size.
 //!
@@ -177,6 +182,9 @@ pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
 /// Transcendentals of one invocation of the layers' fragment shaders (`lit`: the fog's
 /// `exp`).
 pub const LIT_TRANSCENDENTALS: u32 = 1;
+/// Height in pixels of a blade of the [`Shape::OnscreenBlades`] workloads (the shader's
+/// `ONSCREEN_HEIGHT`, set from here: [`BladeWidth::constants`]).
+pub const ONSCREEN_BLADE_HEIGHT: f64 = 40.0;
 /// Size ratios of a workload's samples.
 pub const SIZE_STEPS: [u32; 4] = [1, 2, 4, 8];
 
@@ -224,6 +232,28 @@ pub enum Shape {
     },
     /// `layers` full-screen triangles in one instanced draw.
     Layers {
+        /// How they are shaded.
+        kind: FragmentKind,
+        /// Layers.
+        layers: u32,
+    },
+    /// `instances` blade strips on screen, each rooted at a hashed pixel,
+    /// [`ONSCREEN_BLADE_HEIGHT`] pixels tall and `width` wide at the root, tapering to the tip
+    /// and leaning, each nearer than the last (every one passes the depth test), shaded as
+    /// `kind`, in one instanced draw: the thin, partly covered 4x4 blocks of a meadow's blades,
+    /// where a layer covers its blocks whole.
+    OnscreenBlades {
+        /// How they are shaded.
+        kind: FragmentKind,
+        /// How wide they are.
+        width: BladeWidth,
+        /// Instances.
+        instances: u32,
+    },
+    /// `layers` full-screen triangles shaded as `kind` far behind every other layer
+    /// (`vs_hidden_layer`), in one instanced draw: drawn after a layer, every fragment fails
+    /// the depth test.
+    HiddenLayers {
         /// How they are shaded.
         kind: FragmentKind,
         /// Layers.
@@ -300,6 +330,49 @@ impl Fetch {
             Self::SingleLevelSamples => "fs_single_level_samples",
             Self::FloatLoads => "fs_float_loads",
             Self::FloatSamples => "fs_float_samples",
+        }
+    }
+}
+
+/// The vertex entry point of the [`Shape::OnscreenBlades`] workloads (its size set by
+/// [`BladeWidth::constants`]).
+pub const ONSCREEN_BLADE_VERTEX: &str = "vs_onscreen_blade";
+
+/// Width at the root of the blades of a [`Shape::OnscreenBlades`] workload.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BladeWidth {
+    /// 1.5 pixels: a near blade, a third of the pixels of each 4x4 block it touches covered.
+    Blade,
+    /// 0.3 pixels: a far blade, a sliver that covers a few samples of each block it touches.
+    Sliver,
+}
+
+impl BladeWidth {
+    /// Both widths, widest first.
+    pub const ALL: [Self; 2] = [Self::Blade, Self::Sliver];
+
+    /// Width at the root, pixels.
+    pub fn pixels(self) -> f64 {
+        match self {
+            Self::Blade => 1.5,
+            Self::Sliver => 0.3,
+        }
+    }
+
+    /// The values of the shader's overridable constants that draw blades of this width with
+    /// [`ONSCREEN_BLADE_VERTEX`].
+    pub fn constants(self) -> [(&'static str, f64); 2] {
+        [
+            ("ONSCREEN_HEIGHT", ONSCREEN_BLADE_HEIGHT),
+            ("ONSCREEN_WIDTH", self.pixels()),
+        ]
+    }
+
+    /// Name, as in the checks' names (`blades`, `slivers`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Blade => "blades",
+            Self::Sliver => "slivers",
         }
     }
 }
@@ -433,35 +506,53 @@ impl Workload {
             Shape::Layers { kind, layers } => {
                 let fragments = pixels * f64::from(layers);
                 let vertices = f64::from(layers) * f64::from(LAYER_VERTICES);
-                let fragment_entry = match kind {
-                    FragmentKind::Opaque => "fs_opaque",
-                    FragmentKind::AlphaTested => "fs_alpha_tested",
-                    FragmentKind::Blended => "fs_blended",
-                };
-                Work {
+                let fragment_entry = layer_fragment_entry(kind);
+                let mut work = Work {
                     vertex_invocations: vertices,
                     primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
-                    fragments_opaque: if kind == FragmentKind::Opaque {
-                        fragments
-                    } else {
-                        0.0
-                    },
-                    fragments_alpha_tested: if kind == FragmentKind::AlphaTested {
-                        fragments
-                    } else {
-                        0.0
-                    },
-                    fragments_blended: if kind == FragmentKind::Blended {
-                        fragments
-                    } else {
-                        0.0
-                    },
                     draw_calls: 1.0,
                     fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
                     vertex_arithmetic: vertices * arithmetic("vs_layer"),
                     fragment_arithmetic: fragments * arithmetic(fragment_entry),
                     ..none
+                };
+                *work.fragments_mut(kind) = fragments;
+                work
+            }
+            Shape::HiddenLayers { kind, layers } => {
+                let base = Workload {
+                    shape: Shape::Layers { kind, layers },
+                    ..*self
                 }
+                .work(size);
+                Work {
+                    vertex_arithmetic: base.vertex_invocations * arithmetic("vs_hidden_layer"),
+                    ..base
+                }
+            }
+            Shape::OnscreenBlades {
+                kind,
+                width,
+                instances,
+            } => {
+                // The fragments known in advance are the pixels the blades cover (a triangle
+                // of the blade's height and width); a rasteriser shading whole 4x4 blocks
+                // counts several times more (the GPU's counters, where it has them, are what
+                // the checks price).
+                let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
+                let fragments = f64::from(instances) * ONSCREEN_BLADE_HEIGHT * width.pixels() / 2.0;
+                let mut work = Work {
+                    vertex_invocations: vertices,
+                    primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
+                    draw_calls: 1.0,
+                    vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
+                    vertex_arithmetic: vertices * arithmetic(ONSCREEN_BLADE_VERTEX),
+                    fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
+                    fragment_arithmetic: fragments * arithmetic(layer_fragment_entry(kind)),
+                    ..none
+                };
+                *work.fragments_mut(kind) = fragments;
+                work
             }
             Shape::MathLayers { layers } => {
                 let base = self.opaque_layers(layers, size);
@@ -608,6 +699,19 @@ impl Workload {
                 layers: layers.saturating_mul(k),
             },
             Shape::Layers { kind, layers } => Shape::Layers {
+                kind,
+                layers: layers.saturating_mul(k),
+            },
+            Shape::OnscreenBlades {
+                kind,
+                width,
+                instances,
+            } => Shape::OnscreenBlades {
+                kind,
+                width,
+                instances: instances.saturating_mul(k),
+            },
+            Shape::HiddenLayers { kind, layers } => Shape::HiddenLayers {
                 kind,
                 layers: layers.saturating_mul(k),
             },
@@ -815,6 +919,15 @@ pub fn families() -> Vec<Workload> {
             shape: Shape::Upload { bytes: 1 << 20 },
         },
     ]
+}
+
+/// The fragment entry point of the layers (and the on-screen blades) shaded as `kind`.
+pub fn layer_fragment_entry(kind: FragmentKind) -> &'static str {
+    match kind {
+        FragmentKind::Opaque => "fs_opaque",
+        FragmentKind::AlphaTested => "fs_alpha_tested",
+        FragmentKind::Blended => "fs_blended",
+    }
 }
 
 /// The vertex entry point of the strips that load texels (`float`: of the floating-point
@@ -1205,6 +1318,27 @@ mod tests {
             vertex_loaders,
             ["vertex_texture_loads", "vertex_float_texture_loads"]
         );
+    }
+
+    #[test]
+    fn onscreen_blades_are_drawn_as_their_work_counts_them() {
+        // The shader's overridable size, set from the workloads' constants.
+        let source = crate::shaders::compose(SHADER);
+        for (name, _) in BladeWidth::Blade.constants() {
+            assert!(source.contains(&format!("override {name}: f32")), "{name}");
+        }
+        // A blade vertex and its placement: the strips' transcendentals, more arithmetic.
+        let ops = shader_ops(ONSCREEN_BLADE_VERTEX);
+        assert_eq!(ops.transcendentals, u64::from(STRIP_VERTEX_TRANSCENDENTALS));
+        assert!(ops.arithmetic > shader_ops("vs_subpixel").arithmetic / 2);
+        for (i, width) in BladeWidth::ALL.iter().enumerate() {
+            // The rig's pipelines are indexed by width, then by kind.
+            assert_eq!(*width as usize, i);
+        }
+        for (i, kind) in FragmentKind::ALL.iter().enumerate() {
+            assert_eq!(*kind as usize, i);
+        }
+        assert_eq!(shader_ops("vs_hidden_layer").transcendentals, 0);
     }
 
     #[test]

@@ -142,16 +142,50 @@ fn vs_subpixel(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -
 // screen, so no 2x2 quad is shaded twice) at depth 1 / (i + 2), nearer than every layer before
 // it, so each passes a `LessEqual` test and shades every pixel. Its varyings are those of a
 // blade (a ground-level patch 20 m across).
-@vertex
-fn vs_layer(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+fn layer_at(v: u32, i: u32, depth: f32) -> VsOut {
     let uv = vec2(f32((v << 1u) & 2u), f32(v & 2u));
     var out: VsOut;
-    out.position = vec4(uv * 2.0 - 1.0, 1.0 / f32(i + 2u), 1.0);
+    out.position = vec4(uv * 2.0 - 1.0, depth, 1.0);
     out.albedo = mix(vec3(0.10, 0.30, 0.05), vec3(0.40, 0.60, 0.20), uv.y);
     out.normal = normalize(vec3(uv.x - 0.5, 1.0, 0.3));
     out.world = vec3(uv.x * 20.0, 0.3 + f32(i) * 0.01, uv.y * 20.0);
     out.ao = mix(0.3, 1.0, uv.y);
     out.layer = i;
+    return out;
+}
+
+@vertex
+fn vs_layer(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    return layer_at(v, i, 1.0 / f32(i + 2u));
+}
+
+// Hidden layers (the coverage checks' `hidden_*`): the same full-screen triangle far behind
+// every layer above (depth 0.99 and a little nearer for each), so where a layer was drawn
+// before, every fragment fails the depth test.
+@vertex
+fn vs_hidden_layer(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    return layer_at(v, i, 0.99 - f32(i % 1024u) * 1e-5);
+}
+
+// Blades on screen (the coverage checks, `cost/checks.rs`): strip i is a blade rooted at a
+// hashed pixel, ONSCREEN_HEIGHT pixels tall and ONSCREEN_WIDTH wide at its root, tapering to
+// its tip and leaning by up to a third of its height, at depth 1 / (i + 2): nearer than every
+// strip before it, so each passes a `LessEqual` test. Nearly every 4x4 block it touches it
+// covers in part, as a meadow's blades do, where a full-screen layer covers every block whole.
+// The rig sets both (`workloads::ONSCREEN_BLADE_HEIGHT`, `workloads::BladeWidth::pixels`).
+override ONSCREEN_HEIGHT: f32 = 0.0;
+override ONSCREEN_WIDTH: f32 = 0.0;
+
+@vertex
+fn vs_onscreen_blade(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> VsOut {
+    var out = blade_vertex(v, i);
+    let level = f32(v / 2u) / 5.0;
+    let side = f32(v & 1u) - 0.5;
+    let root = vec2(hash_f32(i ^ 0x68e31da4u), hash_f32(i ^ 0xb5297a4du)) * params.size.xy;
+    let lean = (hash_f32(i ^ 0x1b56c4e9u) - 0.5) * 0.66 * ONSCREEN_HEIGHT;
+    let tip = vec2(lean * level * level, -ONSCREEN_HEIGHT * level);
+    let p = root + vec2(side * ONSCREEN_WIDTH * (1.0 - level), 0.0) + tip;
+    out.position = vec4(pixel_to_clip(p), 1.0 / f32(i + 2u), 1.0);
     return out;
 }
 

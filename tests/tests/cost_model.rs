@@ -11,8 +11,12 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use anyhow::Context as _;
+use grassbench::cost::checks::{self, coverage_checks};
 use grassbench::cost::workloads::{Chain, Fetch, Shape, Workload};
-use grassbench::cost::{COUNTED_TERMS, FragmentKind, Options, Term, Work, calibrate_units_with};
+use grassbench::cost::{
+    COUNTED_TERMS, FragmentKind, MeasuredSample, Options, Term, UnitCosts, Work,
+    calibrate_units_with,
+};
 use grassbench::target::Size;
 use grassbench_tests::gpu;
 
@@ -34,10 +38,8 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     // fragment_arithmetic at 0.0095 ± 0.0049 ns, vertex_arithmetic at 0.0118 ± 0.0101; the
     // next four resolved every term): the test then calibrates once more and holds the
     // second calibration to every check.
-    let calibrate = || {
-        calibrate_units_with(&gpu, SIZE, Options::default(), &[held_out_mix()])
-            .context("calibrating")
-    };
+    let calibrate =
+        || calibrate_units_with(&gpu, SIZE, Options::default(), &held_out()).context("calibrating");
     let mut cal = calibrate()?;
     let first = unresolved(&cal.unit_costs);
     if !first.is_empty() {
@@ -48,7 +50,7 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     eprint!("{}", costs.to_markdown());
 
     // The counters against the work known in advance, in every sample and in the mix.
-    for s in cal.samples.iter().chain(&cal.held_out) {
+    for s in cal.samples.iter().chain(&cal.held_out[..1]) {
         check_counts(
             &s.sample.workload,
             &s.known,
@@ -99,7 +101,89 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
         100.0 * error
     );
     assert!(error.abs() < 0.5, "{error}");
+    check_coverage(costs, &cal.held_out[1..], SIZE, 1);
     Ok(())
+}
+
+/// The held-out mix, then every coverage check.
+fn held_out() -> Vec<Vec<Workload>> {
+    std::iter::once(held_out_mix())
+        .chain(coverage_checks().into_iter().map(|c| c.mix))
+        .collect()
+}
+
+/// The coverage checks (`held_out`, in [`coverage_checks`]' order, timed on a `size` target
+/// of `samples` samples a pixel) counted as drawn: the blades' vertices exactly, their
+/// triangles all rasterised, more fragments than the pixels they cover (a rasteriser shades
+/// whole blocks) and fewer samples kept per fragment for the slivers than for the blades, half
+/// of them for the alpha-tested kind (it discards half its pixels); the hidden layers every
+/// fragment counted and only the occluder's samples kept. Each is priced (a finite, positive
+/// time either way); what the ratios are is the calibration's finding, not a test's.
+fn check_coverage(costs: &UnitCosts, held_out: &[MeasuredSample], size: Size, samples: u64) {
+    let checks = coverage_checks();
+    assert_eq!(held_out.len(), checks.len());
+    let results = checks::results(costs, &checks, held_out);
+    eprint!("{}", checks::to_markdown(&results));
+    let pixels = u64::from(size.width * size.height);
+    let kept = |name: &str, i: usize| {
+        results
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.check == name)
+            .nth(i)
+            .and_then(|(_, r)| r.kept_per_fragment)
+            .unwrap_or(f64::NAN)
+    };
+    for ((check, m), r) in checks.iter().zip(held_out).zip(&results) {
+        let counted = m.counted.expect("counted work");
+        let known = &m.known;
+        let what = format!("{}: counted {counted:?}, known {known:?}", check.name);
+        assert!(r.ratio.is_finite() && r.ratio > 0.0, "{what}");
+        assert_eq!(
+            counted.vertex_invocations, known.vertex_invocations,
+            "{what}"
+        );
+        let fragments =
+            |w: &Work| w.fragments_opaque + w.fragments_alpha_tested + w.fragments_blended;
+        if check.name.starts_with("hidden") {
+            // Every layer's fragments counted (lavapipe: 1.0125 times the pixels at 640x360,
+            // the blocks on the seams of a clipped layer shading twice; 1.031 at 320x180 with
+            // 4x MSAA), and the occluder's samples alone kept.
+            assert!(
+                fragments(known) <= fragments(&counted)
+                    && fragments(&counted) <= 1.04 * fragments(known),
+                "{what}"
+            );
+            assert_eq!(m.samples_passed, Some(pixels * samples), "{what}");
+        } else {
+            // Blades rooted near the top edge are clipped: a few triangles more or fewer.
+            let p = counted.primitives / known.primitives;
+            assert!((0.9..=1.1).contains(&p), "{what}");
+            assert!(fragments(&counted) > fragments(known), "{what}");
+            let k = r.kept_per_fragment.unwrap_or(f64::NAN);
+            assert!(k > 0.0 && k <= samples as f64, "{what}");
+        }
+    }
+    for i in 0..2 {
+        for kind in ["opaque", "alpha_tested", "blended"] {
+            let (blades, slivers) = (
+                kept(&format!("blades_{kind}"), i),
+                kept(&format!("slivers_{kind}"), i),
+            );
+            assert!(
+                slivers < blades,
+                "{kind}: slivers keep {slivers}, blades {blades}"
+            );
+        }
+        for width in ["blades", "slivers"] {
+            let half =
+                kept(&format!("{width}_alpha_tested"), i) / kept(&format!("{width}_opaque"), i);
+            assert!(
+                (0.4..0.6).contains(&half),
+                "{width}: alpha-tested keep {half} of opaque's"
+            );
+        }
+    }
 }
 
 /// The terms whose fitted cost is not a resolved number: every term's own workload must
@@ -348,7 +432,7 @@ fn an_msaa_calibration_predicts_a_held_out_mix_drawn_with_msaa() -> anyhow::Resu
         msaa: true,
         ..Options::default()
     };
-    let cal = calibrate_units_with(&gpu, size, options, &[held_out_mix()])
+    let cal = calibrate_units_with(&gpu, size, options, &held_out())
         .context("calibrating on a multisampled target")?;
     let costs = &cal.unit_costs;
     eprint!("{}", costs.to_markdown());
@@ -362,5 +446,6 @@ fn an_msaa_calibration_predicts_a_held_out_mix_drawn_with_msaa() -> anyhow::Resu
         100.0 * error
     );
     assert!(error.abs() < 0.5, "{error}");
+    check_coverage(costs, &cal.held_out[1..], size, 4);
     Ok(())
 }
