@@ -567,19 +567,13 @@ fn list_shows_values_as_written_and_variants() {
 /// are too small to time and are scaled up (the path a fast GPU takes). The strips that load
 /// texels in their vertex shader did so as counted: the GPU's vertex invocations times the
 /// shader's loads are the work known in advance, all of it the vertex stage's, and no
-/// fragment. With `--checks` it writes the coverage checks too, each priced.
+/// fragment. The coverage checks are timed with the samples and priced.
 #[test]
 fn calibrate_writes_unit_costs_samples_and_provenance() {
     let dir = temp("calibrate");
     let file = dir.join("calibration.toml");
-    let (ok, out, err) = grassbench(&[
-        "calibrate",
-        "--size",
-        "64x36",
-        "--checks",
-        "-o",
-        file.to_str().unwrap(),
-    ]);
+    let (ok, out, err) =
+        grassbench(&["calibrate", "--size", "64x36", "-o", file.to_str().unwrap()]);
     assert!(ok, "{err}");
     assert!(err.contains("| fragment_blended |"), "{err}");
     assert!(err.contains("| vertex_float_texture_load |"), "{err}");
@@ -590,10 +584,10 @@ fn calibrate_writes_unit_costs_samples_and_provenance() {
     assert_eq!(read.samples.len(), read.unit_costs.fit.samples);
     // The checks: held out (not among the fitted samples), each timed and priced.
     let checks = grassbench::cost::checks::coverage_checks();
-    assert_eq!(read.checks.len(), checks.len());
+    assert_eq!(read.unit_costs.checks.len(), checks.len());
     assert_eq!(read.check_samples.len(), checks.len());
-    assert!(err.contains("Coverage checks (not fitted)"), "{err}");
-    for (c, r) in checks.iter().zip(&read.checks) {
+    assert!(err.contains("| slivers_alpha_tested |"), "{err}");
+    for (c, r) in checks.iter().zip(&read.unit_costs.checks) {
         assert_eq!(c.name, r.check);
         assert!(r.ratio.is_finite() && r.ratio > 0.0, "{r:?}");
         assert!(r.kept_per_fragment.is_some(), "lavapipe counts: {r:?}");

@@ -302,5 +302,14 @@ mod tests {
         assert_eq!(r.ratio, 2.0);
         assert_eq!(r.kept_per_fragment, Some(600_000.0 / work.fragments_opaque));
         assert!(to_markdown(std::slice::from_ref(r)).contains("| blades_opaque |"));
+        // Kept with the costs they were priced with: in their table and their files.
+        let with = UnitCosts {
+            checks: vec![r.clone()],
+            ..costs.clone()
+        };
+        assert!(with.to_markdown().contains("Coverage checks"));
+        assert!(!costs.to_markdown().contains("Coverage checks"));
+        let text = toml::to_string(&with).unwrap_or_default();
+        assert_eq!(toml::from_str::<UnitCosts>(&text).ok(), Some(with));
     }
 }

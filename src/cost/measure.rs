@@ -39,6 +39,9 @@ pub struct Options {
     /// Draw into a 4x multisampled target (as [`crate::RenderTarget::new`] makes one), so the
     /// costs price runs drawn with MSAA ([`UnitCosts::msaa`]).
     pub msaa: bool,
+    /// Also time the coverage checks ([`super::checks`]) in the same rounds, held out, and
+    /// price them ([`UnitCosts::checks`]).
+    pub checks: bool,
 }
 
 impl Default for Options {
@@ -49,6 +52,7 @@ impl Default for Options {
             repeats: 5,
             min_largest_ms: 20.0,
             msaa: false,
+            checks: true,
         }
     }
 }
@@ -123,6 +127,11 @@ pub struct UnitCalibration {
     /// [`calibrate_units_with`]); none by default.
     #[serde(default)]
     pub held_out: Vec<MeasuredSample>,
+    /// The coverage checks' samples ([`Options::checks`]), in
+    /// [`super::checks::coverage_checks`]' order; their results are
+    /// [`UnitCosts::checks`].
+    #[serde(default)]
+    pub check_samples: Vec<MeasuredSample>,
 }
 
 /// Clock description recorded with the costs.
@@ -178,11 +187,18 @@ pub fn calibrate_units_with(
         }
         plan.extend(workloads::sizes(&family, scale));
     }
-    // Every submission of a round: the samples one workload each, then the held-out mixes.
+    // Every submission of a round: the samples one workload each, then the held-out mixes,
+    // then the coverage checks.
+    let checks = if options.checks {
+        super::checks::coverage_checks()
+    } else {
+        Vec::new()
+    };
     let submissions: Vec<Vec<Workload>> = plan
         .iter()
         .map(|w| vec![*w])
         .chain(held_out.iter().cloned())
+        .chain(checks.iter().map(|c| c.mix.clone()))
         .collect();
     let mut counted = Vec::with_capacity(submissions.len());
     let mut settle = Vec::with_capacity(submissions.len());
@@ -217,16 +233,19 @@ pub fn calibrate_units_with(
             measured(name, known, counted, runs_ms)
         })
         .collect();
+    let check_samples = measured_all.split_off(plan.len() + held_out.len());
     let held_out = measured_all.split_off(plan.len());
     let samples = measured_all;
     let fitted: Vec<Sample> = samples.iter().map(|s| s.sample.clone()).collect();
     let mut unit_costs = fit(&fitted, &size.to_string(), &clock(options.repeats))?;
     unit_costs.host_other_cores = host.map(|h| h.other_cores);
     unit_costs.msaa = options.msaa;
+    unit_costs.checks = super::checks::results(&unit_costs, &checks, &check_samples);
     Ok(UnitCalibration {
         unit_costs,
         samples,
         held_out,
+        check_samples,
     })
 }
 

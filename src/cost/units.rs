@@ -136,6 +136,11 @@ pub struct UnitCosts {
     pub texture_mip_blend_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
+    /// The coverage checks ([`super::checks`]), timed with the samples and priced with these
+    /// costs: how far the prices hold for fragments unlike the fitted layers' (blades on
+    /// screen, hidden layers). Empty in files from before them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub checks: Vec<super::checks::CheckResult>,
 }
 
 /// A frame's predicted GPU time, split by term.
@@ -277,6 +282,7 @@ impl UnitCosts {
             compute_division_ns: stored(Term::ComputeDivision),
             texture_mip_blend_ns: stored(Term::TextureMipBlend),
             fit,
+            checks: Vec::new(),
         }
     }
 
@@ -391,6 +397,12 @@ impl UnitCosts {
             100.0 * self.fit.max_relative_residual,
             workloads.join(", ")
         ));
+        if !self.checks.is_empty() {
+            md.push_str(&format!(
+                "\nCoverage checks, timed with the samples and not fitted (measured over predicted: where the prices hold for a technique's fragments; `grassbench calibrate` and `results/cost_model/README.md`, *Coverage checks*):\n\n{}",
+                super::checks::to_markdown(&self.checks)
+            ));
+        }
         md
     }
 }

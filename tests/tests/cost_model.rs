@@ -38,8 +38,10 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     // fragment_arithmetic at 0.0095 ± 0.0049 ns, vertex_arithmetic at 0.0118 ± 0.0101; the
     // next four resolved every term): the test then calibrates once more and holds the
     // second calibration to every check.
-    let calibrate =
-        || calibrate_units_with(&gpu, SIZE, Options::default(), &held_out()).context("calibrating");
+    let calibrate = || {
+        calibrate_units_with(&gpu, SIZE, Options::default(), &[held_out_mix()])
+            .context("calibrating")
+    };
     let mut cal = calibrate()?;
     let first = unresolved(&cal.unit_costs);
     if !first.is_empty() {
@@ -50,7 +52,7 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
     eprint!("{}", costs.to_markdown());
 
     // The counters against the work known in advance, in every sample and in the mix.
-    for s in cal.samples.iter().chain(&cal.held_out[..1]) {
+    for s in cal.samples.iter().chain(&cal.held_out) {
         check_counts(
             &s.sample.workload,
             &s.known,
@@ -101,29 +103,23 @@ fn calibration_counts_its_work_and_its_costs_predict_a_held_out_mix() -> anyhow:
         100.0 * error
     );
     assert!(error.abs() < 0.5, "{error}");
-    check_coverage(costs, &cal.held_out[1..], SIZE, 1);
+    check_coverage(costs, &cal.check_samples, SIZE, 1);
     Ok(())
 }
 
-/// The held-out mix, then every coverage check.
-fn held_out() -> Vec<Vec<Workload>> {
-    std::iter::once(held_out_mix())
-        .chain(coverage_checks().into_iter().map(|c| c.mix))
-        .collect()
-}
-
-/// The coverage checks (`held_out`, in [`coverage_checks`]' order, timed on a `size` target
+/// The coverage checks (`timed`, in [`coverage_checks`]' order, on a `size` target
 /// of `samples` samples a pixel) counted as drawn: the blades' vertices exactly, their
 /// triangles all rasterised, more fragments than the pixels they cover (a rasteriser shades
 /// whole blocks) and fewer samples kept per fragment for the slivers than for the blades, half
 /// of them for the alpha-tested kind (it discards half its pixels); the hidden layers every
 /// fragment counted and only the occluder's samples kept. Each is priced (a finite, positive
 /// time either way); what the ratios are is the calibration's finding, not a test's.
-fn check_coverage(costs: &UnitCosts, held_out: &[MeasuredSample], size: Size, samples: u64) {
+fn check_coverage(costs: &UnitCosts, timed: &[MeasuredSample], size: Size, samples: u64) {
     let checks = coverage_checks();
-    assert_eq!(held_out.len(), checks.len());
-    let results = checks::results(costs, &checks, held_out);
-    eprint!("{}", checks::to_markdown(&results));
+    assert_eq!(timed.len(), checks.len());
+    let results = &costs.checks;
+    assert_eq!(results, &checks::results(costs, &checks, timed));
+    eprint!("{}", checks::to_markdown(results));
     let pixels = u64::from(size.width * size.height);
     let kept = |name: &str, i: usize| {
         results
@@ -134,7 +130,7 @@ fn check_coverage(costs: &UnitCosts, held_out: &[MeasuredSample], size: Size, sa
             .and_then(|(_, r)| r.kept_per_fragment)
             .unwrap_or(f64::NAN)
     };
-    for ((check, m), r) in checks.iter().zip(held_out).zip(&results) {
+    for ((check, m), r) in checks.iter().zip(timed).zip(results) {
         let counted = m.counted.expect("counted work");
         let known = &m.known;
         let what = format!("{}: counted {counted:?}, known {known:?}", check.name);
@@ -432,7 +428,7 @@ fn an_msaa_calibration_predicts_a_held_out_mix_drawn_with_msaa() -> anyhow::Resu
         msaa: true,
         ..Options::default()
     };
-    let cal = calibrate_units_with(&gpu, size, options, &held_out())
+    let cal = calibrate_units_with(&gpu, size, options, &[held_out_mix()])
         .context("calibrating on a multisampled target")?;
     let costs = &cal.unit_costs;
     eprint!("{}", costs.to_markdown());
@@ -446,6 +442,6 @@ fn an_msaa_calibration_predicts_a_held_out_mix_drawn_with_msaa() -> anyhow::Resu
         100.0 * error
     );
     assert!(error.abs() < 0.5, "{error}");
-    check_coverage(costs, &cal.held_out[1..], size, 4);
+    check_coverage(costs, &cal.check_samples, size, 4);
     Ok(())
 }

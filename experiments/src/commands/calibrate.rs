@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 use grassbench::calibration::{Calibration, calibrate as measure};
-use grassbench::cost::checks::{self, CheckResult, coverage_checks};
 use grassbench::cost::{COUNTED_TERMS, MeasuredSample, Options, UnitCosts, calibrate_units_with};
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
@@ -24,10 +23,6 @@ pub struct CalibrateArgs {
     /// drawn with `--msaa` (and only those).
     #[arg(long)]
     pub msaa: bool,
-    /// Also time the coverage checks (blades on screen, hidden layers; not fitted) and write
-    /// their measured and predicted times as `[[checks]]`.
-    #[arg(long)]
-    pub checks: bool,
     /// GPU options.
     #[command(flatten)]
     pub gpu: GpuArgs,
@@ -45,10 +40,8 @@ pub struct CalibrationFile {
     pub provenance: Provenance,
     /// The samples, with their runs and counted work.
     pub samples: Vec<MeasuredSample>,
-    /// The coverage checks, priced with the unit costs (with `--checks`).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub checks: Vec<CheckResult>,
-    /// The checks' samples, with their runs and counted work (with `--checks`).
+    /// The coverage checks' samples, with their runs and counted work (their results are
+    /// the unit costs' `checks`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub check_samples: Vec<MeasuredSample>,
 }
@@ -59,22 +52,9 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
     let gpu = args.gpu.context()?;
     let calibration = measure(&gpu, size)?;
     let started = std::time::Instant::now();
-    let checks = if args.checks {
-        coverage_checks()
-    } else {
-        Vec::new()
-    };
-    let held_out: Vec<Vec<_>> = checks.iter().map(|c| c.mix.clone()).collect();
-    let units = calibrate_units_with(&gpu, size, options(args.msaa), &held_out)
+    let units = calibrate_units_with(&gpu, size, options(args.msaa), &[])
         .context("measuring the unit costs")?;
     eprint!("{}", summary(&units.unit_costs, &units.samples));
-    let checks = checks::results(&units.unit_costs, &checks, &units.held_out);
-    if !checks.is_empty() {
-        eprint!(
-            "Coverage checks (not fitted)\n\n{}",
-            checks::to_markdown(&checks)
-        );
-    }
     eprintln!(
         "Unit costs measured in {:.1} s.",
         started.elapsed().as_secs_f64()
@@ -84,8 +64,7 @@ pub fn calibrate(args: &CalibrateArgs) -> anyhow::Result<()> {
         unit_costs: units.unit_costs,
         provenance: Provenance::collect(&gpu.summary),
         samples: units.samples,
-        checks,
-        check_samples: units.held_out,
+        check_samples: units.check_samples,
     };
     let text = toml::to_string_pretty(&file)?;
     std::io::Write::write_all(&mut std::io::stdout(), text.as_bytes())?;
