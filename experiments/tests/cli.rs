@@ -322,6 +322,11 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     let costs: Vec<grassbench::cost::UnitCosts> = table["unit_costs"].clone().try_into().unwrap();
     assert_eq!(costs.len(), 1);
     assert_eq!(costs[0].size, "96x64");
+    // With the calibration's coverage checks, priced, in meta.toml and the README.
+    assert_eq!(
+        costs[0].checks.len(),
+        grassbench::cost::checks::coverage_checks().len()
+    );
     let (raw_at, costs_at) = (
         err.find("triangles/s").expect("the raw limits printed"),
         err.find("unit costs of").expect("the unit costs printed"),
@@ -336,7 +341,9 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     assert!(
         readme.contains("Command: `grassbench run -t reference -s football_field ")
             && readme.contains("Measured on `")
-            && !readme.contains(env!("CARGO_BIN_EXE_grassbench")),
+            && !readme.contains(env!("CARGO_BIN_EXE_grassbench"))
+            && readme.contains("Coverage checks of the calibration at 96x64")
+            && readme.contains("| hidden_alpha_tested |"),
         "{readme}"
     );
     let params = std::fs::read_to_string(out.join("football_field/params.csv")).unwrap();

@@ -307,7 +307,10 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         progress.scene_done(&name, failures[failed_before..].to_vec())?;
     }
     write_atomic(&args.out.join("README.md"), |f| {
-        std::io::Write::write_all(f, report(&all_runs, &provenance, &capture).as_bytes())
+        std::io::Write::write_all(
+            f,
+            report(&all_runs, &provenance, &capture, &unit_costs).as_bytes(),
+        )
     })?;
     super::write_html(&args.out).context("writing report.html")?;
     progress.finish()?;
@@ -444,8 +447,14 @@ impl SceneOutput<'_> {
     }
 }
 
-/// The results folder's README: provenance, the table, the images.
-fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
+/// The results folder's README: provenance, the table, the calibration's coverage checks, the
+/// images.
+fn report(
+    runs: &[RunSummary],
+    p: &Provenance,
+    capture: &[u64],
+    unit_costs: &[UnitCosts],
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# grassbench results\n");
     let _ = writeln!(s, "{}", p.to_markdown(""));
@@ -502,6 +511,17 @@ fn report(runs: &[RunSummary], p: &Provenance, capture: &[u64]) -> String {
             fmt_opt(r.overdraw, 2),
             fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1),
             fmt_opt(r.host_other_cores, 2)
+        );
+    }
+    for costs in unit_costs.iter().filter(|c| !c.checks.is_empty()) {
+        let _ = writeln!(
+            s,
+            "\nCoverage checks of the calibration at {}{}, timed with it and not fitted: measured \
+             over predicted for blades on screen, slivers and hidden layers, fragments unlike the \
+             full-screen layers its fragment prices are fitted on (`results/cost_model/coverage/`):\n\n{}",
+            costs.size,
+            if costs.msaa { " with 4x MSAA" } else { "" },
+            grassbench::cost::checks::to_markdown(&costs.checks)
         );
     }
     let _ = writeln!(
