@@ -12,6 +12,9 @@
 //!   workloads instead of corrupting one, and no sample always follows the same one; a short
 //!   sample runs once untimed before each timed run (see `SETTLE_BELOW_MS`). Each sample's
 //!   time is its median.
+//! - **Checks**: the coverage checks ([`super::checks`], [`Options::checks`]) run in the same
+//!   rounds after the samples and the held-out mixes, are not fitted, and are priced with the
+//!   fitted costs ([`UnitCosts::checks`]).
 //! - **Scale**: the workloads are sized for lavapipe at 640x360. Before the rounds each
 //!   family's largest size is timed once and, below [`Options::min_largest_ms`], the family
 //!   grows by powers of two (up to [`super::workloads::Workload::max_scale`]): on a fast GPU

@@ -28,8 +28,8 @@ pub struct CalibrateArgs {
     pub gpu: GpuArgs,
 }
 
-/// What `calibrate` prints and writes: the raw limits, the unit costs with their fit, every
-/// sample they were fitted to, and the provenance.
+/// What `calibrate` prints and writes: the raw limits, the unit costs with their fit and their
+/// coverage checks, every sample they were fitted to and every check's, and the provenance.
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct CalibrationFile {
     /// The raw limits (triangles/s, fill, bandwidth).
