@@ -15,7 +15,7 @@
 //!   residuals; [`UnitCosts::predict`] gives a frame's time and where it goes
 //!   ([`Prediction`]), on the adapter the costs were measured on, or projected onto another
 //!   from the same work;
-//! - [`fit`]: the joint, weighted, non-negative least-squares fit of [`Sample`]s;
+//! - [`fit()`]: the joint, weighted, non-negative least-squares fit of [`Sample`]s;
 //! - [`workloads`]: the micro-workloads and their work known in advance; [`measure`] runs and
 //!   times them on a GPU ([`calibrate_units`]) and checks their work against the counters;
 //! - [`checks`]: the coverage checks, timed with the calibration and not fitted: blades on

@@ -65,7 +65,7 @@ pub struct ShaderOps {
     /// at 320x180 with the samples' texture magnified, 2026-12-05); most GPUs' texture units
     /// filter trilinearly at half their bilinear rate.
     pub mip_blends: u64,
-    /// Calls of transcendental built-ins ([`is_transcendental`]).
+    /// Calls of transcendental built-ins (`is_transcendental`).
     pub transcendentals: u64,
     /// Scalar arithmetic operations: every arithmetic, comparison, logical, selection,
     /// conversion and non-transcendental built-in expression, once per component of the
@@ -205,7 +205,7 @@ pub struct Bound<'a> {
 /// name; the fetches of the textures and samplers `bound` names counted as it says
 /// ([`Bound`]); the loops bounded by pipeline-overridable constants run as
 /// many times as `constants` (the pipeline's values, by name: [`super::PipelineSpec::constants`])
-/// or the constants' defaults say ([`super::trips`]).
+/// or the constants' defaults say (`shaders::trips`).
 pub fn entry_ops(
     module: &naga::Module,
     bound: Bound<'_>,

@@ -174,7 +174,7 @@ impl Pattern {
     }
 }
 
-/// One chunk at one level, as [`GroundChunks::select`] chose it.
+/// One chunk at one level, as [`GroundChunks::levels`] chose it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ChunkLevel {
     /// Chunk index (`cz · chunks.x + cx`).

@@ -22,7 +22,7 @@ const SAMPLER: &str = "grass_sampler";
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ParamsUniform {
     /// Shells, ground vertices, wind mode (0 = scene, 1 = point source), padding (the level
-    /// of detail's mode picks the fragment entry point instead: [`fragment_entry`]).
+    /// of detail's mode picks the fragment entry point instead: `fragment_entry`).
     pub counts: [u32; 4],
     /// Inter-shell distance (m), stiffness exponent, largest |I|, reference speed (m/s).
     pub shape: [f32; 4],

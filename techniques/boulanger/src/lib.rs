@@ -140,7 +140,7 @@
 //!
 //! ## Counting blades
 //! `blades_drawn` and `blades_represented` count blades that grow (above), each once
-//! ([`plan`]): geometry the growing blades of the ranges it submits, whatever opacity Eq. 5
+//! (`plan`): geometry the growing blades of the ranges it submits, whatever opacity Eq. 5
 //! gives them; the slices every other growing blade of their cells and macro-cells, once
 //! though the vertical and the horizontal slices both show the mid band. In a transition a
 //! blade submitted as geometry counts as drawn, and the slices' complementary share of it is

@@ -2,7 +2,7 @@
 //! of the patch grow, by the scene's rule — on grass-covered ground inside the terrain, with a
 //! density threshold under the density map ([`grows`], the rule of
 //! [`grassbench::grass::BladeField::grows`]) — so that `blades_drawn` and `blades_represented`
-//! count blades that exist, each once ([`crate::plan`]).
+//! count blades that exist, each once (`crate::plan`).
 //!
 //! Per cell, built once at start-up: how many of its blades grow, and whether the ground under
 //! it is uniform (inside the terrain, grass everywhere, one density: every density-map sample
