@@ -213,6 +213,9 @@ fn a_sweeps_report_html_works_in_a_browser() {
     grassbench(&["sweep", file.to_str().unwrap(), "-o", out.to_str().unwrap()]).unwrap();
     assert_eq!(rows(&out.join("runs.csv")), 3);
     check_page(&out);
+    // The sweep calibrated, and its page holds the calibration's coverage checks.
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("meta.toml: the calibration's coverage checks"));
 
     // Plant markup and script in text cells of runs.csv: the page must show them as text.
     let path = out.join("runs.csv");

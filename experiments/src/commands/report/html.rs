@@ -185,6 +185,9 @@ pub(super) struct Page {
     pub(super) split: Vec<SplitEntry>,
     /// REPORT.md's plots (`plots/*.svg`, where `report` drew them): relative URL, title.
     pub(super) plots: Vec<(String, String)>,
+    /// The calibration's coverage checks (`meta.toml`'s unit costs), one row per check and
+    /// target; `None` where it has none.
+    pub(super) checks: Option<Table>,
 }
 
 /// `text` safe as HTML text or a quoted attribute value.
@@ -309,6 +312,7 @@ pub(super) fn gather(dir: &Path) -> anyhow::Result<Page> {
         ..Page::default()
     };
     provenance(dir, &mut page);
+    page.checks = checks(dir);
     let all: Vec<&Config> = configs.values().collect();
     page.colors = technique_colors(&all)
         .into_iter()
@@ -404,6 +408,50 @@ fn provenance(dir: &Path, page: &mut Page) {
     } else if let Ok(p) = toml::from_str::<Provenance>(&text) {
         page.provenance = lines(&p.to_markdown(""));
     }
+}
+
+/// The coverage checks of the unit costs in `dir`'s `meta.toml` as a table (`None` where
+/// there are none: no calibration, or one from before the checks).
+fn checks(dir: &Path) -> Option<Table> {
+    let text = std::fs::read_to_string(dir.join("meta.toml")).ok()?;
+    let table: toml::Table = toml::from_str(&text).ok()?;
+    let costs: Vec<grassbench::cost::UnitCosts> =
+        table.get("unit_costs")?.clone().try_into().ok()?;
+    let rows: Vec<Vec<String>> = costs
+        .iter()
+        .flat_map(|c| {
+            let target = format!("{}{}", c.size, if c.msaa { " 4xMSAA" } else { "" });
+            c.checks.iter().map(move |r| {
+                vec![
+                    target.clone(),
+                    r.check.clone(),
+                    format!("{:.0}", r.fragments),
+                    format!("{:.0}", r.primitives),
+                    r.kept_per_fragment
+                        .map_or_else(String::new, |k| format!("{k:.3}")),
+                    format!("{:.2}", r.measured_ms),
+                    format!("{:.2}", r.predicted_ms),
+                    format!("{:.2}", r.ratio),
+                ]
+            })
+        })
+        .collect();
+    (!rows.is_empty()).then(|| Table {
+        name: "meta.toml: the calibration's coverage checks".into(),
+        columns: [
+            "target",
+            "check",
+            "fragments",
+            "primitives",
+            "kept per fragment",
+            "measured ms",
+            "predicted ms",
+            "measured / predicted",
+        ]
+        .map(str::to_owned)
+        .to_vec(),
+        rows,
+    })
 }
 
 /// A Markdown paragraph's lines, its hard breaks and back-ticks dropped.
@@ -861,6 +909,63 @@ mod tests {
         assert!(!JS.contains("insertAdjacentHTML") && !JS.contains("document.write"));
         assert!(!JS.to_ascii_lowercase().contains("</script"));
         assert!(!CSS.to_ascii_lowercase().contains("</style"));
+    }
+
+    #[test]
+    fn the_calibrations_coverage_checks_become_a_table() {
+        use grassbench::cost::{FitSummary, Term, UnitCost, UnitCosts, checks::CheckResult};
+        let dir =
+            std::env::temp_dir().join(format!("grassbench-html-checks-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let costs = |msaa| UnitCosts {
+            msaa,
+            checks: vec![CheckResult {
+                check: "slivers_blended".into(),
+                fragments: 1000.0,
+                primitives: 90.0,
+                kept_per_fragment: Some(0.086),
+                measured_ms: 3.0,
+                predicted_ms: 2.0,
+                ratio: 1.5,
+            }],
+            ..UnitCosts::from_ms_per_unit(
+                "320x180".into(),
+                "test".into(),
+                [UnitCost {
+                    value: 1e-6,
+                    standard_error: 0.0,
+                    at_zero: false,
+                }; Term::ALL.len()],
+                FitSummary::default(),
+            )
+        };
+        #[derive(serde::Serialize)]
+        struct Meta {
+            unit_costs: Vec<UnitCosts>,
+        }
+        let meta = Meta {
+            unit_costs: vec![costs(false), costs(true)],
+        };
+        std::fs::write(dir.join("meta.toml"), toml::to_string(&meta).unwrap()).unwrap();
+        let t = checks(&dir).expect("a table");
+        assert_eq!(t.rows.len(), 2);
+        assert_eq!(
+            t.rows[1],
+            [
+                "320x180 4xMSAA",
+                "slivers_blended",
+                "1000",
+                "90",
+                "0.086",
+                "3.00",
+                "2.00",
+                "1.50"
+            ]
+        );
+        // No unit costs, or none with checks: no table.
+        std::fs::write(dir.join("meta.toml"), "").unwrap();
+        assert!(checks(&dir).is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -587,6 +587,11 @@
       rows: data.split.map((r) => [r.scene, r.size, r.label, String(r.measured_gpu_ms === null ? '' : r.measured_gpu_ms), String(r.model_ms), String(r.ratio === null ? '' : r.ratio)].concat(r.values.map(String))),
     };
     sec.append(el('h3', { text: 'As a table' }), table(t, null));
+    if (data.checks) {
+      sec.append(el('h3', { text: 'Coverage checks of the calibration' }),
+        el('p', { class: 'note', text: 'Timed with the calibration and not fitted: blades on screen (1.5 pixels wide), slivers (0.3) and layers hidden behind an opaque one, each opaque, alpha-tested and blended, at two sizes; measured over what the unit costs predict from their counted work. Near 1 where the prices, fitted on full-screen layers and sub-pixel triangles, hold for fragments like a technique\'s (results/cost_model/coverage/).' }),
+        table(data.checks, null));
+    }
     return sec;
   }
 
