@@ -125,6 +125,12 @@
 //! model prices no second level for them. Priced as trilinear samples, as every sample was
 //! until `7c6575e`, they had bakay over-predicted on every run (0.68-0.95 of the model on the
 //! 2.6 GHz EPYC; 0.85-1.23 since: `results/cost_model/`).
+//! With 4x MSAA the model under-predicts it instead (in one process at 320x180, 1.14-1.68
+//! against 0.91-1.06 single-sampled: `results/cost_model/coverage/sweep/`): nearly all of its
+//! counted fragments are discarded or hidden (0.1-0.7 % of them kept), and such an alpha-tested
+//! fragment costs what a shaded one does with MSAA (0.92-1.17 of its price in the calibration's
+//! coverage checks) but a third to a half of it single-sampled (0.32-0.61), which the model,
+//! pricing every counted fragment as shaded, does not tell apart.
 //!
 //! The level of detail on the scaling sweep's points (the meadow at 20 blades/m², terrain 80
 //! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core Intel Xeon on 2026-12-03
