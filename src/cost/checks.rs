@@ -39,28 +39,27 @@ pub struct Check {
     pub mix: Vec<Workload>,
 }
 
-/// The fragment term of `kind`.
-fn term_of(kind: FragmentKind) -> Term {
-    match kind {
-        FragmentKind::Opaque => Term::FragmentOpaque,
-        FragmentKind::AlphaTested => Term::FragmentAlphaTested,
-        FragmentKind::Blended => Term::FragmentBlended,
-    }
+/// What a check draws: blades of a width on screen, or layers hidden behind an opaque one.
+#[derive(Clone, Copy)]
+enum Family {
+    Onscreen(BladeWidth),
+    Hidden,
 }
 
-/// The name of the check of `kind` drawn as `shape` says.
-fn name(kind: FragmentKind, shape: &str) -> &'static str {
+/// The name of the check of `family` shaded as `kind`.
+fn name(family: Family, kind: FragmentKind) -> &'static str {
+    use BladeWidth::{Blade, Sliver};
     use FragmentKind::{AlphaTested, Blended, Opaque};
-    match (shape, kind) {
-        ("blades", Opaque) => "blades_opaque",
-        ("blades", AlphaTested) => "blades_alpha_tested",
-        ("blades", Blended) => "blades_blended",
-        ("slivers", Opaque) => "slivers_opaque",
-        ("slivers", AlphaTested) => "slivers_alpha_tested",
-        ("slivers", Blended) => "slivers_blended",
-        (_, Opaque) => "hidden_opaque",
-        (_, AlphaTested) => "hidden_alpha_tested",
-        (_, Blended) => "hidden_blended",
+    match (family, kind) {
+        (Family::Onscreen(Blade), Opaque) => "blades_opaque",
+        (Family::Onscreen(Blade), AlphaTested) => "blades_alpha_tested",
+        (Family::Onscreen(Blade), Blended) => "blades_blended",
+        (Family::Onscreen(Sliver), Opaque) => "slivers_opaque",
+        (Family::Onscreen(Sliver), AlphaTested) => "slivers_alpha_tested",
+        (Family::Onscreen(Sliver), Blended) => "slivers_blended",
+        (Family::Hidden, Opaque) => "hidden_opaque",
+        (Family::Hidden, AlphaTested) => "hidden_alpha_tested",
+        (Family::Hidden, Blended) => "hidden_blended",
     }
 }
 
@@ -77,19 +76,19 @@ pub fn coverage_checks() -> Vec<Check> {
                     width,
                     instances: BLADES * k,
                 };
-                let name = name(kind, width.name());
+                let name = name(Family::Onscreen(width), kind);
                 checks.push(Check {
                     name,
                     mix: vec![Workload {
                         name,
-                        term: term_of(kind),
+                        term: Term::fragment(kind),
                         shape,
                     }],
                 });
             }
         }
         for kind in FragmentKind::ALL {
-            let name = name(kind, "hidden");
+            let name = name(Family::Hidden, kind);
             let occluder = Workload {
                 name: "occluder",
                 term: Term::FragmentOpaque,
@@ -100,7 +99,7 @@ pub fn coverage_checks() -> Vec<Check> {
             };
             let hidden = Workload {
                 name,
-                term: term_of(kind),
+                term: Term::fragment(kind),
                 shape: Shape::HiddenLayers {
                     kind,
                     layers: HIDDEN_LAYERS * k,

@@ -281,6 +281,21 @@ impl<'g> Rig<'g> {
             };
             let pipeline =
                 |label, vs, fs, write, blend| pipeline_with(label, vs, fs, write, blend, &[]);
+            // Drawn by `vs` with each kind's fragment shader (`FragmentKind::ALL`'s order): opaque
+            // and alpha-tested ones write depth, blended ones blend and do not.
+            let by_kind = |label, vs, constants: &[(&str, f64)]| {
+                FragmentKind::ALL.map(|kind| {
+                    let blended = kind == FragmentKind::Blended;
+                    pipeline_with(
+                        label,
+                        vs,
+                        workloads::layer_fragment_entry(kind),
+                        !blended,
+                        blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
+                        constants,
+                    )
+                })
+            };
             Self {
                 gpu,
                 offscreen: pipeline(
@@ -297,38 +312,14 @@ impl<'g> Rig<'g> {
                     true,
                     None,
                 ),
-                layers: FragmentKind::ALL.map(|kind| {
-                    let blended = kind == FragmentKind::Blended;
-                    pipeline(
-                        "unit costs: layers",
-                        "vs_layer",
-                        workloads::layer_fragment_entry(kind),
-                        !blended,
-                        blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
-                    )
-                }),
-                hidden: FragmentKind::ALL.map(|kind| {
-                    let blended = kind == FragmentKind::Blended;
-                    pipeline(
-                        "unit costs: hidden layers",
-                        "vs_hidden_layer",
-                        workloads::layer_fragment_entry(kind),
-                        !blended,
-                        blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
-                    )
-                }),
+                layers: by_kind("unit costs: layers", "vs_layer", &[]),
+                hidden: by_kind("unit costs: hidden layers", "vs_hidden_layer", &[]),
                 blades: workloads::BladeWidth::ALL.map(|width| {
-                    FragmentKind::ALL.map(|kind| {
-                        let blended = kind == FragmentKind::Blended;
-                        pipeline_with(
-                            "unit costs: blades on screen",
-                            workloads::ONSCREEN_BLADE_VERTEX,
-                            workloads::layer_fragment_entry(kind),
-                            !blended,
-                            blended.then_some(wgpu::BlendState::ALPHA_BLENDING),
-                            &width.constants(),
-                        )
-                    })
+                    by_kind(
+                        "unit costs: blades on screen",
+                        workloads::ONSCREEN_BLADE_VERTEX,
+                        &width.constants(),
+                    )
                 }),
                 fetch_layers: workloads::Fetch::ALL.map(|fetch| {
                     pipeline(

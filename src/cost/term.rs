@@ -243,6 +243,15 @@ impl Term {
         }
     }
 
+    /// The fragment term of fragments of `kind`.
+    pub fn fragment(kind: super::FragmentKind) -> Self {
+        match kind {
+            super::FragmentKind::Opaque => Self::FragmentOpaque,
+            super::FragmentKind::AlphaTested => Self::FragmentAlphaTested,
+            super::FragmentKind::Blended => Self::FragmentBlended,
+        }
+    }
+
     /// Position in [`Term::ALL`].
     pub fn index(self) -> usize {
         self as usize

@@ -367,14 +367,6 @@ impl BladeWidth {
             ("ONSCREEN_WIDTH", self.pixels()),
         ]
     }
-
-    /// Name, as in the checks' names (`blades`, `slivers`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Blade => "blades",
-            Self::Sliver => "slivers",
-        }
-    }
 }
 
 /// What a workload's shaders do beyond their plain version.
@@ -740,9 +732,9 @@ impl Workload {
 /// residual rose (8 runs each: RMS 12-20% against 9-18%, though at a host load average of
 /// 4-5 against 3.5, so not a clean comparison). A faster adapter scales them up.
 pub fn families() -> Vec<Workload> {
-    let layers = |name, term, kind| Workload {
+    let layers = |name, kind| Workload {
         name,
-        term,
+        term: Term::fragment(kind),
         shape: Shape::Layers { kind, layers: 2 },
     };
     vec![
@@ -761,21 +753,9 @@ pub fn families() -> Vec<Workload> {
             term: Term::Primitive,
             shape: Shape::SubpixelStrips { instances: 5_000 },
         },
-        layers(
-            "fragments_opaque",
-            Term::FragmentOpaque,
-            FragmentKind::Opaque,
-        ),
-        layers(
-            "fragments_alpha_tested",
-            Term::FragmentAlphaTested,
-            FragmentKind::AlphaTested,
-        ),
-        layers(
-            "fragments_blended",
-            Term::FragmentBlended,
-            FragmentKind::Blended,
-        ),
+        layers("fragments_opaque", FragmentKind::Opaque),
+        layers("fragments_alpha_tested", FragmentKind::AlphaTested),
+        layers("fragments_blended", FragmentKind::Blended),
         Workload {
             name: "texture_loads",
             term: Term::TextureLoad,

@@ -27,6 +27,26 @@ use grassbench::gpu::BackendChoice;
 use grassbench::technique::TechniqueEntry;
 use grassbench::{GpuContext, Scene};
 
+/// The raw limits and unit costs a results folder's `meta.toml` recorded (a `run`'s or a
+/// `sweep`'s), if any: what an interrupted run into `dir` resumes with, and what its report
+/// shows of the calibration.
+pub(crate) fn recorded_calibration(
+    dir: &std::path::Path,
+) -> Option<(
+    Option<grassbench::calibration::Calibration>,
+    Vec<grassbench::cost::UnitCosts>,
+)> {
+    let text = std::fs::read_to_string(dir.join("meta.toml")).ok()?;
+    let table: toml::Table = toml::from_str(&text).ok()?;
+    let costs: Vec<grassbench::cost::UnitCosts> =
+        table.get("unit_costs")?.clone().try_into().ok()?;
+    // Folders written before the raw limits were recorded have none.
+    let calibration = table
+        .get("calibration")
+        .and_then(|c| c.clone().try_into().ok());
+    (!costs.is_empty()).then_some((calibration, costs))
+}
+
 /// Options every GPU command shares.
 #[derive(Clone, Debug, clap::Args)]
 pub struct GpuArgs {

@@ -159,7 +159,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         (None, Vec::new())
     } else if let Some(earlier) = progress
         .resumed()
-        .then(|| earlier_calibration(&args.out))
+        .then(|| super::recorded_calibration(&args.out))
         .flatten()
     {
         // The finished scenes' model figures were computed with these: keep them.
@@ -322,19 +322,6 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
-}
-
-/// The raw limits and unit costs the `meta.toml` of an earlier, interrupted run into `dir`
-/// recorded, if any.
-fn earlier_calibration(dir: &Path) -> Option<(Option<Calibration>, Vec<UnitCosts>)> {
-    let text = std::fs::read_to_string(dir.join("meta.toml")).ok()?;
-    let table: toml::Table = toml::from_str(&text).ok()?;
-    let costs: Vec<UnitCosts> = table.get("unit_costs")?.clone().try_into().ok()?;
-    // Folders written before the raw limits were recorded have none.
-    let calibration = table
-        .get("calibration")
-        .and_then(|c| c.clone().try_into().ok());
-    (!costs.is_empty()).then_some((calibration, costs))
 }
 
 /// One scene's output folder as runs come in: images, frames, runs and parameters, written

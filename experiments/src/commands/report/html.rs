@@ -413,10 +413,7 @@ fn provenance(dir: &Path, page: &mut Page) {
 /// The coverage checks of the unit costs in `dir`'s `meta.toml` as a table (`None` where
 /// there are none: no calibration, or one from before the checks).
 fn checks(dir: &Path) -> Option<Table> {
-    let text = std::fs::read_to_string(dir.join("meta.toml")).ok()?;
-    let table: toml::Table = toml::from_str(&text).ok()?;
-    let costs: Vec<grassbench::cost::UnitCosts> =
-        table.get("unit_costs")?.clone().try_into().ok()?;
+    let (_, costs) = crate::commands::recorded_calibration(dir)?;
     let rows: Vec<Vec<String>> = costs
         .iter()
         .flat_map(|c| {
