@@ -1,6 +1,7 @@
 //! Headless GPU access: choosing a backend and adapter, creating the device, and catching
 //! wgpu errors so that a validation error fails a run instead of scrolling past in a log.
 
+mod announce;
 mod backend;
 mod context;
 pub mod limits;

@@ -63,9 +63,16 @@ impl GpuArgs {
     }
 
     /// Creates the GPU context the arguments ask for, its device requesting `needs` (what the
-    /// command's techniques need: [`needs`]), lowered to what the adapter offers.
+    /// command's techniques need: [`needs`]), lowered to what the adapter offers, and says on
+    /// stderr which adapter it got and what that adapter cannot record.
     pub fn context_for(&self, needs: &grassbench::wgpu::Limits) -> anyhow::Result<GpuContext> {
-        GpuContext::for_needs(self.choice()?, needs).context("cannot start the GPU")
+        let choice = self.choice()?;
+        let gpu = GpuContext::for_needs(choice, needs).context("cannot start the GPU")?;
+        eprintln!("{}", gpu.summary.describe());
+        for note in gpu.summary.notes(choice) {
+            eprintln!("{note}");
+        }
+        Ok(gpu)
     }
 
     /// The backend the arguments (or `GRASSBENCH_BACKEND`) ask for.
