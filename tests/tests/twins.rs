@@ -442,6 +442,7 @@ fn bakay_level_shell_is_shell_lod_shell() -> anyhow::Result<()> {
 /// segment the GPU leaves between two shells is one inter-shell distance long.
 #[test]
 fn bakay_cs_bend_is_the_wind_and_bend_twins() -> anyhow::Result<()> {
+    use grassbench_bakay::chunks::CHUNK;
     use grassbench_bakay::{WindSource, bend, wind};
     let gpu = gpu()?;
     let meadow = scene("meadow", 0.05)?;
@@ -550,27 +551,56 @@ fn bakay_cs_bend_is_the_wind_and_bend_twins() -> anyhow::Result<()> {
                 normal: n.to_array(),
             })
             .collect();
-        let uniform = grassbench_bakay::uniform(&params, &meadow, (count, 1));
+        // The vertices as a mesh 50 wide and 60 deep, bent as the chunks of a checkerboard
+        // over it (every other chunk, those at the mesh's edges cut): each bent chunk must
+        // move all of its (CHUNK + 1)² vertices itself, and no vertex outside them moves.
+        let side = (50, 60);
+        assert_eq!(count, side.0 * side.1);
+        let uniform = grassbench_bakay::uniform(&params, &meadow, side);
+        let bent: Vec<[u32; 2]> = (0..side.1 - 1)
+            .step_by(CHUNK as usize)
+            .flat_map(|j| (0..side.0 - 1).step_by(CHUNK as usize).map(move |i| [i, j]))
+            .filter(|[i, j]| (i / CHUNK + j / CHUNK).is_multiple_of(2))
+            .collect();
+        let moved = |v: u32| {
+            let (i, j) = (v % side.0, v / side.0);
+            bent.iter()
+                .any(|&[ci, cj]| (ci..=ci + CHUNK).contains(&i) && (cj..=cj + CHUNK).contains(&j))
+        };
         let spacing = uniform.shape[0];
         let shells = case.shells as usize;
         let bindings = Bindings::new()
             .constant("SHELLS", f64::from(case.shells))
+            .constant("CHUNK", f64::from(CHUNK))
             .scene(&scene_gpu)
             .uniform(1, 0, &uniform)
             .storage(1, 1, &vertices)
             .bind(1, 2, Resource::Output(vec![0; ground.len() * 16]))
-            .bind(1, 3, Resource::Output(vec![0; ground.len() * shells * 8]));
+            .bind(1, 3, Resource::Output(vec![0; ground.len() * shells * 8]))
+            .storage(1, 9, &bent);
         let out = twin::dispatch(
             &gpu,
             &shader,
             "cs_bend",
             &bindings,
-            [count.div_ceil(64), 1, 1],
+            [
+                bent.len() as u32 * grassbench_bakay::BEND_WORKGROUPS_PER_CHUNK,
+                1,
+                1,
+            ],
         )?;
         let wind_out: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&out[0]);
         let offsets_out: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&out[1]);
         let name = format!("{:?} N {} p {}", case.wind, case.shells, case.stiffness);
+        let mut untouched = 0;
         for (v, (p, n)) in ground.iter().enumerate() {
+            if !moved(v as u32) {
+                let outside = wind_out[v] == [0.0; 4]
+                    && (0..shells).all(|k| offsets_out[k * ground.len() + v] == [0.0; 2]);
+                anyhow::ensure!(outside, "{name}: vertex {v}, in no bent chunk, was moved");
+                untouched += 1;
+                continue;
+            }
             let cpu = match case.wind {
                 WindSource::PointSource => {
                     wind::point_source(&source, *p, *n, case.time, case.max_intensity)
@@ -606,6 +636,11 @@ fn bakay_cs_bend_is_the_wind_and_bend_twins() -> anyhow::Result<()> {
                 }
             }
         }
+        // The checkerboard leaves some vertices out and bends the rest: 1 010 of 3 000 stay.
+        anyhow::ensure!(
+            untouched > 0 && untouched < ground.len() / 2,
+            "{name}: {untouched} of {count} vertices in no bent chunk"
+        );
     }
     // Measured 2.8e-7 (unit vectors) and 1.8e-7 (intensities up to 1.4: `sin` and the
     // step's distance); segments within 7.5e-8 m of S (S = 0.044 m at N 16), offsets 1.8e-7 m

@@ -56,19 +56,21 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
         // a fragment for every pixel.
         assert!(r.background_fragment_invocations.context("background")? >= pixels as u64);
     }
-    // bakay bends its shells' vertices in a compute pass of 64-wide workgroups: one
-    // invocation per vertex, rounded up to whole workgroups.
+    // bakay bends its shells' vertices in a compute pass of 64-wide workgroups, a chunk drawn
+    // at a time: each chunk's (CHUNK + 1)² vertices rounded up to whole workgroups.
     let b = frame_of(&gpu, "bakay", "")?;
     let cs = b.compute_invocations.context("compute")?;
-    assert!(cs > 0 && cs % 64 == 0, "{cs} compute invocations");
+    let per_chunk = 64 * u64::from(grassbench_bakay::BEND_WORKGROUPS_PER_CHUNK);
+    assert!(cs > 0 && cs % per_chunk == 0, "{cs} compute invocations");
     Ok(())
 }
 
 /// A loop bounded by a pipeline-overridable constant is counted for as many trips as the
 /// pipeline's value says (`shaders::trips`): bakay's bend pass walks up its `SHELLS` shells,
-/// writing each shell's offset (a `vec2`, 2 words) after reading its vertex's ground point
-/// and normal (6) and writing its wind (a `vec4`, 4), so its storage words an invocation
-/// follow the shell count the technique was created with.
+/// writing each shell's offset (a `vec2`, 2 words) after reading its chunk's first cell (a
+/// `vec2<u32>`, 2), its vertex's ground point and normal (6) and writing its wind (a `vec4`,
+/// 4), so its storage words an invocation follow the shell count the technique was created
+/// with.
 #[test]
 fn loops_count_the_trips_their_pipeline_sets() -> anyhow::Result<()> {
     let gpu = gpu()?;
@@ -77,7 +79,7 @@ fn loops_count_the_trips_their_pipeline_sets() -> anyhow::Result<()> {
         let cs = b.compute_invocations.context("compute")?;
         let words = b.compute_storage.context("compute storage words")?;
         assert!(cs > 0, "{b:?}");
-        assert_eq!(words, cs * (6 + 4 + 2 * shells), "{shells} shells");
+        assert_eq!(words, cs * (2 + 6 + 4 + 2 * shells), "{shells} shells");
     }
     Ok(())
 }

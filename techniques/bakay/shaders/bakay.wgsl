@@ -1,8 +1,8 @@
 // Bakay, Lalonde, Heidrich 2002: animated transparent shells (see techniques/bakay/src/lib.rs).
 // Composed after the prelude. Two entry points per frame:
-// - `cs_bend` (compute) gives every ground vertex its wind vector V_w and intensity I and keeps
-//   the running sums (n_k, w_k) of every shell k (Sec. 3, Fig. 6; mirrored on the CPU by
-//   src/wind.rs and src/bend.rs);
+// - `cs_bend` (compute) gives every ground vertex of the chunks drawn this frame its wind vector
+//   V_w and intensity I and keeps the running sums (n_k, w_k) of every shell k (Sec. 3, Fig. 6;
+//   mirrored on the CPU by src/wind.rs and src/bend.rs);
 // - `vs_shell` / `fs_shell_*` draw the ground mesh once per shell (bottom to top), displaced by
 //   N·n_k + V_w·w_k and alpha-tested against the shell's height (k/N, the paper's 255/N steps).
 //   A far chunk's draw is at a level of detail L (src/lod.rs, a departure): its instances
@@ -11,7 +11,7 @@
 
 struct Params {
     // x: shells N (the shader reads `SHELLS`); y: ground vertices; z: wind mode (0 = scene, 1 = point source);
-    // w: padding (the level-of-detail mode picks the fragment entry point: `fs_shell_*`)
+    // w: ground vertices along x (a row of the mesh)
     counts: vec4<u32>,
     // x: inter-shell distance S (m); y: stiffness exponent p; z: max |I|; w: reference speed (m/s)
     shape: vec4<f32>,
@@ -30,6 +30,10 @@ struct Params {
 // a frame here; `grassbench::shaders::uniform_bound_loops`).
 override SHELLS: u32;
 
+// Cells a side of a chunk (`chunks::CHUNK`, set from it when the pipelines are created): the
+// bend pass moves a chunk's (CHUNK + 1)² vertices, 64 a workgroup.
+override CHUNK: u32 = 16u;
+
 // Instance indices per level of detail (`lod::LEVEL_INSTANCES`).
 const LEVEL_INSTANCES: u32 = 128u;
 // Compute pass only: the shared ground mesh (GroundVertex = position xyz, normal xyz) and the
@@ -37,6 +41,8 @@ const LEVEL_INSTANCES: u32 = 128u;
 @group(1) @binding(1) var<storage, read> ground: array<f32>;
 @group(1) @binding(2) var<storage, read_write> wind_out: array<vec4<f32>>;
 @group(1) @binding(3) var<storage, read_write> offsets_out: array<vec2<f32>>;
+// The first cell (i, j) of every chunk drawn this frame (`chunks::Plan::bent`), in order.
+@group(1) @binding(9) var<storage, read> bent_chunks: array<vec2<u32>>;
 // Render pass only.
 @group(1) @binding(4) var<storage, read> vertex_wind: array<vec4<f32>>;
 @group(1) @binding(5) var<storage, read> offsets: array<vec2<f32>>;
@@ -93,10 +99,24 @@ fn shell_segment(k: u32, intensity: f32) -> vec2<f32> {
     return params.shape.x * vec2(cos(a), sin(a));
 }
 
+// Workgroup g moves vertices 64·(g % per_chunk) .. of chunk g / per_chunk, row by row
+// (`gpu::BEND_WORKGROUPS_PER_CHUNK` workgroups a chunk; the dispatch has exactly that many a
+// chunk); a chunk's vertices past the mesh's edges are skipped. Vertices on an edge two drawn
+// chunks share are moved by both, to the same values.
 @compute @workgroup_size(64)
-fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
-    let v = id.x;
-    if (v >= params.counts.y) {
+fn cs_bend(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let side = CHUNK + 1u;
+    let per_chunk = (side * side + 63u) / 64u;
+    let local = (group.x % per_chunk) * 64u + lane;
+    let origin = bent_chunks[group.x / per_chunk];
+    let i = origin.x + local % side;
+    let j = origin.y + local / side;
+    let nx = params.counts.w;
+    let v = j * nx + i;
+    if (local >= side * side || i >= nx || v >= params.counts.y) {
         return;
     }
     let p = vec3(ground[6u * v], ground[6u * v + 1u], ground[6u * v + 2u]);

@@ -12,7 +12,10 @@
 //! puts no fragment on screen, so the picture is the one the whole mesh gives (tested: the
 //! snapshots did not move). Each chunk in view then gets its level of detail from its nearest
 //! depth ([`crate::lod`]): fewer shells far away, none where the whole stack is a pixel tall,
-//! and neighbours at one level are merged into one draw.
+//! and neighbours at one level are merged into one draw. The bend pass moves the vertices of
+//! the chunks drawn and no others ([`Plan::bent`]): run over every vertex of the terrain, its
+//! work grew with the terrain's area (6.6 k invocations a frame at 80 m a side, 66 k at 400 m,
+//! on the meadow's walker at 480x270) where the shells' did not.
 
 use std::ops::Range;
 
@@ -34,6 +37,17 @@ pub struct Draw {
     pub level: u32,
 }
 
+/// One frame's work: the draws, and the chunks whose vertices the bend pass moves.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Plan {
+    /// The shells' draws: neighbouring chunks in view at one level of detail.
+    pub draws: Vec<Draw>,
+    /// The first cell `(i, j)` of every chunk drawn, in the order drawn: the bend pass moves
+    /// their `(CHUNK + 1)²` vertices (fewer at the mesh's far edges), every vertex a draw
+    /// uses.
+    pub bent: Vec<[u32; 2]>,
+}
+
 /// The ground mesh's triangles chunk by chunk, with each chunk's bounds.
 pub struct Chunks {
     /// Indices into the core's ground vertices, chunk after chunk.
@@ -42,6 +56,8 @@ pub struct Chunks {
     ranges: Vec<Range<u32>>,
     /// Each chunk's box, grown by the reach of its shells.
     bounds: Vec<Aabb>,
+    /// Each chunk's first cell `(i, j)`.
+    origins: Vec<[u32; 2]>,
 }
 
 impl Chunks {
@@ -54,6 +70,7 @@ impl Chunks {
             indices: Vec::with_capacity((cells_x * cells_z * 6) as usize),
             ranges: Vec::new(),
             bounds: Vec::new(),
+            origins: Vec::new(),
         };
         for cz in (0..cells_z).step_by(CHUNK as usize) {
             for cx in (0..cells_x).step_by(CHUNK as usize) {
@@ -73,6 +90,7 @@ impl Chunks {
                     }
                 }
                 chunks.ranges.push(start..chunks.indices.len() as u32);
+                chunks.origins.push([cx, cz]);
                 chunks.bounds.push(Aabb {
                     min: lo - Vec3::splat(reach),
                     max: hi + Vec3::splat(reach),
@@ -103,25 +121,28 @@ impl Chunks {
         }
     }
 
-    /// The draws of one frame into `out` (cleared first): the chunks whose box meets the
+    /// The work of one frame into `out` (cleared first): the chunks whose box meets the
     /// frustum of `camera`, each at the level `lod` gives its nearest depth on a target
-    /// `height` pixels tall, chunks without shells left out, neighbours at one level merged.
-    pub fn plan_into(&self, camera: &Camera, height: u32, lod: &ShellLod, out: &mut Vec<Draw>) {
-        out.clear();
+    /// `height` pixels tall, chunks without shells left out, neighbours at one level merged
+    /// into one draw; and the chunks drawn, for the bend pass.
+    pub fn plan_into(&self, camera: &Camera, height: u32, lod: &ShellLod, out: &mut Plan) {
+        out.draws.clear();
+        out.bent.clear();
         let frustum = camera.frustum();
         let focal = camera.focal_pixels(height);
-        for (range, b) in self.ranges.iter().zip(&self.bounds) {
+        for ((range, b), origin) in self.ranges.iter().zip(&self.bounds).zip(&self.origins) {
             if !frustum.intersects_aabb(b) {
                 continue;
             }
             let Some(level) = lod.level(camera.nearest_depth(b), focal) else {
                 continue;
             };
-            match out.last_mut() {
+            out.bent.push(*origin);
+            match out.draws.last_mut() {
                 Some(last) if last.indices.end == range.start && last.level == level => {
                     last.indices.end = range.end;
                 }
-                _ => out.push(Draw {
+                _ => out.draws.push(Draw {
                     indices: range.clone(),
                     level,
                 }),
@@ -268,8 +289,9 @@ mod tests {
             height: 0.7,
             pixels,
         };
-        let mut draws = Vec::new();
-        chunks.plan_into(&cam, 270, &lod, &mut draws);
+        let mut plan = Plan::default();
+        chunks.plan_into(&cam, 270, &lod, &mut plan);
+        let draws = plan.draws;
         let shells: u64 = draws
             .iter()
             .map(|d| {
@@ -319,5 +341,80 @@ mod tests {
                 .windows(2)
                 .all(|w| w[0].indices.end != w[1].indices.start || w[0].level != w[1].level)
         );
+    }
+
+    /// The vertices the bend pass moves for a chunk at `origin` on a mesh of `side` vertices
+    /// (the shader's `cs_bend` walks them the same way: `(CHUNK + 1)²` a chunk, row by row,
+    /// cut at the mesh's edges).
+    fn bent_vertices(origin: [u32; 2], side: (u32, u32)) -> impl Iterator<Item = u32> {
+        let n = CHUNK + 1;
+        (0..n * n).filter_map(move |local| {
+            let (i, j) = (origin[0] + local % n, origin[1] + local / n);
+            (i < side.0 && j < side.1).then_some(j * side.0 + i)
+        })
+    }
+
+    #[test]
+    fn the_bend_pass_moves_every_vertex_drawn_and_only_the_drawn_chunks() {
+        for size in [40.0, 80.0, 400.0] {
+            let t = terrain(size);
+            let side = TerrainGpu::ground_side_for(&t);
+            let chunks = Chunks::new(&t, side, 0.7);
+            let eye = t.point_at(grassbench::glam::Vec2::new(-0.3 * size, 0.1 * size));
+            let lod = ShellLod {
+                shells: 16,
+                height: 0.7,
+                pixels: 1.0,
+            };
+            for (yaw, pitch) in [(0.0f32, -0.25f32), (1.3, -0.1), (2.9, -0.6), (4.4, -1.2)] {
+                let ahead = eye
+                    + Vec3::Y * 1.6
+                    + Vec3::new(
+                        yaw.cos() * pitch.cos(),
+                        pitch.sin(),
+                        yaw.sin() * pitch.cos(),
+                    );
+                let cam = Camera::look_at(
+                    eye + Vec3::Y * 1.6,
+                    ahead,
+                    55f32.to_radians(),
+                    0.05,
+                    400.0,
+                    16.0 / 9.0,
+                );
+                let mut plan = Plan::default();
+                chunks.plan_into(&cam, 270, &lod, &mut plan);
+                let mut bent = vec![false; (side.0 * side.1) as usize];
+                for &origin in &plan.bent {
+                    for v in bent_vertices(origin, side) {
+                        bent[v as usize] = true;
+                    }
+                }
+                let mut used = vec![false; bent.len()];
+                for d in &plan.draws {
+                    for &v in &chunks.indices[d.indices.start as usize..d.indices.end as usize] {
+                        assert!(
+                            bent[v as usize],
+                            "{size} m, yaw {yaw}: vertex {v} drawn, not bent"
+                        );
+                        used[v as usize] = true;
+                    }
+                }
+                // Nothing bent outside the drawn chunks' vertices: every bent vertex is a
+                // vertex of a drawn triangle.
+                assert_eq!(bent, used, "{size} m, yaw {yaw}");
+                // One bent chunk a drawn chunk.
+                let drawn_chunks = chunks
+                    .ranges
+                    .iter()
+                    .filter(|r| {
+                        plan.draws
+                            .iter()
+                            .any(|d| d.indices.start <= r.start && r.end <= d.indices.end)
+                    })
+                    .count();
+                assert_eq!(plan.bent.len(), drawn_chunks, "{size} m, yaw {yaw}");
+            }
+        }
     }
 }

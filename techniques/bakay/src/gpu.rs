@@ -1,11 +1,12 @@
 //! What the shells keep on the GPU: the grass texture (two planes, full mip chain), the
-//! per-vertex wind and per-shell offsets written by the bend pass, and the two pipelines.
+//! per-vertex wind and per-shell offsets written by the bend pass, the chunks it bends this
+//! frame, and the two pipelines.
 
 use grassbench::terrain::GroundVertex;
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{Error, InitContext, Result, bytemuck, shaders, target, wgpu};
 
-use crate::chunks::Draw;
+use crate::chunks::{CHUNK, Chunks, Plan};
 use crate::lod::{LEVEL_INSTANCES, ShellLod};
 use crate::params::{Lod, Mipmaps, Params};
 use crate::texture::{GrassTexture, Level};
@@ -21,8 +22,8 @@ const SAMPLER: &str = "grass_sampler";
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ParamsUniform {
-    /// Shells, ground vertices, wind mode (0 = scene, 1 = point source), padding (the level
-    /// of detail's mode picks the fragment entry point instead: `fragment_entry`).
+    /// Shells, ground vertices, wind mode (0 = scene, 1 = point source), ground vertices along
+    /// x (a row of the mesh, for the bend pass's chunks).
     pub counts: [u32; 4],
     /// Inter-shell distance (m), stiffness exponent, largest |I|, reference speed (m/s).
     pub shape: [f32; 4],
@@ -42,8 +43,8 @@ pub struct ShellGpu {
     shell_group: wgpu::BindGroup,
     /// The ground mesh's triangles chunk by chunk ([`crate::chunks`]).
     indices: wgpu::Buffer,
-    /// Vertices of the ground mesh.
-    pub vertex_count: u32,
+    /// The first cell of each chunk the bend pass moves this frame ([`Plan::bent`]).
+    bent: wgpu::Buffer,
     /// GPU memory held, bytes.
     pub bytes: u64,
 }
@@ -61,13 +62,17 @@ pub fn fragment_entry(lod: Lod) -> &'static str {
 /// Workgroup size of `cs_bend`.
 const WORKGROUP: u32 = 64;
 
+/// Workgroups of `cs_bend` a chunk: its `(CHUNK + 1)²` vertices, 64 a workgroup (the shader
+/// finds its chunk and its vertex from the workgroup's index the same way).
+pub const BEND_WORKGROUPS_PER_CHUNK: u32 = ((CHUNK + 1) * (CHUNK + 1)).div_ceil(WORKGROUP);
+
 impl ShellGpu {
     /// Uploads the texture, allocates the per-vertex buffers and builds both pipelines (the
     /// sampler and the fragment entry point from `params`' mip levels, level of detail and
     /// anisotropy).
     pub fn new(
         ctx: &InitContext<'_>,
-        chunk_indices: &[u32],
+        chunks: &Chunks,
         uniform: &ParamsUniform,
         texture: &GrassTexture,
         params: &Params,
@@ -109,6 +114,13 @@ impl ShellGpu {
         };
         let vertex_wind = storage("bakay vertex wind", wind_bytes);
         let offsets = storage("bakay shell offsets", offset_bytes);
+        let bent_bytes = chunks.len().max(1) as u64 * 8;
+        let bent = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("bakay bent chunks"),
+            size: bent_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let color_height = upload(ctx, "bakay colour+height", &texture.levels, true);
         let blade = upload(ctx, "bakay blade attributes", &texture.levels, false);
         let mipmap_filter = if mipmaps == Mipmaps::Box {
@@ -157,6 +169,7 @@ impl ShellGpu {
                 entry(1, compute, buffer(read)),
                 entry(2, compute, buffer(write)),
                 entry(3, compute, buffer(write)),
+                entry(9, compute, buffer(read)),
             ],
         });
         let shell_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -183,6 +196,7 @@ impl ShellGpu {
                 bind(1, terrain.ground_vertices.as_entire_binding()),
                 bind(2, vertex_wind.as_entire_binding()),
                 bind(3, offsets.as_entire_binding()),
+                bind(9, bent.as_entire_binding()),
             ],
         });
         let shell_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -206,7 +220,7 @@ impl ShellGpu {
             &[]
         };
         let module = shaders::module_with_bindings(device, "bakay", SHADER, &[], single_level);
-        let constants = [("SHELLS", f64::from(shells))];
+        let constants = [("SHELLS", f64::from(shells)), ("CHUNK", f64::from(CHUNK))];
         let bend = shaders::compute_pipeline(
             device,
             "bakay bend",
@@ -248,7 +262,7 @@ impl ShellGpu {
         );
         let indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("bakay chunked ground indices"),
-            contents: bytemuck::cast_slice(chunk_indices),
+            contents: bytemuck::cast_slice(&chunks.indices),
             usage: wgpu::BufferUsages::INDEX,
         });
         Ok(Self {
@@ -257,8 +271,9 @@ impl ShellGpu {
             shells: shells_pipeline,
             shell_group,
             indices,
-            vertex_count,
-            bytes: std::mem::size_of_val(chunk_indices) as u64
+            bent,
+            bytes: std::mem::size_of_val(chunks.indices.as_slice()) as u64
+                + bent_bytes
                 + texture.bytes()
                 + wind_bytes
                 + offset_bytes
@@ -266,22 +281,25 @@ impl ShellGpu {
         })
     }
 
-    /// Records the bend pass (per-vertex wind, running sums) and the shells of `draws` (each a
-    /// run of chunks at one level of detail), each draw's shells bottom to top.
-    pub fn encode(
-        &self,
-        encoder: &mut grassbench::FrameEncoder<'_>,
-        lod: &ShellLod,
-        draws: &[Draw],
-    ) {
+    /// Uploads the first cells of the chunks `plan` bends.
+    pub fn upload(&self, gpu: &grassbench::GpuContext, plan: &Plan) {
+        if !plan.bent.is_empty() {
+            gpu.write_buffer(&self.bent, 0, bytemuck::cast_slice(&plan.bent));
+        }
+    }
+
+    /// Records the bend pass (per-vertex wind, running sums) over the vertices of the chunks
+    /// `plan` draws, uploaded by [`Self::upload`], and the shells of its draws (each a run of
+    /// chunks at one level of detail), each draw's shells bottom to top.
+    pub fn encode(&self, encoder: &mut grassbench::FrameEncoder<'_>, lod: &ShellLod, plan: &Plan) {
+        if plan.draws.is_empty() {
+            return;
+        }
         {
             let mut pass = encoder.compute_pass("bend");
             pass.set_pipeline(&self.bend);
             pass.set_bind_group(1, &self.bend_group, &[]);
-            pass.dispatch_workgroups(self.vertex_count.div_ceil(WORKGROUP), 1, 1);
-        }
-        if draws.is_empty() {
-            return;
+            pass.dispatch_workgroups(plan.bent.len() as u32 * BEND_WORKGROUPS_PER_CHUNK, 1, 1);
         }
         let vertices = encoder.scene.terrain.ground_vertices.slice(..);
         let mut pass = encoder.render_pass("shells");
@@ -291,7 +309,7 @@ impl ShellGpu {
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         // Instance `level · LEVEL_INSTANCES + i` is the level's `i`-th shell from the bottom:
         // instances are drawn in order, so shells go bottom to top.
-        for draw in draws {
+        for draw in &plan.draws {
             let first = draw.level * LEVEL_INSTANCES;
             pass.draw_indexed(
                 draw.indices.clone(),
