@@ -508,7 +508,8 @@ fn divides_by_a_variable(
 }
 
 /// Whether expression `e` of `function` is known when the pipeline is created: a literal, a
-/// `const`, a pipeline-overridable constant, or a vector built of them.
+/// `const`, a pipeline-overridable constant, a vector built of them, or arithmetic on them
+/// (the driver folds `CHUNK + 1u` once the pipeline fixes `CHUNK`).
 fn is_constant(function: &naga::Function, e: naga::Handle<naga::Expression>) -> bool {
     use naga::Expression as E;
     match &function.expressions[e] {
@@ -516,7 +517,10 @@ fn is_constant(function: &naga::Function, e: naga::Handle<naga::Expression>) -> 
         E::Splat { value, .. } => is_constant(function, *value),
         E::Compose { components, .. } => components.iter().all(|&c| is_constant(function, c)),
         E::AccessIndex { base, .. } => is_constant(function, *base),
-        E::Unary { expr, .. } => is_constant(function, *expr),
+        E::Unary { expr, .. } | E::As { expr, .. } => is_constant(function, *expr),
+        E::Binary { left, right, .. } => {
+            is_constant(function, *left) && is_constant(function, *right)
+        }
         _ => false,
     }
 }
@@ -886,7 +890,9 @@ mod tests {
              fn cs(@builtin(global_invocation_id) id: vec3<u32>) {
                  let a = bucket(id.x) + bucket(id.y);
                  let b = vec2(id.x, id.y) / vec2(u.x, u.z);
-                 let c = id.x / 3u + id.y % FOUR + id.z / lanes + id.x / vec2(2u, 5u).y;
+                 let side = lanes + 1u;
+                 let c = id.x / 3u + id.y % FOUR + id.z / lanes + id.x / vec2(2u, 5u).y
+                     + id.y % side + id.z / ((side * side + 63u) / 64u) + id.x / (u.x + 1u);
                  let d = i32(id.z) / -2;
                  let f = f32(id.x) / f32(u.w);
                  for (var k = 0u; k < 3u; k++) {
@@ -906,10 +912,11 @@ mod tests {
                 .map(|(_, o)| o.divisions)
         };
         // `bucket`'s remainder by a uniform's value at two call sites (2), a `vec2` divided
-        // by a `vec2` read from the uniform (2), the loop's remainder by `u.w` three times (3).
-        // Divisions by a literal, a `const`, an override, a component of a constant vector
+        // by a `vec2` read from the uniform (2), a division by the uniform's value plus one
+        // (1), the loop's remainder by `u.w` three times (3). Divisions by a literal, a
+        // `const`, an override, arithmetic on an override, a component of a constant vector
         // and a negative literal are a multiply and a shift; the `f32` one is arithmetic.
-        assert_eq!(divisions("cs"), Some(2 + 2 + 3));
+        assert_eq!(divisions("cs"), Some(2 + 2 + 1 + 3));
         assert_eq!(divisions("plain"), Some(0));
     }
 
