@@ -150,6 +150,13 @@ impl Chunks {
         }
     }
 
+    /// Chunks [`Self::new`] cuts a ground mesh of `side` vertices into (shorter ones at its
+    /// far edges counted), without building them.
+    pub fn count_for(side: (u32, u32)) -> usize {
+        let chunks = |n: u32| n.saturating_sub(1).div_ceil(CHUNK) as usize;
+        chunks(side.0) * chunks(side.1)
+    }
+
     /// Chunks in the mesh.
     pub fn len(&self) -> usize {
         self.ranges.len()
@@ -204,6 +211,15 @@ mod tests {
         assert_eq!(ours, core);
         // 40 cells a side: 3 x 3 chunks of up to 16.
         assert_eq!(chunks.len(), 9);
+        for size in [12.0, 16.0, 17.0, 40.0, 100.0] {
+            let t = terrain(size);
+            let side = TerrainGpu::ground_side_for(&t);
+            assert_eq!(
+                Chunks::count_for(side),
+                Chunks::new(&t, side, 1.0).len(),
+                "{size} m"
+            );
+        }
     }
 
     #[test]

@@ -322,7 +322,7 @@ impl Technique for Bakay {
         Ok(GpuEstimate::buffer(vertices * 16)
             .plus(GpuEstimate::buffer(cells * 6 * 4))
             .plus(GpuEstimate::buffer(
-                cells.div_ceil(u64::from(chunks::CHUNK).pow(2)).max(1) * 8,
+                chunks::Chunks::count_for((nx, nz)).max(1) as u64 * 8,
             ))
             .plus(GpuEstimate::buffer(
                 vertices.saturating_mul(u64::from(params.shells) * 8),
