@@ -1,14 +1,14 @@
 //! The ground mesh drawn in chunks, culled to the view, coarser far away (issue 20 §7).
 //!
 //! The core's ground mesh has about a vertex a metre, at most [`MAX_GROUND_SIDE`] a side, so
-//! drawn whole it costs the same primitives wherever the camera looks: 131 k triangles on a
-//! 400 m terrain, most of them outside the view or far smaller than a pixel (on lavapipe that
-//! pass grew 6.9 → 18.8 ms from an 80 m to a 400 m meadow, for every technique). Here the mesh
-//! is cut into square chunks of [`CHUNK_CELLS`] cells. Each frame the chunks whose box meets the
-//! view frustum are drawn, each at a level `L` (every `2^L`-th vertex of the mesh, the same
-//! vertices, so a coarse chunk's corners are mesh vertices), the coarsest whose height error
-//! and cell size both stay small on screen at the chunk's nearest depth `z` (focal length `f`
-//! in pixels):
+//! drawn whole it costs the same primitives wherever the camera looks: 115 k triangles on a
+//! 400 m terrain (131 k on the 257-wide mesh it had then), most of them outside the view or
+//! far smaller than a pixel (on lavapipe that pass grew 6.9 → 18.8 ms from an 80 m to a 400 m
+//! meadow, for every technique). Here the mesh is cut into square chunks of [`CHUNK_CELLS`]
+//! cells. Each frame the chunks whose box meets the view frustum are drawn, each at a level `L`
+//! (every `2^L`-th vertex of the mesh, the same vertices, so a coarse chunk's corners are mesh
+//! vertices), the coarsest whose height error and cell size both stay small on screen at the
+//! chunk's nearest depth `z` (focal length `f` in pixels):
 //! - the error: the largest vertical distance between a mesh vertex of the chunk and the
 //!   coarse surface above or below it, `e_L`, must stay `e_L · f / z ≤ error_pixels`;
 //! - the cell: the coarse cell's side `s · 2^L` must stay `s · 2^L · f / z ≤ cell_pixels`,
@@ -745,9 +745,9 @@ mod tests {
         let bumpy = |x: f32, z: f32| 0.3 * (x * 0.2).sin() * (z * 0.15).cos();
         let (small, _) = count(80.0, &bumpy);
         let (large, large_finest) = count(400.0, &bumpy);
-        // Measured 4 272 → 8 942 triangles (39 680 at level 0 in view, 131 072 in the mesh):
+        // Measured 4 272 → 8 648 triangles (35 456 at level 0 in view, 115 200 in the mesh):
         // what still grows is the far chunks at the coarsest level, two triangles each, and
-        // the mesh has at most 32 x 32 of them (`MAX_GROUND_SIDE`), however large the terrain.
+        // the mesh has at most 30 x 30 of them (`MAX_GROUND_SIDE`), however large the terrain.
         assert!(large_finest > 35_000, "{large_finest}");
         assert!((large as f64) < 2.5 * small as f64, "{small} → {large}");
         assert!(3 * large < large_finest, "{large} of {large_finest}");

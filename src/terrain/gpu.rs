@@ -33,8 +33,14 @@ pub const DENSITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// Format of the covering map (IDs).
 pub const COVERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Uint;
 
-/// Most vertices along one side of the ground mesh.
-pub const MAX_GROUND_SIDE: u32 = 257;
+/// Most vertices along one side of the ground mesh: about one a metre up to a 240 m terrain.
+///
+/// Not 257 (256 m): lavapipe's vertex stage (Mesa's draw module) dedupes an indexed draw's
+/// vertices through a 256-entry cache keyed by `index % 256`, and on a mesh 257 vertices wide a
+/// cell's vertices `(i, j + 1)` and `(i + 1, j)` are 256 apart and evict each other: bakay's
+/// shells shaded 2.0 vertices a triangle on it against 0.6 on every narrower mesh
+/// (`results/scaling/README.md`). A GPU does not care either way.
+pub const MAX_GROUND_SIDE: u32 = 241;
 
 /// Height, density and covering textures plus the ground mesh.
 pub struct TerrainGpu {

@@ -291,9 +291,10 @@ fn bad_parameters_are_refused_with_the_key() -> anyhow::Result<()> {
 
 /// The level of detail (issue 20 §7, `shell_lod_pixels`) on the scaling sweep's far point: the
 /// meadow grown to 400 m a side at 20 blades/m², walker frame 6, 320x180. Measured (lavapipe):
-/// 696 k triangles with every shell everywhere, 91 k with the level of detail; mean FLIP
-/// between the two 0.0003, while a level of detail of 8 pixels is 0.0025 from every shell and
-/// bare ground (no shells at all) 0.0153.
+/// 614 k triangles with every shell everywhere, 90 k with the level of detail; mean FLIP
+/// between the two 0.0001, while a level of detail of 8 pixels is 0.0025 from every shell and
+/// bare ground (no shells at all) 0.0163 (on the 257-wide mesh of before `MAX_GROUND_SIDE` =
+/// 241: 696 k, 91 k, 0.0003, 0.0025 and 0.0153).
 #[test]
 fn far_chunks_draw_fewer_shells_and_the_picture_holds() -> anyhow::Result<()> {
     let gpu = gpu()?;

@@ -299,8 +299,9 @@ impl ShellGpu {
             let mut pass = encoder.compute_pass("bend");
             pass.set_pipeline(&self.bend);
             pass.set_bind_group(1, &self.bend_group, &[]);
-            // At most 256 chunks (a ground mesh is at most `MAX_GROUND_SIDE` = 257 vertices a
-            // side): 1 280 workgroups, far under the 65 535 a dimension every adapter offers.
+            // At most 225 chunks (a ground mesh is at most `MAX_GROUND_SIDE` = 241 vertices a
+            // side, 15 chunks): 1 125 workgroups, far under the 65 535 a dimension every
+            // adapter offers.
             pass.dispatch_workgroups(plan.bent.len() as u32 * BEND_WORKGROUPS_PER_CHUNK, 1, 1);
         }
         let vertices = encoder.scene.terrain.ground_vertices.slice(..);
