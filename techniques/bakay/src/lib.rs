@@ -144,8 +144,9 @@
 //! 111 k → 146 k with the level of detail; clipped primitives 110 k → 605 k against 73 k →
 //! 100 k; fragment invocations 3.46 M → 4.07 M against 3.24 M → 2.86 M; vertex invocations
 //! 89 k → 1 416 k against 66 k → 298 k (lavapipe shades about 2 vertices a triangle on the
-//! 400 m terrain's mesh and 0.6 on the 80 m one, with or without the level of detail; 29 draws
-//! at 400 m against 10). GPU wall time, seven interleaved repetitions with other processes
+//! 400 m terrain's mesh and 0.6 on the 80 m one, with or without the level of detail: its
+//! vertex cache, keyed by `index % 256`, missed on that 257-wide mesh, which is 241 wide since,
+//! `grassbench::terrain::MAX_GROUND_SIDE`; 29 draws at 400 m against 10). GPU wall time, seven interleaved repetitions with other processes
 //! taking 0.9-1.4 of the 2 cores (so every time is several times the 101 and 209 ms with every
 //! shell of that host's quiet scaling sweep at `493d788`): medians 466 → 1 277 ms (2.7x) with
 //! every shell, 437 → 555 ms (1.27x; 0.95-1.70x within a repetition, median 1.11x) with the
