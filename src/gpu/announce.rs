@@ -3,8 +3,8 @@
 //!
 //! A machine without a Vulkan driver runs `--backend auto` on GL without complaint, and GL has
 //! no pipeline statistics under wgpu: the run's work columns and cost model stay empty, its
-//! times are another rasteriser's and its pictures differ from Vulkan's in edge pixels. The `meta.toml` records
-//! it; these lines say it while there is still time to stop the run.
+//! times are another rasteriser's and its pictures differ from Vulkan's in edge pixels. The
+//! `meta.toml` records it; these lines say it while there is still time to stop the run.
 
 use super::{AdapterSummary, BackendChoice};
 

@@ -33,6 +33,9 @@ pub struct WindTexture {
     /// The last bake's velocities, before they become texels (kept to spare an allocation a
     /// frame).
     velocities: Vec<Vec3>,
+    /// Threads a bake spreads over ([`bake_threads`], asked once: the host's core count comes
+    /// from the scheduler and the cgroup files).
+    threads: usize,
 }
 
 /// Fewest texels one thread of the bake samples: below it a thread costs more to start than
@@ -141,6 +144,7 @@ impl WindTexture {
             height,
             texels: vec![[0.0; 4]; points.len()],
             velocities: vec![Vec3::ZERO; points.len()],
+            threads: bake_threads(points.len()),
             points,
         }
     }
@@ -154,7 +158,7 @@ impl WindTexture {
             &self.points,
             &mut self.velocities,
             &mut self.texels,
-            bake_threads(self.points.len()),
+            self.threads,
         );
     }
 

@@ -141,29 +141,29 @@
 //! and 400 m a side, 480x270, 5 frames after 2, lavapipe on the 2-core Intel Xeon on 2026-12-03
 //! while another build ran; per-frame counts, the same in every run and, with the level of
 //! detail, in `results/scaling/` on all three hosts): triangles 147 k → 696 k with every shell,
-//! 111 k → 146 k with the level of detail; clipped primitives 110 k → 605 k against 73 k →
-//! 100 k; fragment invocations 3.46 M → 4.07 M against 3.24 M → 2.86 M; vertex invocations
+//! 111 k → 146 k with the level of detail; clipped primitives 110 k → 605 k against 73 k
+//! → 100 k; fragment invocations 3.46 M → 4.07 M against 3.24 M → 2.86 M; vertex invocations
 //! 89 k → 1 416 k against 66 k → 298 k (lavapipe shades about 2 vertices a triangle on the
 //! 400 m terrain's mesh and 0.6 on the 80 m one, with or without the level of detail: its
-//! vertex cache, keyed by `index % 256`, missed on that 257-wide mesh, which is 241 wide since,
-//! `grassbench::terrain::MAX_GROUND_SIDE`; 29 draws at 400 m against 10). GPU wall time, seven interleaved repetitions with other processes
-//! taking 0.9-1.4 of the 2 cores (so every time is several times the 101 and 209 ms with every
-//! shell of that host's quiet scaling sweep at `493d788`): medians 466 → 1 277 ms (2.7x) with
-//! every shell, 437 → 555 ms (1.27x; 0.95-1.70x within a repetition, median 1.11x) with the
-//! level of detail, whose 400 m runs took 0.43x the time of every shell's. By the timestamps
-//! (medians over the frames) the technique's render pass (the shells) goes 360 → 421 ms
-//! (1.17x) with the level of detail and 467 → 1 117 ms without, while the core's background
-//! pass, the same for every technique, grows 25 → 64 ms (its ground mesh was then drawn
-//! whole; the core now draws it in chunks culled to the view, coarser far away). In
-//! `results/scaling/` (revision `2dd4b96`, a 2-vCPU AMD EPYC virtual machine at 2.6 GHz, no
-//! other process busy in bakay's runs at these sizes) that pass goes 4.7 → 5.8 ms there (5.5
-//! and 6.1 ms at 400 m by repetition) and bakay's frame 71.4 → 84.0 ms, 1.18x (1.17-1.19x by
-//! repetition); in its previous versions, on the 2.0 GHz EPYC at `487fc0a`, 11.0 → 17.6 ms and
-//! 201.6 → 250.2 ms, 1.24x (1.04-1.47x by repetition), and on the Xeon at `00e5090`, 4.2 → 4.8
-//! ms and 78.1 → 88.6 ms, 1.13x. The picture: mean FLIP 0.0001-0.0003 between the two
-//! (frames 2 and 6, 80 and 400 m), against 0.0153 between every shell and no shell at 400 m; on the
-//! default meadow (90 blades/m², 640x360, frames 2 and 6) 0.0008-0.0009, against 0.0526, with
-//! 147 k → 123 k triangles.
+//! vertex cache, keyed by `index % 256`, missed on that 257-wide mesh, 241 wide since `ee6c9e6`
+//! (`grassbench::terrain::MAX_GROUND_SIDE`); 29 draws at 400 m against 10). GPU wall time, seven
+//! interleaved repetitions with other processes taking 0.9-1.4 of the 2 cores (so every time is
+//! several times the 101 and 209 ms with every shell of that host's quiet scaling sweep at
+//! `493d788`): medians 466 → 1 277 ms (2.7x) with every shell, 437 → 555 ms (1.27x; 0.95-1.70x
+//! within a repetition, median 1.11x) with the level of detail, whose 400 m runs took 0.43x the
+//! time of every shell's. By the timestamps (medians over the frames) the technique's render
+//! pass (the shells) goes 360 → 421 ms (1.17x) with the level of detail and 467 → 1 117 ms
+//! without, while the core's background pass, the same for every technique, grows 25 → 64 ms
+//! (its ground mesh was then drawn whole; the core now draws it in chunks culled to the view,
+//! coarser far away). In `results/scaling/` (revision `2dd4b96`, a 2-vCPU AMD EPYC virtual
+//! machine at 2.6 GHz, no other process busy in bakay's runs at these sizes) that pass goes
+//! 4.7 → 5.8 ms there (5.5 and 6.1 ms at 400 m by repetition) and bakay's frame 71.4 → 84.0 ms,
+//! 1.18x (1.17-1.19x by repetition); in its previous versions, on the 2.0 GHz EPYC at
+//! `487fc0a`, 11.0 → 17.6 ms and 201.6 → 250.2 ms, 1.24x (1.04-1.47x by repetition), and on the
+//! Xeon at `00e5090`, 4.2 → 4.8 ms and 78.1 → 88.6 ms, 1.13x. The picture: mean FLIP
+//! 0.0001-0.0003 between the two (frames 2 and 6, 80 and 400 m), against 0.0153 between every
+//! shell and no shell at 400 m; on the default meadow (90 blades/m², 640x360, frames 2 and 6)
+//! 0.0008-0.0009, against 0.0526, with 147 k → 123 k triangles.
 //!
 //! Measured (lavapipe, `results/bakay_table2/`, revision `2dd4b96`, a 2-vCPU AMD EPYC at 2.6
 //! GHz, at the `paper` variant: every shell everywhere, box mipmaps, the point source; the
