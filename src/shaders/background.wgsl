@@ -159,27 +159,25 @@ fn vs_object(@builtin(vertex_index) index: u32) -> ObjectOut {
     let r = globals.object.w;
     let to_centre = centre - globals.camera_pos.xyz;
     let d = length(to_centre);
-    if (r <= 0.0 || d <= r * 1.01) {
-        out.position = vec4(0.0, 0.0, 2.0, 1.0);
-        return out;
-    }
-    let forward = to_centre / d;
-    var right = cross(forward, vec3(0.0, 1.0, 0.0));
-    if (length(right) < 1e-4) {
-        right = vec3(1.0, 0.0, 0.0);
-    }
-    right = normalize(right);
+    // No object, or the eye inside it: every corner outside the clip volume. Chosen with
+    // `select`s rather than branches, which decide on uniforms alone and would have lavapipe
+    // re-specialise the shader whenever it is bound (`grassbench::shaders::uniform_branches`);
+    // the clamps keep the unused side finite.
+    let hidden = (r <= 0.0) | (d <= r * 1.01);
+    let forward = to_centre / max(d, 1e-6);
+    let across = cross(forward, vec3(0.0, 1.0, 0.0));
+    let right = normalize(select(across, vec3(1.0, 0.0, 0.0), length(across) < 1e-4));
     let up = cross(right, forward);
     // Seen from the eye, the sphere's silhouette fits in a square of half side r·d/√(d²−r²) in
     // the plane through its centre.
-    let half = 1.05 * r * d / sqrt(d * d - r * r);
+    let half = 1.05 * r * d / sqrt(max(d * d - r * r, 1e-12));
     var corners = array(
         vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0),
         vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0),
     );
     let k = corners[index % 6u];
     let world = centre + (right * k.x + up * k.y) * half;
-    out.position = globals.view_proj * vec4(world, 1.0);
+    out.position = select(globals.view_proj * vec4(world, 1.0), vec4(0.0, 0.0, 2.0, 1.0), hidden);
     out.world = world;
     return out;
 }

@@ -5,6 +5,7 @@
 //! Technique shaders are stored without the prelude and composed at load time, so one copy of
 //! the terrain lookup, the wind sampling and the lighting serves every technique.
 
+mod branches;
 mod kind;
 mod layout;
 mod loops;
@@ -13,6 +14,7 @@ pub mod pipeline;
 mod trips;
 mod walk;
 
+pub use branches::{UniformBranch, uniform_branches};
 pub use kind::{FragmentKind, Module, discarding_fragment_entries};
 pub use layout::struct_size;
 pub use loops::uniform_bound_loops;

@@ -77,3 +77,31 @@ fn no_loop_is_bounded_by_a_uniform() {
          one that changes every frame a storage-buffer value"
     );
 }
+
+/// No vertex shader branches on uniform-buffer values alone: lavapipe can re-specialise such a
+/// shader every time its pipeline is bound, on the CPU inside the pass (one LLVM module a frame
+/// for the reference's vertex shader, two for boulanger's, when they had such branches;
+/// `grassbench::shaders::uniform_branches`), a cost no GPU pays and the cost model cannot see.
+#[test]
+fn no_vertex_shader_branches_on_a_uniform_alone() {
+    let offenders: Vec<String> = all_shaders()
+        .iter()
+        .flat_map(|f| {
+            let name = f.file_name().map(|n| n.to_string_lossy().into_owned());
+            shaders::uniform_branches(&module_of(f))
+                .into_iter()
+                .filter(|b| b.stage == naga::ShaderStage::Vertex)
+                .map(move |b| {
+                    let file = name.clone().unwrap_or_default();
+                    format!("{file}: `{}` in `{}`", b.function, b.entry)
+                })
+        })
+        .collect();
+    assert!(
+        offenders.is_empty(),
+        "vertex shaders branching on uniform-buffer values alone: {offenders:?}; make a flag \
+         fixed at creation a pipeline-overridable constant (`override`, \
+         `PipelineSpec::constants`), and one that may change a `select` (with `&` and `|`, \
+         which do not short-circuit into branches) or a storage-buffer value"
+    );
+}

@@ -86,13 +86,15 @@ fn weight_geometry(d: f32) -> f32 {
     return clamp01((d - params.lod.y) / (params.lod.x - params.lod.y));
 }
 
-// Eq. 5 on `1 - t` with the weight stretched so weight 1 draws every blade fully.
+// Eq. 5 on `1 - t` with the weight stretched so weight 1 draws every blade fully; omega 0 is
+// the hard switch. Both sides and a `select`, not a branch: omega is a uniform, and a branch
+// on a uniform alone had lavapipe re-specialise the blade vertex shaders every frame
+// (`grassbench::shaders::uniform_branches`).
 fn geometry_opacity(w_g: f32, t: f32, omega: f32) -> f32 {
     let key = 1.0 - t;
-    if (omega <= 0.0) {
-        return select(0.0, 1.0, key <= w_g);
-    }
-    return clamp01((w_g * (1.0 + 2.0 * omega) - key) / (2.0 * omega));
+    let hard = omega <= 0.0;
+    let soft = clamp01((w_g * (1.0 + 2.0 * omega) - key) / (2.0 * select(omega, 1.0, hard)));
+    return select(soft, select(0.0, 1.0, key <= w_g), hard);
 }
 
 fn on_grass(xz: vec2<f32>) -> bool {
@@ -317,11 +319,9 @@ fn blade_vertex(vertex: u32, instance: u32) -> BladeOut {
     var albedo = mix(params.color_root.rgb, params.color_tip.rgb, pow(s, 0.8));
     albedo *= 1.0 + variation;
     albedo.r *= 1.0 + 0.6 * max(variation, 0.0);
-    if (!baking && globals.frame.z == 1u) {
-        albedo = vec3(0.55, 0.04, 0.03); // Fig. 12: geometry in red
-    } else if (!baking && globals.frame.z == 2u) {
-        albedo = orientation_color(signs);
-    }
+    // Debug views, by `select` (`&` does not short-circuit into a branch on the uniform).
+    albedo = select(albedo, vec3(0.55, 0.04, 0.03), !baking & (globals.frame.z == 1u)); // Fig. 12: geometry in red
+    albedo = select(albedo, orientation_color(signs), !baking & (globals.frame.z == 2u));
 
     if (baking) {
         out.position = bake_position(world, cell.mode);
@@ -700,16 +700,15 @@ fn vs_slice_shadow(@builtin(vertex_index) vertex: u32, quad: SliceQuad) -> Slice
     let l = globals.sun_direction.xyz;
     // Decided for the whole quad (a vertex dropped alone would tear its triangles): the sun
     // over flat ground; on a slope facing away from it the projection is stretched instead.
-    if (l.y < SHADOW_MIN_SINE) {
-        out.position = vec4(0.0, 0.0, 2.0, 1.0);
-        return out;
-    }
+    // A sun too low drops the quad by `select`, not by a branch on the uniform alone
+    // (`grassbench::shaders::uniform_branches`).
     var n = terrain_normal(ground.xz);
     if (dot(n, l) < SHADOW_MIN_SINE) {
         n = vec3(0.0, 1.0, 0.0);
     }
     let q = planar_projection(out.world, ground, n, l);
-    out.position = shadow_clip(vec3(q.x, terrain_height(q.xz), q.z));
+    let projected = shadow_clip(vec3(q.x, terrain_height(q.xz), q.z));
+    out.position = select(projected, vec4(0.0, 0.0, 2.0, 1.0), l.y < SHADOW_MIN_SINE);
     return out;
 }
 

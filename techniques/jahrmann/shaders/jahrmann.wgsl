@@ -84,11 +84,10 @@ fn survivor(id: u32) -> bool {
 fn distance_cutoff(id: u32) -> f32 {
     let n = max(params.flags.y, 1u);
     let cutoff = params.cull.z * (1.0 - f32(bucket(id)) / f32(n));
-    if (params.thin.x > 0.0) {
-        let u = f32(hash_u32(id ^ THIN_SALT) >> 8u) / 16777216.0;
-        return min(cutoff, params.thin.x / sqrt(u));
-    }
-    return cutoff;
+    // By `select`: a branch on the uniform alone can have lavapipe re-specialise the shader
+    // whenever it is bound (`grassbench::shaders::uniform_branches`).
+    let u = f32(hash_u32(id ^ THIN_SALT) >> 8u) / 16777216.0;
+    return select(cutoff, min(cutoff, params.thin.x / sqrt(u)), params.thin.x > 0.0);
 }
 
 // The width factor making up for the thinning at ground distance `d` (cull.rs's `thin_widen`).
@@ -119,11 +118,11 @@ fn edge_on(v0: vec3<f32>, orientation: f32) -> f32 {
 // The distance that chooses a root's level: its tile's centre's (cull.rs's `level_distance`).
 fn level_distance(v0: vec3<f32>) -> f32 {
     let tile = params.eye.w;
-    if (tile <= 0.0) {
-        return distance(v0, params.eye.xyz);
-    }
-    let centre = (floor(v0.xz / tile) + 0.5) * tile;
-    return distance(vec3(centre.x, v0.y, centre.y), params.eye.xyz);
+    let untiled = tile <= 0.0;
+    // By `select`, like `distance_cutoff`; the unused side kept finite.
+    let side = select(tile, 1.0, untiled);
+    let centre = (floor(v0.xz / side) + 0.5) * side;
+    return select(distance(vec3(centre.x, v0.y, centre.y), params.eye.xyz), distance(v0, params.eye.xyz), untiled);
 }
 
 // Where blades leave the near level.
@@ -533,11 +532,8 @@ fn blade_vertex(index: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
     var albedo = p.albedo;
     // Debug views (`TechniqueInfo::debug_views`): 1 = level (near blue, band green, far red),
     // 2 = tilt of the tip from the vertical.
-    if (globals.frame.z == 1u) {
-        albedo = heat(select(0.1 + 0.8 * morph, 1.0, far));
-    } else if (globals.frame.z == 2u) {
-        albedo = heat(1.0 - dot(normalize(v2 - v0), UP));
-    }
+    albedo = select(albedo, heat(select(0.1 + 0.8 * morph, 1.0, far)), globals.frame.z == 1u);
+    albedo = select(albedo, heat(1.0 - dot(normalize(v2 - v0), UP)), globals.frame.z == 2u);
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;
     out.normal = normalize(p.face + side_axis * side * 0.35);

@@ -105,12 +105,11 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     albedo *= 1.0 + variation;
     albedo.r *= 1.0 + 0.6 * max(variation, 0.0);
 
-    // Debug views (`TechniqueInfo::debug_views`): 1 = wind speed, 2 = bend, blue to red.
-    if (globals.frame.z == 1u) {
-        albedo = heat(speed / max(globals.wind_info.x, 0.1));
-    } else if (globals.frame.z == 2u) {
-        albedo = heat(bend / max(params.shape.w, 1e-3));
-    }
+    // Debug views (`TechniqueInfo::debug_views`): 1 = wind speed, 2 = bend, blue to red. A
+    // `select`, not a branch on the uniform alone: lavapipe re-specialised this shader every
+    // frame for that (`grassbench::shaders::uniform_branches`).
+    albedo = select(albedo, heat(speed / max(globals.wind_info.x, 0.1)), globals.frame.z == 1u);
+    albedo = select(albedo, heat(bend / max(params.shape.w, 1e-3)), globals.frame.z == 2u);
 
     out.position = globals.view_proj * vec4(world, 1.0);
     out.world = world;
