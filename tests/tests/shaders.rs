@@ -55,21 +55,34 @@ fn every_shader_validates() {
     }
 }
 
+/// Every finding of `find` in every shader, named `file: finding`.
+fn findings(find: impl Fn(&naga::Module) -> Vec<String>) -> Vec<String> {
+    all_shaders()
+        .iter()
+        .flat_map(|f| {
+            let file = f
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            find(&module_of(f))
+                .into_iter()
+                .map(move |finding| format!("{file}: {finding}"))
+        })
+        .collect()
+}
+
 /// No shader loops as many times as a uniform buffer says: lavapipe re-specialises such a
 /// shader every time its pipeline is bound, on the CPU and outside every timestamped pass
 /// (5-6 ms a frame for bakay's bend pass; `grassbench::shaders::uniform_bound_loops`), a cost
 /// no GPU pays and the cost model cannot see.
 #[test]
 fn no_loop_is_bounded_by_a_uniform() {
-    let offenders: Vec<String> = all_shaders()
-        .iter()
-        .flat_map(|f| {
-            let name = f.file_name().map(|n| n.to_string_lossy().into_owned());
-            shaders::uniform_bound_loops(&module_of(f))
-                .into_iter()
-                .map(move |function| format!("{}: `{function}`", name.clone().unwrap_or_default()))
-        })
-        .collect();
+    let offenders = findings(|module| {
+        shaders::uniform_bound_loops(module)
+            .into_iter()
+            .map(|function| format!("`{function}`"))
+            .collect()
+    });
     assert!(
         offenders.is_empty(),
         "loops bounded by a uniform-buffer value: {offenders:?}; make a count fixed at \
@@ -80,23 +93,17 @@ fn no_loop_is_bounded_by_a_uniform() {
 
 /// No vertex shader branches on uniform-buffer values alone: lavapipe can re-specialise such a
 /// shader every time its pipeline is bound, on the CPU inside the pass (one LLVM module a frame
-/// for the reference's vertex shader, two for boulanger's, when they had such branches;
-/// `grassbench::shaders::uniform_branches`), a cost no GPU pays and the cost model cannot see.
+/// for the reference's vertex shader while it had one; `grassbench::shaders::uniform_branches`),
+/// a cost no GPU pays and the cost model cannot see.
 #[test]
 fn no_vertex_shader_branches_on_a_uniform_alone() {
-    let offenders: Vec<String> = all_shaders()
-        .iter()
-        .flat_map(|f| {
-            let name = f.file_name().map(|n| n.to_string_lossy().into_owned());
-            shaders::uniform_branches(&module_of(f))
-                .into_iter()
-                .filter(|b| b.stage == naga::ShaderStage::Vertex)
-                .map(move |b| {
-                    let file = name.clone().unwrap_or_default();
-                    format!("{file}: `{}` in `{}`", b.function, b.entry)
-                })
-        })
-        .collect();
+    let offenders = findings(|module| {
+        shaders::uniform_branches(module)
+            .into_iter()
+            .filter(|b| b.stage == naga::ShaderStage::Vertex)
+            .map(|b| format!("`{}` in `{}`", b.function, b.entry))
+            .collect()
+    });
     assert!(
         offenders.is_empty(),
         "vertex shaders branching on uniform-buffer values alone: {offenders:?}; make a flag \
