@@ -13,12 +13,12 @@
 //! measured frames on the football field): the reference's vertex shader, with its debug-view
 //! branch on `globals.frame.z`, made one new vertex-shader module every frame, and none once
 //! that branch became a `select`; with Mesa's shader cache off its pitch then took the same
-//! time as with it on (it took 1.5x before). Boulanger's blade and ground-shadow vertex shaders
-//! made two a frame, and still do with no branch on a uniform alone left in them (Eq. 5's
-//! `omega <= 0.0` and the same debug-view branch became `select`s): something else in the
-//! blade vertex shader has lavapipe compile it again (not the uniforms it reads itself, its
-//! blade count or its ambient-occlusion sampler: each replaced in turn, the count stayed), and
-//! finding it needs a Mesa with symbols. Zhang, bakay, perbet and jahrmann made none.
+//! time as with it on (it took 1.5x before). Boulanger's horizontal-slice vertex shaders (the
+//! slices and their ground shadows) made two a frame, for Appendix A's degenerate-triangle test
+//! on the sun's direction (`right_triangle_area`, reached through `btf_weights` with a local
+//! written twice in straight-line code); once a `select`, none, and its pitch took the same
+//! time with the cache off as on (4-5x before: the "slow pitch" of `results/run_to_run/`).
+//! Zhang, bakay, perbet and jahrmann made none.
 //!
 //! Whether the driver keeps re-specialising a given shader depends on its own heuristics (the
 //! shader's size, how much the inlined values remove, which branches its optimiser turns into
@@ -33,9 +33,10 @@
 //!
 //! A condition is "on a uniform alone" the way the driver's own analysis reads it after
 //! inlining every function: its value is computed, through arithmetic, comparisons, selects,
-//! `let`s, locals stored once at the top of the function and the arguments of the calls that
-//! lead to it, from uniform-buffer loads at fixed places and constants only. A value carried
-//! round a loop or merged from two branches is not (the driver sees a phi there).
+//! `let`s, locals written only at the top level of a function (straight-line code, however
+//! often) and the arguments of the calls that lead to it, from uniform-buffer loads at fixed
+//! places and constants only. A value carried round a loop or merged from two branches is not
+//! (the driver sees a phi there).
 
 use std::collections::{HashMap, HashSet};
 
@@ -153,22 +154,26 @@ fn expression_purity(
     function: &naga::Function,
     arguments: &[Purity],
 ) -> Vec<Purity> {
-    // A local's value is the one value stored into it, where there is exactly one (its
-    // initialiser or a store at the top of the function): its purity is that value's. The
-    // arena may list a local's pointer before the value stored, so the purities are computed
-    // again with what the locals hold until nothing changes (a chain of locals is no longer
-    // than their number).
-    let single = single_top_level_stores(function);
-    let mut locals: HashMap<naga::Handle<naga::LocalVariable>, Purity> = HashMap::new();
+    // A local written only at the top level of the body holds one of the values written to
+    // it wherever it is read: its purity is theirs, joined. The arena may list a local's
+    // pointer before the values stored, so the purities are computed again with what the
+    // locals hold until nothing changes (a chain of locals is no longer than their number).
+    let written = top_level_stores(function);
+    // Start from the least (constant) and raise: a write reading the local itself reads one of
+    // the other values written to it.
+    let mut locals: HashMap<naga::Handle<naga::LocalVariable>, Purity> = written
+        .iter()
+        .map(|(local, _)| (*local, Purity::Constant))
+        .collect();
     let mut purity = pass(module, function, arguments, &locals);
-    for _ in 0..=single.len() {
-        let known: HashMap<_, _> = single
+    for _ in 0..=2 * written.len() {
+        let of = |e: &naga::Handle<naga::Expression>| {
+            purity.get(e.index()).copied().unwrap_or(Purity::Varying)
+        };
+        let known: HashMap<_, _> = written
             .iter()
-            .map(|(local, value)| {
-                let p = purity
-                    .get(value.index())
-                    .copied()
-                    .unwrap_or(Purity::Varying);
+            .map(|(local, values)| {
+                let p = values.iter().map(of).fold(Purity::Constant, Purity::join);
                 (*local, p)
             })
             .collect();
@@ -245,45 +250,42 @@ fn pass(
     purity
 }
 
-/// The locals of `function` given exactly one value, by their initialiser or by a single
-/// store at the top level of the body (not inside a branch or a loop), with that value.
-fn single_top_level_stores(
+/// The locals of `function` written only at the top level of its body (by their initialiser
+/// and stores not inside a branch or a loop), with every value written to them: straight-line
+/// writes the driver sees as plain values, where a write inside a branch or a loop would meet
+/// the others in a phi.
+fn top_level_stores(
     function: &naga::Function,
 ) -> Vec<(
     naga::Handle<naga::LocalVariable>,
-    naga::Handle<naga::Expression>,
+    Vec<naga::Handle<naga::Expression>>,
 )> {
-    let mut stores: HashMap<naga::Handle<naga::LocalVariable>, usize> = HashMap::new();
+    let mut all: HashMap<naga::Handle<naga::LocalVariable>, usize> = HashMap::new();
     super::walk::for_each_statement(&function.body, &mut |s| {
         if let naga::Statement::Store { pointer, .. } = s
             && let Some(local) = super::loops::root_local(function, *pointer)
         {
-            *stores.entry(local).or_default() += 1;
+            *all.entry(local).or_default() += 1;
         }
     });
-    let mut single = Vec::new();
-    for (handle, local) in function.local_variables.iter() {
-        let count = stores.get(&handle).copied().unwrap_or(0);
-        match (local.init, count) {
-            (Some(init), 0) => single.push((handle, init)),
-            (None, 1) => {
-                let top = function.body.iter().find_map(|s| match s {
-                    naga::Statement::Store { pointer, value }
-                        if matches!(function.expressions[*pointer],
-                            naga::Expression::LocalVariable(l) if l == handle) =>
-                    {
-                        Some(*value)
-                    }
-                    _ => None,
-                });
-                if let Some(value) = top {
-                    single.push((handle, value));
-                }
-            }
-            _ => {}
+    let mut top: HashMap<naga::Handle<naga::LocalVariable>, Vec<naga::Handle<naga::Expression>>> =
+        HashMap::new();
+    for statement in function.body.iter() {
+        if let naga::Statement::Store { pointer, value } = statement
+            && let Some(local) = super::loops::root_local(function, *pointer)
+        {
+            top.entry(local).or_default().push(*value);
         }
     }
-    single
+    let mut written = Vec::new();
+    for (handle, local) in function.local_variables.iter() {
+        let values = top.remove(&handle).unwrap_or_default();
+        if values.len() != all.get(&handle).copied().unwrap_or(0) {
+            continue;
+        }
+        written.push((handle, local.init.into_iter().chain(values).collect()));
+    }
+    written
 }
 
 #[cfg(test)]
@@ -320,6 +322,8 @@ mod tests {
             "if (p.n == 1u) { out[0] = 1u; } else if (p.n == 2u) { out[0] = 2u; }",
             "switch (p.n) { case 0u: { out[0] = 1u; } default: {} }",
             "if (id.x > 0u) { if (select(0u, 1u, p.f.x > 0.5) == 1u) { out[0] = 1u; } }",
+            // A local written twice in straight-line code holds uniform values throughout.
+            "var l = p.f.xyz; l = select(vec3(1.0), l / 2.0, p.f.w > 0.0); if (l.y < 1e-6 || l.x > 0.0) { out[0] = 1u; }",
         ];
         for body in cases {
             assert_eq!(branches_of(&compute(body)), ["main/main"], "{body}");

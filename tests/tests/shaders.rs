@@ -93,8 +93,8 @@ fn no_loop_is_bounded_by_a_uniform() {
 
 /// No vertex shader branches on uniform-buffer values alone: lavapipe can re-specialise such a
 /// shader every time its pipeline is bound, on the CPU inside the pass (one LLVM module a frame
-/// for the reference's vertex shader while it had one; `grassbench::shaders::uniform_branches`),
-/// a cost no GPU pays and the cost model cannot see.
+/// for the reference's vertex shader and two for boulanger's slices while they had one;
+/// `grassbench::shaders::uniform_branches`), a cost no GPU pays and the cost model cannot see.
 #[test]
 fn no_vertex_shader_branches_on_a_uniform_alone() {
     let offenders = findings(|module| {

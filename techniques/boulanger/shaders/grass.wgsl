@@ -158,16 +158,20 @@ struct Weights {
 }
 
 // Eq. 10-13: area of the spherical triangle L P Q, P and Q orthogonal axes, lp = l.P, lq = l.Q.
+// A degenerate triangle (L on P or Q) has none. Chosen by `select`, not by an early return: the
+// horizontal slices' vertex shaders call this with the sun's direction, a uniform, and a branch
+// on it alone had lavapipe rebuild both of them every frame (`grassbench::shaders::uniform_branches`).
 fn right_triangle_area(lp: f32, lq: f32) -> f32 {
     let sin_p = sqrt(max(1.0 - lp * lp, 0.0));
     let sin_q = sqrt(max(1.0 - lq * lq, 0.0));
-    if (sin_p < 1e-6 || sin_q < 1e-6) {
-        return 0.0;
-    }
-    let at_p = acos(clamp(lq / sin_p, -1.0, 1.0));
-    let at_q = acos(clamp(lp / sin_q, -1.0, 1.0));
-    let at_l = acos(clamp(-lp * lq / (sin_p * sin_q), -1.0, 1.0));
-    return max(at_p + at_q + at_l - PI, 0.0);
+    let degenerate = (sin_p < 1e-6) | (sin_q < 1e-6);
+    // Finite on the unused side.
+    let sp = select(sin_p, 1.0, degenerate);
+    let sq = select(sin_q, 1.0, degenerate);
+    let at_p = acos(clamp(lq / sp, -1.0, 1.0));
+    let at_q = acos(clamp(lp / sq, -1.0, 1.0));
+    let at_l = acos(clamp(-lp * lq / (sp * sq), -1.0, 1.0));
+    return select(max(at_p + at_q + at_l - PI, 0.0), 0.0, degenerate);
 }
 
 // Eq. 8-9: the weights of the sampled directions for the light direction `light` (in the
