@@ -200,8 +200,6 @@ fn pass(
         let p = |e: &naga::Handle<naga::Expression>| {
             purity.get(e.index()).copied().unwrap_or(Purity::Varying)
         };
-        let all =
-            |items: &mut dyn Iterator<Item = Purity>| items.fold(Purity::Constant, Purity::join);
         let value = match expression {
             E::Literal(_) | E::Constant(_) | E::Override(_) | E::ZeroValue(_) => Purity::Constant,
             E::GlobalVariable(g) => {
@@ -216,34 +214,14 @@ fn pass(
                 .copied()
                 .unwrap_or(Purity::Varying),
             E::LocalVariable(l) => locals.get(l).copied().unwrap_or(Purity::Varying),
-            E::Load { pointer } => p(pointer),
             // An index that is not a constant is not a fixed place in the buffer.
             E::Access { base, index } => match p(index) {
                 Purity::Constant => p(base),
                 _ => Purity::Varying,
             },
-            E::AccessIndex { base, .. } => p(base),
-            E::Splat { value, .. } => p(value),
-            E::Swizzle { vector, .. } => p(vector),
-            E::Compose { components, .. } => all(&mut components.iter().map(p)),
-            E::Unary { expr, .. } | E::As { expr, .. } => p(expr),
-            E::Binary { left, right, .. } => p(left).join(p(right)),
-            E::Select {
-                condition,
-                accept,
-                reject,
-            } => p(condition).join(p(accept)).join(p(reject)),
-            E::Relational { argument, .. } => p(argument),
-            E::Math {
-                arg,
-                arg1,
-                arg2,
-                arg3,
-                ..
-            } => all(&mut std::iter::once(arg)
-                .chain([arg1, arg2, arg3].into_iter().flatten())
-                .map(p)),
-            _ => Purity::Varying,
+            other => super::walk::value_operands(other).map_or(Purity::Varying, |operands| {
+                operands.iter().map(p).fold(Purity::Constant, Purity::join)
+            }),
         };
         purity[handle.index()] = value;
     }

@@ -155,28 +155,9 @@ fn expression_taint(
                 module.global_variables[*g].space == naga::AddressSpace::Uniform
             }
             E::LocalVariable(l) => locals.contains(l),
-            E::Load { pointer } => t(pointer),
-            E::Access { base, index } => t(base) || t(index),
-            E::AccessIndex { base, .. } => t(base),
-            E::Splat { value, .. } => t(value),
-            E::Swizzle { vector, .. } => t(vector),
-            E::Compose { components, .. } => components.iter().any(t),
-            E::Unary { expr, .. } | E::As { expr, .. } => t(expr),
-            E::Binary { left, right, .. } => t(left) || t(right),
-            E::Select {
-                condition,
-                accept,
-                reject,
-            } => t(condition) || t(accept) || t(reject),
-            E::Relational { argument, .. } => t(argument),
-            E::Math {
-                arg,
-                arg1,
-                arg2,
-                arg3,
-                ..
-            } => t(arg) || [arg1, arg2, arg3].into_iter().flatten().any(t),
-            _ => false,
+            other => {
+                super::walk::value_operands(other).is_some_and(|operands| operands.iter().any(t))
+            }
         };
         taint[handle.index()] = value;
     }

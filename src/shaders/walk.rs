@@ -45,6 +45,43 @@ pub(super) fn for_each_weighted(
     }
 }
 
+/// The operands of an expression whose value is computed from its operands alone (loads,
+/// accesses, swizzles, constructors, arithmetic, comparisons, selects, conversions, math
+/// functions); `None` for every other kind (globals, locals, arguments, constants, texture
+/// reads, call results, ...), whose value each analysis decides for itself. What the shader
+/// analyses ([`super::loops`], [`super::branches`]) follow values through.
+pub(super) fn value_operands(
+    expression: &naga::Expression,
+) -> Option<Vec<naga::Handle<naga::Expression>>> {
+    use naga::Expression as E;
+    Some(match expression {
+        E::Load { pointer } => vec![*pointer],
+        E::Access { base, index } => vec![*base, *index],
+        E::AccessIndex { base, .. } => vec![*base],
+        E::Splat { value, .. } => vec![*value],
+        E::Swizzle { vector, .. } => vec![*vector],
+        E::Compose { components, .. } => components.clone(),
+        E::Unary { expr, .. } | E::As { expr, .. } => vec![*expr],
+        E::Binary { left, right, .. } => vec![*left, *right],
+        E::Select {
+            condition,
+            accept,
+            reject,
+        } => vec![*condition, *accept, *reject],
+        E::Relational { argument, .. } => vec![*argument],
+        E::Math {
+            arg,
+            arg1,
+            arg2,
+            arg3,
+            ..
+        } => std::iter::once(*arg)
+            .chain([arg1, arg2, arg3].into_iter().flatten().copied())
+            .collect(),
+        _ => return None,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
