@@ -15,10 +15,8 @@
 //! round can only read slower, so the lower median is the adapter's. The raw blade cost is a
 //! lower bound: real blades cover more pixels and are shaded.
 
-mod probe;
 mod workloads;
 
-pub use probe::{HostProbe, PROBE_SUBMISSIONS};
 use workloads::Workloads;
 
 use crate::target::Size;

@@ -1,6 +1,6 @@
-//! The calibration's micro-workloads as GPU objects: built once, recorded and timed as often as
-//! a caller needs (the calibration times each a dozen times; the host probe times the triangle
-//! workload around every run).
+//! The calibration's micro-workloads as GPU objects: built once, then recorded and timed as
+//! often as the calibration needs (each a dozen times), apart from the timing loop that reads
+//! them.
 
 use std::time::Instant;
 

@@ -375,8 +375,8 @@ impl<'g> World<'g> {
 }
 
 /// How many frames to run and which to keep as images.
-#[derive(Clone)]
-pub struct RunOptions<'p> {
+#[derive(Clone, Debug)]
+pub struct RunOptions {
     /// Frames run before measuring (first-frame shader compilation, caches).
     pub warmup: u64,
     /// Frames measured.
@@ -385,22 +385,6 @@ pub struct RunOptions<'p> {
     pub capture: Vec<u64>,
     /// Run id written into every record.
     pub run_id: String,
-    /// Times known work before the first measured frame and after the last, ms a sample
-    /// (the host probe, [`crate::calibration::HostProbe::sample`]); their median goes into
-    /// [`RunSummary::host_probe_ms`]. `None` leaves that column empty.
-    pub probe: Option<&'p dyn Fn() -> Result<Vec<f64>>>,
-}
-
-impl std::fmt::Debug for RunOptions<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("RunOptions")
-            .field("warmup", &self.warmup)
-            .field("frames", &self.frames)
-            .field("capture", &self.capture)
-            .field("run_id", &self.run_id)
-            .field("probe", &self.probe.map(|_| "host probe"))
-            .finish()
-    }
 }
 
 /// A measured run.
@@ -418,7 +402,7 @@ pub struct RunResult {
 pub fn run(
     harness: &mut Harness<'_>,
     technique: &mut dyn GrassTechnique,
-    options: &RunOptions<'_>,
+    options: &RunOptions,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<RunResult> {
     let mut results = run_interleaved(harness, &mut [technique], options, progress)?;
@@ -438,7 +422,7 @@ pub fn run(
 pub fn run_interleaved(
     harness: &mut Harness<'_>,
     techniques: &mut [&mut dyn GrassTechnique],
-    options: &RunOptions<'_>,
+    options: &RunOptions,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Vec<Result<RunResult>>> {
     if options.frames == 0 {
@@ -453,12 +437,8 @@ pub fn run_interleaved(
     let mut errors: Vec<Option<Error>> = (0..n).map(|_| None).collect();
     let mut done = 0;
     let mut host_start = None;
-    let mut probed = Vec::new();
     for frame in 0..total {
         if frame == options.warmup {
-            if let Some(probe) = options.probe {
-                probed.extend(probe()?);
-            }
             host_start = HostSample::now();
         }
         for (k, technique) in techniques.iter_mut().enumerate() {
@@ -484,10 +464,6 @@ pub fn run_interleaved(
     let host = host_start
         .zip(HostSample::now())
         .and_then(|(a, b)| a.load_until(&b));
-    if let Some(probe) = options.probe {
-        probed.extend(probe()?);
-    }
-    let probe_ms = Percentiles::of(probed).map(|p| p.median);
     Ok(techniques
         .iter()
         .zip(frames.into_iter().zip(images))
@@ -498,7 +474,6 @@ pub fn run_interleaved(
                 let mut summary = RunSummary::from_frames(&frames, &technique.param_table());
                 summary.host_other_cores = host.map(|h| h.other_cores);
                 summary.host_steal = host.map(|h| h.steal);
-                summary.host_probe_ms = probe_ms;
                 Ok(RunResult {
                     summary,
                     frames,

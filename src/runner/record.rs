@@ -575,12 +575,6 @@ pub struct RunSummary {
     /// Share of the CPUs' time the hypervisor gave to other machines meanwhile, 0..1.
     #[serde(default)]
     pub host_steal: Option<f64>,
-    /// The host probe's time, ms: the median of a fixed draw timed before the run's first
-    /// measured frame and after its last ([`crate::calibration::HostProbe`]; empty where the
-    /// run was not probed and in older files). The same work in every run of every size: a run
-    /// whose probe reads above its folder's median was measured on a slower host.
-    #[serde(default)]
-    pub host_probe_ms: Option<f64>,
 }
 
 /// The status of a finished run, and of a row written before runs had a status.
@@ -715,7 +709,6 @@ impl RunSummary {
                 .map(|(w, n)| w.median * 1e6 / n as f64),
             host_other_cores: None,
             host_steal: None,
-            host_probe_ms: None,
         }
     }
 

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use grassbench::calibration::{Calibration, HostProbe, calibrate as measure};
+use grassbench::calibration::{Calibration, calibrate as measure};
 use grassbench::cost::{COUNTED_TERMS, MeasuredSample, Options, UnitCosts, calibrate_units_with};
 use grassbench::runner::{Provenance, write_atomic};
 use grassbench::target::Size;
@@ -164,14 +164,4 @@ pub(crate) fn summary(costs: &UnitCosts, samples: &[MeasuredSample]) -> String {
     }
     text.push_str(" (the fit uses the counted work).\n");
     text
-}
-
-/// The host probe, built on `gpu` unless the adapter is not measured (`--no-calibration`).
-pub(crate) fn probe_for(
-    gpu: &grassbench::GpuContext,
-    skip: bool,
-) -> anyhow::Result<Option<HostProbe<'_>>> {
-    (!skip)
-        .then(|| HostProbe::new(gpu).context("building the host probe"))
-        .transpose()
 }

@@ -192,17 +192,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(f, text.as_bytes())
     })?;
 
-    // The host probe, timed around every run (`host_probe_ms`), measured with the calibration.
-    let probe = super::calibrate::probe_for(&gpu, args.no_calibration)?;
-    let sample = probe.as_ref().map(|p| move || p.sample());
     let options = RunOptions {
         warmup: args.warmup,
         frames: args.frames,
         capture: capture.clone(),
         run_id: String::new(),
-        probe: sample
-            .as_ref()
-            .map(|f| f as &dyn Fn() -> grassbench::Result<Vec<f64>>),
     };
     let mut failures = Vec::new();
     let mut all_runs: Vec<RunSummary> = Vec::new();

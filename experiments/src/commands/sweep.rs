@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use grassbench::calibration::{Calibration, HostProbe};
+use grassbench::calibration::Calibration;
 use grassbench::cost::{UnitCosts, apply_model};
 use grassbench::metrics::{downsample, flip};
 use grassbench::runner::{self, Harness, Provenance, RunOptions, RunSummary};
@@ -170,8 +170,6 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
         todo.len(),
         out.display()
     );
-    // The host probe, timed around every run (`host_probe_ms`), measured with the calibration.
-    let mut probe = super::calibrate::probe_for(&gpu, args.no_calibration)?;
     let bar = super::progress::bar(todo.len() as u64, "runs", &spec.name);
     // Reference run and last image per group, for ratios and FLIP.
     let mut reference: HashMap<String, Reference> = HashMap::new();
@@ -189,7 +187,6 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
             &mut reference,
             store.dir(),
             &unit_costs,
-            probe.as_ref(),
         ) {
             Ok((row, frames, params)) => store.append(&row, &frames, &params)?,
             Err(e) => {
@@ -207,13 +204,11 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
                 // A device that faulted (or holds an error nobody caught) is not trusted with
                 // the next run: it gets a fresh one.
                 if is_device_fault(&e) || gpu.check("after a failed run").is_err() {
-                    drop(probe);
                     drop(gpu);
                     gpu = args
                         .gpu
                         .context_for(&needs)
                         .context("recreating the device after a failed run")?;
-                    probe = super::calibrate::probe_for(&gpu, args.no_calibration)?;
                     bar.println("  the following runs use a fresh device");
                 }
             }
@@ -324,22 +319,17 @@ fn execute(
     reference: &mut HashMap<String, Reference>,
     dir: &std::path::Path,
     unit_costs: &[UnitCosts],
-    probe: Option<&HostProbe<'_>>,
 ) -> anyhow::Result<Executed> {
     let entry = registry::find_in(techniques, &run.technique)?;
     let size = run.size.unwrap_or(scene.resolution());
     let mut harness = Harness::new(gpu, scene.clone(), size, run.msaa)?;
     let mut technique = harness.create(entry, &run.params)?;
     let last = spec.warmup + spec.frames - 1;
-    let sample = probe.map(|p| move || p.sample());
     let options = RunOptions {
         warmup: spec.warmup,
         frames: spec.frames,
         capture: vec![last],
         run_id: run.id.clone(),
-        probe: sample
-            .as_ref()
-            .map(|f| f as &dyn Fn() -> grassbench::Result<Vec<f64>>),
     };
     let result = runner::run(&mut harness, technique.as_mut(), &options, &mut |_, _| {})?;
     let mut row = result.summary;

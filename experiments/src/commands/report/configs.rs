@@ -52,8 +52,6 @@ pub(super) struct Config {
     pub(super) flip_quarter: Vec<f64>,
     /// Cores other processes kept busy during each finished repetition (where recorded).
     pub(super) host_other_cores: Vec<f64>,
-    /// The host probe's time around each finished repetition, ms (where recorded).
-    pub(super) host_probe: Vec<f64>,
     /// Blades drawn as geometry (the last finished repetition's).
     pub(super) blades_drawn: Option<f64>,
     /// Blades impostors stand for (the last finished repetition's).
@@ -109,27 +107,12 @@ impl Config {
         let most = self.host_other_cores.iter().copied().fold(0.0, f64::max);
         (most > BUSY_HOST_CORES).then_some(most)
     }
-
-    /// The slowest host probe of its repetitions over `folder_median` (the median probe of
-    /// every run in the folder), when above [`SLOW_HOST_PROBE`]: its times were taken while the
-    /// host ran the same known work that much slower than it usually did in this folder.
-    pub(super) fn slow_host(&self, folder_median: f64) -> Option<f64> {
-        let most = self.host_probe.iter().copied().fold(0.0, f64::max) / folder_median;
-        (folder_median > 0.0 && most > SLOW_HOST_PROBE).then_some(most)
-    }
 }
 
 /// Cores other processes may take during a run before the report says its times are not the
 /// configuration's alone: a quarter of a core (a quiet host measured 0.00-0.05 here; a
 /// compile beside a run takes 1-2).
 pub(super) const BUSY_HOST_CORES: f64 = 0.25;
-
-/// How far above the folder's median a run's host probe may read before the report says the
-/// run was measured on a slower host. One submission of the probe spread 21-35 ms over 45 in a
-/// quiet process on lavapipe (a quarter either side of its median,
-/// [`grassbench::calibration::HostProbe`]); a run's probe is the median of six, so a quarter
-/// above the folder's median is more than one run's own scatter.
-pub(super) const SLOW_HOST_PROBE: f64 = 1.25;
 
 impl Config {
     /// Pools one row of runs.csv into the configuration: its identity, and its figures where
@@ -160,7 +143,6 @@ impl Config {
         c.flip.extend(r.flip_vs_reference);
         c.flip_quarter.extend(r.flip_vs_reference_quarter);
         c.host_other_cores.extend(r.host_other_cores);
-        c.host_probe.extend(r.host_probe_ms);
         c.blades_drawn = r.blades_drawn.map(|b| b as f64);
         c.blades_represented = r.blades_represented.map(|b| b as f64);
         c.triangles = r.triangles.map(|t| t as f64);
@@ -425,20 +407,6 @@ mod tests {
             None
         );
         assert_eq!(config(&[60.0], &[1.0], &[]).repetitions_disagree(), None);
-    }
-
-    #[test]
-    fn a_slow_host_is_named_against_the_folders_median() {
-        let probed = |probes: &[f64]| Config {
-            host_probe: probes.to_vec(),
-            ..Config::default()
-        };
-        // The slowest repetition counts: 13 ms against a folder's 10 is 1.3x.
-        assert_eq!(probed(&[10.0, 13.0]).slow_host(10.0), Some(1.3));
-        assert_eq!(probed(&[10.0, 12.0]).slow_host(10.0), None);
-        // Nothing probed, or a folder without a median: nothing said.
-        assert_eq!(probed(&[]).slow_host(10.0), None);
-        assert_eq!(probed(&[12.0]).slow_host(0.0), None);
     }
 
     #[test]

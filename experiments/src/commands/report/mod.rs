@@ -14,7 +14,7 @@ use grassbench::runner::write_atomic;
 
 use super::fmt_opt as fmt;
 use super::sweep::SweepMeta;
-use configs::{BUSY_HOST_CORES, Config, SLOW_HOST_PROBE, label, load, median};
+use configs::{BUSY_HOST_CORES, Config, label, load, median};
 use grassbench::runner::bootstrap::Interval;
 use grassbench::sweep::REFERENCE;
 use plots::{
@@ -318,7 +318,6 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
-    slow_host_section(&mut md, &configs);
     parameters::section(&mut md, &configs);
     let _ = writeln!(md, "\n## CPU and GPU stages (ms)\n");
     let _ = writeln!(
@@ -425,49 +424,4 @@ fn plots_link(plots: &std::path::Path) -> String {
     plots
         .file_name()
         .map_or("plots".into(), |n| n.to_string_lossy().into_owned())
-}
-
-/// The configurations measured while the host probe read more than [`SLOW_HOST_PROBE`] times
-/// the folder's median, and how the probe spread over the folder; nothing where no run was
-/// probed.
-fn slow_host_section(md: &mut String, configs: &BTreeMap<String, Config>) {
-    let probes: Vec<f64> = configs
-        .values()
-        .flat_map(|c| c.host_probe.iter().copied())
-        .collect();
-    let Some(p) = grassbench::runner::Percentiles::of(probes.iter().copied()) else {
-        return;
-    };
-    let (lo, hi) = probes
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    let _ = writeln!(
-        md,
-        "\nHost probe (the same fixed draw timed around every run, `host_probe_ms` in runs.csv): median {:.2} ms over {} runs, {lo:.2}-{hi:.2} ms ({:.2}-{:.2}x the median).",
-        p.median,
-        probes.len(),
-        lo / p.median,
-        hi / p.median
-    );
-    let slow: Vec<(&Config, f64)> = configs
-        .values()
-        .filter_map(|c| Some((c, c.slow_host(p.median)?)))
-        .collect();
-    if !slow.is_empty() {
-        let _ = writeln!(
-            md,
-            "\n**Warning: a slower host.** In these configurations the host probe read more than {SLOW_HOST_PROBE}x its median over the folder: the host ran known work that much slower while they were measured (nothing the run drew), so their times, and their ratios to runs measured at another moment, carry it:\n"
-        );
-        for (c, x) in &slow {
-            let _ = writeln!(
-                md,
-                "- {} on {} {}: probe up to {x:.2}x the median",
-                label(c),
-                c.scene,
-                c.size
-            );
-        }
-    }
 }
