@@ -55,7 +55,7 @@ const RUNS: usize = 5;
 
 /// Runs the three workloads at `size`.
 pub fn calibrate(gpu: &GpuContext, size: Size) -> Result<Calibration> {
-    let workloads = Workloads::new(gpu, size, STRIPS, COPY_BYTES)?;
+    let workloads = Workloads::new(gpu, size)?;
     let time = |label: &str, record: &dyn Fn(&mut wgpu::CommandEncoder)| -> Result<f64> {
         workloads.time(label, record)?; // the warm-up
         let mut lowest = f64::NAN;
@@ -70,7 +70,7 @@ pub fn calibrate(gpu: &GpuContext, size: Size) -> Result<Calibration> {
         Ok(lowest)
     };
     let tri_s = time("calibration: triangles", &|e| workloads.triangles(e))?;
-    let fill_s = time("calibration: fill", &|e| workloads.fill(e, LAYERS))?;
+    let fill_s = time("calibration: fill", &|e| workloads.fill(e))?;
     let copy_s = time("calibration: bandwidth", &|e| workloads.copy(e))?;
     let triangles_per_s = REFERENCE_BLADE_TRIANGLES * f64::from(STRIPS) / tri_s;
     Ok(Calibration {

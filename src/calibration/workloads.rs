@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use wgpu::util::DeviceExt as _;
 
+use super::{COPY_BYTES, LAYERS, STRIPS};
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT, Size};
 use crate::{GpuContext, RenderTarget, Result, shaders};
 
@@ -23,21 +24,12 @@ pub(super) struct Workloads<'g> {
     empty_group: wgpu::BindGroup,
     /// Group 1: the grid uniform and the copy's two buffers.
     group: wgpu::BindGroup,
-    /// Strips drawn by [`Self::triangles`].
-    strips: u32,
-    /// Workgroups of 256 invocations copying 16 bytes each.
-    copy_groups: u32,
 }
 
 impl<'g> Workloads<'g> {
-    /// Builds the workloads for a target of `size`: `strips` strips laid out in the target's
-    /// aspect ratio, and two buffers of `copy_bytes` for the copy.
-    pub(super) fn new(
-        gpu: &'g GpuContext,
-        size: Size,
-        strips: u32,
-        copy_bytes: u64,
-    ) -> Result<Self> {
+    /// Builds the workloads for a target of `size`: [`STRIPS`] strips laid out in the target's
+    /// aspect ratio, and two buffers of [`COPY_BYTES`] for the copy.
+    pub(super) fn new(gpu: &'g GpuContext, size: Size) -> Result<Self> {
         let target = RenderTarget::new(gpu, size, false)?;
         let device = &gpu.device;
         gpu.scoped("building calibration workloads", || {
@@ -85,7 +77,7 @@ impl<'g> Workloads<'g> {
                 immediate_size: 0,
             });
             // Strips per row so the grid has the target's aspect ratio.
-            let cols = (f64::from(strips) * f64::from(size.width) / f64::from(size.height))
+            let cols = (f64::from(STRIPS) * f64::from(size.width) / f64::from(size.height))
                 .sqrt()
                 .ceil() as f32;
             let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -94,14 +86,14 @@ impl<'g> Workloads<'g> {
                     1.0 / size.width as f32,
                     1.0 / size.height as f32,
                     cols,
-                    (f64::from(strips) / f64::from(cols)).ceil() as f32,
+                    (f64::from(STRIPS) / f64::from(cols)).ceil() as f32,
                 ]),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let storage = |label| {
                 device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some(label),
-                    size: copy_bytes,
+                    size: COPY_BYTES,
                     usage: wgpu::BufferUsages::STORAGE,
                     mapped_at_creation: false,
                 })
@@ -200,8 +192,6 @@ impl<'g> Workloads<'g> {
                 copy,
                 empty_group,
                 group,
-                strips,
-                copy_groups: (copy_bytes / 16).div_ceil(256) as u32,
             }
         })
     }
@@ -226,12 +216,12 @@ impl<'g> Workloads<'g> {
 
     /// Records the triangle workload: every strip, 11 vertices each.
     pub(super) fn triangles(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.pass(encoder, &self.tiny, 11, self.strips);
+        self.pass(encoder, &self.tiny, 11, STRIPS);
     }
 
-    /// Records the fill workload: `layers` full-screen blended triangles.
-    pub(super) fn fill(&self, encoder: &mut wgpu::CommandEncoder, layers: u32) {
-        self.pass(encoder, &self.fill, 3, layers);
+    /// Records the fill workload: [`LAYERS`] full-screen blended triangles.
+    pub(super) fn fill(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.pass(encoder, &self.fill, 3, LAYERS);
     }
 
     /// Records the bandwidth workload: one buffer copied into the other.
@@ -243,11 +233,9 @@ impl<'g> Workloads<'g> {
         pass.set_pipeline(&self.copy);
         pass.set_bind_group(0, &self.empty_group, &[]);
         pass.set_bind_group(1, &self.group, &[]);
-        pass.dispatch_workgroups(
-            self.copy_groups.min(65535),
-            self.copy_groups.div_ceil(65535),
-            1,
-        );
+        // 256 invocations a workgroup, 16 bytes an invocation.
+        let groups = (COPY_BYTES / 16).div_ceil(256) as u32;
+        pass.dispatch_workgroups(groups.min(65535), groups.div_ceil(65535), 1);
     }
 
     fn pass(
