@@ -201,8 +201,8 @@ fn under_webgl2_limits_errors_name_the_limit_and_the_resource() -> anyhow::Resul
     Ok(())
 }
 
-/// jahrmann binds each per-blade array (16 bytes a blade) whole as one storage buffer: it
-/// declares a wider binding than the default 128 MiB only where the scene's blades need one.
+/// jahrmann binds each half of its draw list (32 bytes a blade) whole as one storage buffer:
+/// it declares a wider binding than the default 128 MiB only where the scene's blades need one.
 #[test]
 fn jahrmann_declares_a_wider_storage_binding_only_past_the_default() -> anyhow::Result<()> {
     let entry = grassbench_cli::registry::find("jahrmann")?;
@@ -212,14 +212,14 @@ fn jahrmann_declares_a_wider_storage_binding_only_past_the_default() -> anyhow::
     let needs = entry.required_limits(&meadow, &none)?;
     assert_eq!(needs.max_storage_buffer_binding_size, default);
     let candidates = meadow.blades.candidate_count(&meadow.terrain);
-    // One and a half times the blades the default binding holds (their 192 MiB array stays
+    // One and a half times the blades the default binding holds (their 192 MiB halves stay
     // within the default max_buffer_size of 256 MiB).
-    let scale = (1.5 * (default / 16) as f64 / candidates as f64) as f32;
+    let scale = (1.5 * (default / 32) as f64 / candidates as f64) as f32;
     let dense = scene("meadow", scale)?;
     let blades = dense.blades.candidate_count(&dense.terrain);
-    assert!(blades * 16 > default, "{blades} blades");
+    assert!(blades * 32 > default, "{blades} blades");
     let needs = entry.required_limits(&dense, &none)?;
-    assert_eq!(needs.max_storage_buffer_binding_size, blades * 16);
+    assert_eq!(needs.max_storage_buffer_binding_size, blades * 32);
     // The other limits stay the defaults.
     assert_eq!(
         wgpu::Limits {

@@ -1500,9 +1500,9 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
         .storage(1, 2, &arrays.rest)
         .storage(1, 3, &arrays.looks)
         .storage(1, 4, &arrays.rest)
-        .bind(1, 5, Resource::Output(vec![0; n * 16]))
+        .bind(1, 5, Resource::Output(vec![0; n * 32]))
         .bind(1, 6, Resource::Output(vec![0; n * 16]))
-        .bind(1, 7, Resource::Output(vec![0; n * 4]))
+        .bind(1, 7, Resource::Output(vec![0; n * 32]))
         .bind(
             1,
             8,
@@ -1520,10 +1520,31 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
         &bindings,
         [gx, gy, 1],
     )?;
-    let v1s: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&out[0]);
+    // The draw list, slot for slot: curves (guide, tip) and roots (root, looks).
+    let curves: Vec<[[f32; 4]; 2]> = bytemuck::pod_collect_to_vec(&out[0]);
     let v2s: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&out[1]);
-    let visible: Vec<u32> = bytemuck::pod_collect_to_vec(&out[2]);
+    let roots: Vec<[[f32; 4]; 2]> = bytemuck::pod_collect_to_vec(&out[2]);
     let counts: GpuCounts = bytemuck::pod_read_unaligned(&out[3][..GpuCounts::SIZE as usize]);
+    let near_count = counts.near[1] as usize;
+    let far_count = counts.far[1] as usize;
+    // Each listed slot carries its blade's root and looks exactly (the blade is its looks'
+    // scene index, here its index in the arrays) and the curve the pass wrote for it.
+    let listed = (0..near_count).chain(n - far_count..n);
+    let mut visible = vec![u32::MAX; n];
+    let mut v1s = vec![None; n];
+    for slot in listed {
+        let [root, looks] = roots[slot];
+        let i = looks[3] as usize;
+        assert!(i < n, "slot {slot}: blade {i} of {n}");
+        assert_eq!(
+            (root, looks),
+            (arrays.v0[i], arrays.looks[i]),
+            "slot {slot}: blade {i}'s root and looks"
+        );
+        assert_eq!(curves[slot][1], v2s[i], "slot {slot}: blade {i}'s tip");
+        visible[slot] = i as u32;
+        v1s[i] = Some(curves[slot][0]);
+    }
     let s = CullSettings::of(&params);
     let mut state = Worst::default();
     let mut expected = [0u32; 6];
@@ -1544,7 +1565,10 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
             terrain.height_at(p)
         });
         pushed += usize::from(c.v2.distance(calm.v2) > 0.05 * b.height);
-        let (g1, g2) = (Vec3::from_slice(&v1s[i]), Vec3::from_slice(&v2s[i]));
+        // The guide reaches memory only for the blades the pass lists (the draw's); the tip
+        // for every blade.
+        let g2 = Vec3::from_slice(&v2s[i]);
+        let g1 = v1s[i].map_or(c.v1, |v| Vec3::from_slice(&v));
         state.record(
             g1.distance(c.v1).max(g2.distance(c.v2)) / b.v0.abs().max_element().max(1.0),
             || format!("blade {i}: GPU {g1} {g2} CPU {} {}", c.v1, c.v2),
@@ -1575,8 +1599,6 @@ fn jahrmann_cs_simulate_is_the_step_cull_and_compaction() -> anyhow::Result<()> 
         pushed >= 10,
         "the sphere pushed only {pushed} blades: collision not exercised"
     );
-    let near_count = counts.near[1] as usize;
-    let far_count = counts.far[1] as usize;
     assert_eq!((counts.near[0], counts.far[0]), (15, 7), "vertex counts");
     assert_eq!(counts.considered(), n as u64);
     let gpu_near: std::collections::BTreeSet<u32> = visible[..near_count].iter().copied().collect();

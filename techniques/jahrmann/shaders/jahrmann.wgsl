@@ -136,11 +136,23 @@ fn far_start() -> f32 {
 @group(1) @binding(2) var<storage, read> blade_rest: array<vec4<f32>>;
 // The tips after the previous step.
 @group(1) @binding(4) var<storage, read> v2_in: array<vec4<f32>>;
-// The curve after this step.
-@group(1) @binding(5) var<storage, read_write> v1_out: array<vec4<f32>>;
+// The tips after this step.
 @group(1) @binding(6) var<storage, read_write> v2_out: array<vec4<f32>>;
-// Visible blades: near level from the front, far level from the back.
-@group(1) @binding(7) var<storage, read_write> visible: array<u32>;
+
+// Half of a visible blade's entry in the draw list: the blade's root (xyz, orientation) and
+// looks, or this step's guide and tip. The compute pass appends the whole state the draw
+// needs, so the draw reads its list slot after slot rather than blades by index out of arrays
+// sized for the terrain; two bindings of 32 bytes a slot, so each stays within the storage
+// binding limit up to as many blades as the per-blade arrays of 16.
+struct DrawHalf {
+    a: vec4<f32>,
+    b: vec4<f32>,
+}
+
+// Visible blades: near level from the front, far level from the back, as roots and looks (7)
+// and curves (5), slot for slot.
+@group(1) @binding(7) var<storage, read_write> visible_roots: array<DrawHalf>;
+@group(1) @binding(5) var<storage, read_write> visible_curves: array<DrawHalf>;
 
 struct DrawArgs {
     vertex_count: u32,
@@ -345,7 +357,7 @@ fn blade_of(w: u32, lid: u32) -> vec2<u32> {
     return vec2(i, u32(g >= r.x && i < r.z));
 }
 
-// Simulates every blade dispatched, then culls it and appends the survivors of each level to `visible`:
+// Simulates every blade dispatched, then culls it and appends the survivors of each level, with their state, to the draw lists:
 // slots are handed out per workgroup (one global atomic per level and workgroup), so the draw
 // lists are compact and their counts are the indirect draws' instance counts.
 @compute @workgroup_size(64)
@@ -360,14 +372,17 @@ fn cs_simulate(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id)
     let i = blade.x;
     var verdict = VERDICTS;
     var slot = 0u;
+    var root = vec4(0.0);
+    var looks = vec4(0.0);
+    var curve = DrawHalf(vec4(0.0), vec4(0.0));
     if (blade.y == 1u) {
-        let root = blade_v0[i];
+        root = blade_v0[i];
         let rest = blade_rest[i];
-        let looks = blade_looks[i];
+        looks = blade_looks[i];
         let v0 = root.xyz;
         let c = simulate(v0, root.w, rest.xyz, rest.w, looks.x, v2_in[i].xyz, wind_at(v0.xz), globals.object, globals.camera_forward.w);
-        v1_out[i] = vec4(c.v1, 0.0);
         v2_out[i] = vec4(c.v2, 0.0);
+        curve = DrawHalf(vec4(c.v1, 0.0), vec4(c.v2, 0.0));
         verdict = cull(u32(looks.w), v0, c.v1, c.v2, root.w);
         atomicAdd(&wg_verdicts[verdict], 1u);
         if (verdict == NEAR) {
@@ -396,19 +411,23 @@ fn cs_simulate(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id)
         }
     }
     let base = workgroupUniformLoad(&wg_base);
+    var at = n;
     if (verdict == NEAR) {
-        visible[base.x + slot] = i;
+        at = base.x + slot;
     } else if (verdict == FAR) {
-        visible[n - 1u - (base.y + slot)] = i;
+        at = n - 1u - (base.y + slot);
+    }
+    if (at < n) {
+        visible_roots[at] = DrawHalf(root, looks);
+        visible_curves[at] = curve;
     }
 }
 
 // ---- drawing --------------------------------------------------------------------------------
 
-// The state the compute pass wrote this frame, and its draw lists (read-only views).
-@group(1) @binding(11) var<storage, read> v1_draw: array<vec4<f32>>;
-@group(1) @binding(12) var<storage, read> v2_draw: array<vec4<f32>>;
-@group(1) @binding(13) var<storage, read> visible_draw: array<u32>;
+// The draw lists the compute pass wrote this frame (read-only views of bindings 7 and 5).
+@group(1) @binding(11) var<storage, read> draw_roots: array<DrawHalf>;
+@group(1) @binding(12) var<storage, read> draw_curves: array<DrawHalf>;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -499,18 +518,20 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3(2.0 * x - 0.5, 1.0 - abs(2.0 * x - 1.0), 1.5 - 2.0 * x), vec3(0.0), vec3(1.0)) * 0.6;
 }
 
-// Vertex `vertex` of the blade at `index` in the arrays drawn with `segments` segments (the far level when `far`).
+// Vertex `vertex` of the blade in slot `slot` of the draw lists, drawn with `segments` segments (the far level when `far`).
 // Vertices alternate left (even) and right (odd) up the blade; the last is the tip. In the
 // hand-over band the near level's vertices move onto the far level's strip (a geomorph), so
 // the switch at the band's end changes nothing on screen.
-fn blade_vertex(index: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
+fn blade_vertex(slot: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
     var out: VsOut;
-    let root = blade_v0[index];
-    let looks = blade_looks[index];
+    let blade = draw_roots[slot];
+    let curve = draw_curves[slot];
+    let root = blade.a;
+    let looks = blade.b;
     let id = u32(looks.w);
     let v0 = root.xyz;
-    let v1 = v1_draw[index].xyz;
-    let v2 = v2_draw[index].xyz;
+    let v1 = curve.a.xyz;
+    let v2 = curve.b.xyz;
     let side_axis = width_dir(root.w);
     let level = min(vertex / 2u, segments);
     let t = f32(level) / f32(segments);
@@ -544,12 +565,12 @@ fn blade_vertex(index: u32, vertex: u32, segments: u32, far: bool) -> VsOut {
 
 @vertex
 fn vs_near(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> VsOut {
-    return blade_vertex(visible_draw[instance], vertex, NEAR_SEGMENTS, false);
+    return blade_vertex(instance, vertex, NEAR_SEGMENTS, false);
 }
 
 @vertex
 fn vs_far(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> VsOut {
-    return blade_vertex(visible_draw[params.counts.x - 1u - instance], vertex, FAR_SEGMENTS, true);
+    return blade_vertex(params.counts.x - 1u - instance, vertex, FAR_SEGMENTS, true);
 }
 
 @fragment

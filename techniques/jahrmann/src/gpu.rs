@@ -1,7 +1,7 @@
-//! What the technique keeps on the GPU: the blade arrays, two copies of the simulated curve
-//! (read one frame, written the next), the draw list, the counters that are also the two
-//! indirect draws, the uniform; the compute pipeline and the two draw pipelines; and the
-//! frame's commands.
+//! What the technique keeps on the GPU: the blade arrays, two copies of the simulated tips
+//! (read one frame, written the next), the draw list (each visible blade's root, looks and
+//! curve, appended by the compute pass), the counters that are also the two indirect draws, the
+//! uniform; the compute pipeline and the two draw pipelines; and the frame's commands.
 
 use grassbench::camera::Camera;
 use grassbench::glam::Vec3;
@@ -22,10 +22,13 @@ pub const WORKGROUP: u32 = 64;
 
 /// Bytes of one blade's entry in each per-blade array (`vec4<f32>`).
 const ENTRY: u64 = 16;
-/// Per-blade arrays of `ENTRY` bytes: v0, rest, looks, and two copies each of v1 and v2.
-const ARRAYS: u64 = 7;
-/// Bytes of one entry of the draw list.
-const VISIBLE_ENTRY: u64 = 4;
+/// Per-blade arrays of `ENTRY` bytes: v0, rest, looks, and two copies of v2.
+const ARRAYS: u64 = 5;
+/// Bytes of one slot of each of the draw list's two halves (the shader's `DrawHalf`: root and
+/// looks, or guide and tip).
+const DRAW_HALF: u64 = 32;
+/// The draw list's halves: one slot a blade in each.
+const DRAW_HALVES: u64 = 2;
 
 /// Bit switches of `ParamsUniform::flags[0]` (the shader's `FLAG_*`).
 pub mod flags {
@@ -133,7 +136,7 @@ pub fn workgroups(blades: u32, max_per_dimension: u32) -> (u32, u32) {
 /// per-frame blocks (uniform, counters and their starting values, read-back ring; the
 /// table of ranges is [`ranges_bytes`]).
 pub fn bytes(blades: u64) -> u64 {
-    blades.max(1) * (ENTRY * ARRAYS + VISIBLE_ENTRY)
+    blades.max(1) * (ENTRY * ARRAYS + DRAW_HALF * DRAW_HALVES)
         + std::mem::size_of::<ParamsUniform>() as u64
         + RANGES_OFFSET
         + GpuCounts::SIZE
@@ -145,9 +148,10 @@ pub fn ranges_bytes(ranges: usize) -> u64 {
     ranges.max(1) as u64 * RANGE_ENTRY
 }
 
-/// The largest single buffer for `blades` blades, bytes.
+/// The largest single buffer for `blades` blades, bytes: a half of the draw list, bound
+/// whole.
 pub fn largest_buffer(blades: u64) -> u64 {
-    blades.max(1) * ENTRY
+    blades.max(1) * DRAW_HALF
 }
 
 /// Halvings of the compute pass's binary search over at most `max_ranges` ranges (the
@@ -180,10 +184,10 @@ pub struct BladeGpu {
     simulate: shaders::ComputePipeline,
     near: grassbench::shaders::RenderPipeline,
     far: grassbench::shaders::RenderPipeline,
-    /// Per parity `p`: reads tips `p`, writes curve `1 − p`.
+    /// Per parity `p`: reads tips `p`, writes tips `1 − p` and the draw list.
     simulate_groups: [wgpu::BindGroup; 2],
-    /// Per parity `p`: draws curve `1 − p`.
-    draw_groups: [wgpu::BindGroup; 2],
+    /// Reads the draw list.
+    draw_group: wgpu::BindGroup,
 }
 
 impl BladeGpu {
@@ -193,12 +197,11 @@ impl BladeGpu {
         let device = &ctx.gpu.device;
         let limits = device.limits();
         let blades = u32::try_from(arrays.len()).map_err(|_| too_many(arrays.len(), u64::MAX))?;
-        let array_bytes = u64::from(blades.max(1)) * ENTRY;
         let binding_limit = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
-        if array_bytes > binding_limit {
-            return Err(too_many(arrays.len(), binding_limit / ENTRY));
+        if largest_buffer(u64::from(blades)) > binding_limit {
+            return Err(too_many(arrays.len(), binding_limit / DRAW_HALF));
         }
         let groups = workgroups(blades, limits.max_compute_workgroups_per_dimension);
 
@@ -237,13 +240,14 @@ impl BladeGpu {
                 mapped_at_creation: false,
             })
         };
-        let v1 = [
-            empty("jahrmann v1 0", array_bytes, storage),
-            empty("jahrmann v1 1", array_bytes, storage),
-        ];
-        let visible = empty(
-            "jahrmann visible",
-            u64::from(blades.max(1)) * VISIBLE_ENTRY,
+        let visible_roots = empty(
+            "jahrmann visible roots",
+            largest_buffer(u64::from(blades)),
+            storage,
+        );
+        let visible_curves = empty(
+            "jahrmann visible curves",
+            largest_buffer(u64::from(blades)),
             storage,
         );
         let counters = empty(
@@ -299,11 +303,8 @@ impl BladeGpu {
             label: Some("jahrmann draw (group 1)"),
             entries: &[
                 entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, uniform_ty),
-                entry(1, vertex, read),
-                entry(3, vertex, read),
                 entry(11, vertex, read),
                 entry(12, vertex, read),
-                entry(13, vertex, read),
             ],
         });
         fn bind(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
@@ -322,27 +323,22 @@ impl BladeGpu {
                     bind(2, &rest),
                     bind(3, &looks),
                     bind(4, &v2[p]),
-                    bind(5, &v1[1 - p]),
+                    bind(5, &visible_curves),
                     bind(6, &v2[1 - p]),
-                    bind(7, &visible),
+                    bind(7, &visible_roots),
                     bind(8, &counters),
                 ],
             })
         };
-        let draw_group = |p: usize| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("jahrmann draw (group 1)"),
-                layout: &draw_layout,
-                entries: &[
-                    bind(0, &uniform),
-                    bind(1, &v0),
-                    bind(3, &looks),
-                    bind(11, &v1[1 - p]),
-                    bind(12, &v2[1 - p]),
-                    bind(13, &visible),
-                ],
-            })
-        };
+        let draw_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("jahrmann draw (group 1)"),
+            layout: &draw_layout,
+            entries: &[
+                bind(0, &uniform),
+                bind(11, &visible_roots),
+                bind(12, &visible_curves),
+            ],
+        });
 
         let module = shaders::module(device, "jahrmann", SHADER);
         let simulate = shaders::compute_pipeline(
@@ -379,7 +375,7 @@ impl BladeGpu {
             far: pipeline("jahrmann far", "vs_far"),
             simulate,
             simulate_groups: [simulate_group(0), simulate_group(1)],
-            draw_groups: [draw_group(0), draw_group(1)],
+            draw_group,
             max_ranges: max_ranges.max(1),
             uniform,
             rest,
@@ -465,14 +461,14 @@ impl BladeGpu {
         );
     }
 
-    /// Records the draws of the curves the compute pass of copy `parity` wrote: the near
-    /// level, and the far one with `far`, both with the GPU's counts as instance counts.
-    pub fn encode_draw(&self, encoder: &mut FrameEncoder<'_>, parity: usize, far: bool) {
+    /// Records the draws of the list the compute pass wrote: the near level, and the far one
+    /// with `far`, both with the GPU's counts as instance counts.
+    pub fn encode_draw(&self, encoder: &mut FrameEncoder<'_>, far: bool) {
         if self.blades == 0 {
             return;
         }
         let mut pass = encoder.render_pass("blades");
-        pass.set_bind_group(1, &self.draw_groups[parity & 1], &[]);
+        pass.set_bind_group(1, &self.draw_group, &[]);
         pass.set_pipeline(&self.near);
         pass.draw_indirect(&self.counters, GpuCounts::NEAR_ARGS);
         if far {
@@ -486,7 +482,7 @@ fn too_many(blades: usize, most: u64) -> Error {
     Error::Technique {
         technique: "jahrmann".into(),
         message: format!(
-            "{blades} blades need per-blade arrays larger than this adapter's storage bindings allow (at most {most} blades); lower grass.density"
+            "{blades} blades need a draw list larger than this adapter's storage bindings allow (at most {most} blades); lower grass.density"
         ),
     }
 }

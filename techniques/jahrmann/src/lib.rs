@@ -22,8 +22,9 @@
 //!   quadratic Bezier curve: root `v0`, guide `v1`, tip `v2` where forces act, with orientation,
 //!   height, width and stiffness (the paper's four `vec4`s: `v0`+orientation, `v1`+height,
 //!   `v2`+width, `up`+stiffness; here stored as arrays of `vec4` — structure of arrays, so no
-//!   binding passes the adapter's storage-binding limit — with the simulated `v1`, `v2` kept
-//!   twice). The arrays hold the blades grouped by ground tile ([`tiles`]): a permutation of the
+//!   binding passes the adapter's storage-binding limit — with the simulated tip `v2` kept
+//!   twice, read one frame and written the next; `v1` follows from `v2` each step and is kept
+//!   only in the draw list). The arrays hold the blades grouped by ground tile ([`tiles`]): a permutation of the
 //!   scene's, each blade keeping its scene index, which is what the hashes below take, so the same
 //!   blades are bucketed, kept and widened in any order.
 //! - **Dispatch by tile** ([`tiles`]; Ghost of Tsushima's work per tile in view, (A); not in the
@@ -57,8 +58,14 @@
 //!   n` metres; beyond `thin_distance` = 40 m, not in the paper, a second hash also keeps only a
 //!   share `(D / d)²` of them, widened by `(d / D)²`, so the blades per pixel and the far field's
 //!   cost stay about constant however far the ground runs). Survivors are appended to a draw list
-//!   with atomics, one global atomic per workgroup and level; the two counts are the instance
-//!   counts of the two `draw_indirect` calls: no read-back.
+//!   with atomics, one global atomic per workgroup and level, each with the state the draw needs
+//!   (root, looks, this step's `v1` and `v2`: 64 bytes, in two halves of 32 so each binding
+//!   stays within the limit up to 4.2 M blades at the default 128 MiB), so the draw reads its
+//!   list slot after slot; the two counts are the instance counts of the two `draw_indirect`
+//!   calls: no read-back. (Appending the blade's index instead, as this crate did until
+//!   2026-12-06, had the draw read each survivor by index out of arrays sized for the whole
+//!   terrain: on the 400 m meadow its render pass took 3.3 ms more than at 80 m for the same
+//!   fragments, about 1.0 ms more with the state appended: `results/scaling/jahrmann_growth/`.)
 //! - **Levels** (Ghost of Tsushima, (A)): no tessellation stage in wgpu, so the draws pull their
 //!   vertices: each visible blade is an instance of a triangle strip whose vertex count is its
 //!   level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the curve at
@@ -108,24 +115,26 @@
 //! `represented_untested`, `in_band`, `count_lag_frames`.
 //!
 //! ## Cost model
-//! Compute: per dispatched blade 64 bytes read, 32 written, two bilinear lookups of the terrain and
+//! Compute: per dispatched blade 64 bytes read, 16 written, 64 more for a survivor, two bilinear lookups of the terrain and
 //! one of the wind; one global atomic per workgroup; on the CPU a pass over the tiles (`O(T)`, 2
 //! 500 at 400 m) and a table of at most `2T` ranges uploaded. Blades dispatched: those within reach
 //! in the tiles in view, which the thinning bounds — on the meadow at 20 blades/m²
 //! (`experiments/scaling.toml`), 23 k at 80 m and 28 k at 400 m, against 97 k and 2.26 M for the
 //! every-blade pass; triangles 75 k and 79 k (84 k and 239 k without the thinning). Geometry:
 //! `13·B_near + 5·B_far` triangles, `15·B_near + 7·B_far` vertices, each vertex evaluating the
-//! curve once (three times inside the band). Memory: `116·B` bytes (seven `vec4` arrays and a
-//! 4-byte draw list entry per blade) plus a few hundred bytes. On a software rasteriser the draw
+//! curve once (three times inside the band). Memory: `144·B` bytes (five `vec4` arrays and a
+//! 64-byte draw list slot per blade) plus a few hundred bytes. On a software rasteriser the draw
 //! dominates wherever many blades survive; the compute pass is timed by wall clock only (lavapipe's
 //! compute timestamps are wrong: `shared/PLATFORM.md`).
 //!
-//! What a CPU rasteriser charges for the pulling: each vertex reads 17 words from storage buffers
-//! (the blade's draw-list entry, root, looks and the two curve points) and each compute invocation
-//! moves 59-62 (four `vec4`s of the blade read, two written, the ranges' search of 8-11 halvings,
-//! the counters with their loop over the six verdicts), and lavapipe moves them a lane at a time:
-//! 0.75-0.90 ns a word in the vertex stage and 0.35-0.43 in compute (`grassbench calibrate` at
-//! 320x180 and 640x360, 2026-12-05), 5.4-6.3 and 2.3-2.7 ms of the meadow's 320x180 frame, which
+//! What a CPU rasteriser charges for the pulling: each vertex reads 16 words from storage buffers
+//! (its slot of the draw list: root, looks and the two curve points) and each compute invocation
+//! moves 69-72 as counted (four `vec4`s of the blade read, the tip and the 16 words of a
+//! draw-list slot written — counted for every invocation, though only survivors write the slot —
+//! the ranges' search of 8-11 halvings, the counters with their loop over the six verdicts), and
+//! lavapipe moves them a lane at a time: 0.75-0.90 ns a word in the vertex stage and 0.35-0.43 in
+//! compute (`grassbench calibrate` at 320x180 and 640x360, 2026-12-05), 5.0-6.0 and 2.5-3.1 ms of
+//! the meadow's 320x180 frame (6.7 M and 7.3 M words), which
 //! the cost model prices since its storage terms (`results/cost_model/README.md`). What the model
 //! still misses is the price of the pass's other operations. lavapipe runs the whole shader for
 //! every batch of 8 invocations whichever way their lanes branch: with every lane masked off
@@ -362,8 +371,8 @@ impl Technique for Jahrmann {
         })
     }
 
-    /// Each per-blade array is bound whole as one storage buffer: beyond the default 128 MiB
-    /// binding (8.4 M blades) the device must allow a larger one.
+    /// Each half of the draw list (32 bytes a blade) is bound whole as one storage buffer:
+    /// beyond the default 128 MiB binding (4.2 M blades) the device must allow a larger one.
     fn required_limits(scene: &Scene, _params: &Params) -> grassbench::wgpu::Limits {
         let defaults = grassbench::wgpu::Limits::default();
         let array = gpu::largest_buffer(scene.blades.candidate_count(&scene.terrain));
@@ -463,7 +472,7 @@ impl GrassTechnique for Jahrmann {
 
     fn encode(&self, encoder: &mut FrameEncoder<'_>) {
         self.encode_compute(encoder);
-        self.gpu.encode_draw(encoder, self.parity, self.params.lod);
+        self.gpu.encode_draw(encoder, self.params.lod);
     }
 
     fn stats(&self) -> TechniqueStats {
