@@ -373,9 +373,15 @@ impl Technique for Jahrmann {
 
     /// Each half of the draw list (32 bytes a blade) is bound whole as one storage buffer:
     /// beyond the default 128 MiB binding (4.2 M blades) the device must allow a larger one.
+    /// The scene's candidates bound its blades from above without generating them; where that
+    /// bound passes the default, the blades are counted, so a scene whose blades fit (the
+    /// meadow keeps about three candidates in four) is not refused for the bound.
     fn required_limits(scene: &Scene, _params: &Params) -> grassbench::wgpu::Limits {
         let defaults = grassbench::wgpu::Limits::default();
-        let array = gpu::largest_buffer(scene.blades.candidate_count(&scene.terrain));
+        let mut array = gpu::largest_buffer(scene.blades.candidate_count(&scene.terrain));
+        if array > defaults.max_storage_buffer_binding_size {
+            array = gpu::largest_buffer(scene.blades.all_blades(&scene.terrain).len() as u64);
+        }
         grassbench::wgpu::Limits {
             max_storage_buffer_binding_size: defaults.max_storage_buffer_binding_size.max(array),
             ..defaults
