@@ -154,6 +154,33 @@ fn tiny_sweep_runs_and_reports() {
             && report.contains("share of raw rate"),
         "{report}"
     );
+    // The unit costs fitted again after the runs, for the same targets, and every run with
+    // counted work priced with both (issue 20 §3: how far the host moved while they ran).
+    let table: toml::Table = toml::from_str(&meta).unwrap();
+    let sizes = |key: &str| -> Vec<(String, bool)> {
+        let costs: Vec<grassbench::cost::UnitCosts> = table[key].clone().try_into().unwrap();
+        costs.into_iter().map(|c| (c.size, c.msaa)).collect()
+    };
+    assert_eq!(sizes("unit_costs_after"), sizes("unit_costs"));
+    if counted {
+        let section = report
+            .split("## The calibration after the runs")
+            .nth(1)
+            .unwrap_or_else(|| panic!("no calibration after the runs in {report}"));
+        let priced = section
+            .lines()
+            .filter(|l| l.starts_with("| meadow") || l.starts_with("| football"))
+            .count();
+        assert_eq!(
+            priced,
+            runs.len() / 2,
+            "one row per configuration: {section}"
+        );
+        assert!(
+            section.contains(&format!("of {priced} runs within ±25 %")),
+            "{section}"
+        );
+    }
     // Projected onto the adapter this sweep calibrated (its own meta.toml), every run's
     // predicted time is its model_ms: the same work, the same costs (where work was counted).
     if counted {

@@ -118,7 +118,7 @@ pub(crate) fn adapter_at(
 
 /// The adapter's unit costs for each distinct target of `targets` (size, MSAA; in their first
 /// order), each fit's summary printed as it is measured.
-fn unit_costs_at(
+pub(crate) fn unit_costs_at(
     gpu: &grassbench::GpuContext,
     targets: &[(Size, bool)],
 ) -> anyhow::Result<Vec<UnitCosts>> {

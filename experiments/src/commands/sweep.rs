@@ -77,6 +77,12 @@ pub struct SweepMeta {
     /// files written before them.
     #[serde(default)]
     pub unit_costs: Vec<UnitCosts>,
+    /// The same unit costs fitted again once the runs were done (the process's last runs, for
+    /// a sweep resumed): how far the host moved while the sweep measured. The report prices
+    /// every run with both (`report/drift.rs`). Empty without calibration, when this process
+    /// ran nothing, and in files written before them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unit_costs_after: Vec<UnitCosts>,
 }
 
 /// Runs the sweep.
@@ -124,8 +130,8 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
     }
     let needs = super::needs(planned)?;
     let mut gpu = args.gpu.context_for(&needs)?;
-    let (calibration, unit_costs) = if args.no_calibration {
-        (None, Vec::new())
+    let (calibration, unit_costs, targets) = if args.no_calibration {
+        (None, Vec::new(), Vec::new())
     } else {
         let size_of = |run: &PlannedRun| -> anyhow::Result<grassbench::target::Size> {
             let scene = scene_cache.get(&scene_key(run)).context("scene cache")?;
@@ -139,9 +145,9 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
             .map(|run| Ok((size_of(run)?, run.msaa)))
             .collect::<anyhow::Result<Vec<_>>>()?;
         let (c, all) = super::calibrate::adapter_at(&gpu, raw, &targets)?;
-        (Some(c), all)
+        (Some(c), all, targets)
     };
-    let meta = SweepMeta {
+    let mut meta = SweepMeta {
         sweep: spec.name.clone(),
         sweep_key,
         shard: if shard_n == 1 {
@@ -153,6 +159,7 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
         provenance: Provenance::collect(&gpu.summary),
         calibration: calibration.clone(),
         unit_costs: unit_costs.clone(),
+        unit_costs_after: Vec::new(),
     };
     store.write_meta(&toml::to_string_pretty(&meta)?)?;
 
@@ -216,6 +223,20 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
         bar.inc(1);
     }
     bar.finish_and_clear();
+    // The unit costs again, now the runs are done: how far the host moved while they ran. The
+    // runs are recorded already; a calibration that fails here costs only this comparison.
+    if !targets.is_empty() && attempted > failed {
+        match super::calibrate::unit_costs_at(&gpu, &targets) {
+            Ok(after) => {
+                meta.unit_costs_after = after;
+                store.write_meta(&toml::to_string_pretty(&meta)?)?;
+            }
+            Err(e) => eprintln!(
+                "sweep `{}`: the calibration after the runs failed ({e:#}); the runs are recorded, without it",
+                spec.name
+            ),
+        }
+    }
     eprintln!(
         "sweep `{}`: {} runs recorded in {} ({failed} failed this time)",
         spec.name,

@@ -1,6 +1,7 @@
 //! `grassbench report DIR`: `REPORT.md` with tables and SVG plots for a sweep's results.
 
 mod configs;
+mod drift;
 mod html;
 mod parameters;
 mod plots;
@@ -347,6 +348,9 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     where_the_time_goes(&mut md, &ok, &plots)?;
     if let Some(c) = meta.as_ref().and_then(|m| m.calibration.as_ref()) {
         raw_rate::raw_rate(&mut md, &ok, c);
+    }
+    if let Some(m) = &meta {
+        drift::drift(&mut md, &configs, &m.unit_costs, &m.unit_costs_after);
     }
     if let Some(other) = &other {
         projection::projection(&mut md, &configs, other)?;
