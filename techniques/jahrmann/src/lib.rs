@@ -65,7 +65,8 @@
 //!   calls: no read-back. (Appending the blade's index instead, as this crate did until
 //!   2026-12-06, had the draw read each survivor by index out of arrays sized for the whole
 //!   terrain: on the 400 m meadow its render pass took 3.3 ms more than at 80 m for the same
-//!   fragments, about 1.0 ms more with the state appended: `results/scaling/jahrmann_growth/`.)
+//!   fragments; with the state appended no more (-0.4 ms, medians of eight repetitions), the
+//!   compute pass about 1 ms more for writing it: `results/scaling/jahrmann_growth/landed/`.)
 //! - **Levels** (Ghost of Tsushima, (A)): no tessellation stage in wgpu, so the draws pull their
 //!   vertices: each visible blade is an instance of a triangle strip whose vertex count is its
 //!   level's, 15 near (7 segments), 7 far (3 segments), the vertex shader evaluating the curve at
