@@ -322,6 +322,14 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     let costs: Vec<grassbench::cost::UnitCosts> = table["unit_costs"].clone().try_into().unwrap();
     assert_eq!(costs.len(), 1);
     assert_eq!(costs[0].size, "96x64");
+    // Fitted again once the runs were done, at the same size, and the README sets the runs
+    // against both fits.
+    let after: Vec<grassbench::cost::UnitCosts> =
+        table["unit_costs_after"].clone().try_into().unwrap();
+    assert_eq!(
+        after.iter().map(|c| (&c.size, c.msaa)).collect::<Vec<_>>(),
+        [(&"96x64".to_owned(), false)]
+    );
     // With the calibration's coverage checks, priced, in meta.toml and the README.
     assert_eq!(
         costs[0].checks.len(),
@@ -343,6 +351,7 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
             && readme.contains("Measured on `")
             && !readme.contains(env!("CARGO_BIN_EXE_grassbench"))
             && readme.contains("Coverage checks of the calibration at 96x64")
+            && readme.contains("The unit costs were fitted again after the runs")
             && readme.contains("| hidden_alpha_tested |"),
         "{readme}"
     );

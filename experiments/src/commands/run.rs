@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use grassbench::calibration::Calibration;
-use grassbench::cost::{UnitCosts, apply_model};
+use grassbench::cost::{UnitCosts, apply_model, predict_run};
 use grassbench::metrics::grass_coverage;
 use grassbench::runner::{
     self, FrameRecord, Harness, LevelRow, Provenance, RunOptions, RunSummary, write_atomic,
@@ -155,6 +155,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     // The adapter's raw limits and its unit costs at every size rendered, so each run's time
     // can be set against the cost model's prediction from its measured work (issue 20 §3) and
     // the reference's blades against the raw blade rate (§6).
+    // Unit costs for every target drawn: each scene's size, with MSAA where asked.
+    let targets: Vec<(Size, bool)> = scenes
+        .iter()
+        .map(|scene| (size.unwrap_or(scene.resolution()), args.msaa))
+        .collect();
     let (calibration, unit_costs): (Option<Calibration>, Vec<UnitCosts>) = if args.no_calibration {
         (None, Vec::new())
     } else if let Some(earlier) = progress
@@ -165,32 +170,16 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         // The finished scenes' model figures were computed with these: keep them.
         earlier
     } else {
-        // Unit costs for every target drawn: each scene's size, with MSAA where asked.
-        let targets: Vec<(Size, bool)> = scenes
-            .iter()
-            .map(|scene| (size.unwrap_or(scene.resolution()), args.msaa))
-            .collect();
         let (c, costs) = super::calibrate::adapter_at(&gpu, None, &targets)?;
         (Some(c), costs)
     };
-    write_atomic(&args.out.join("meta.toml"), |f| {
-        let mut text = provenance.to_toml();
-        #[derive(serde::Serialize)]
-        struct Units<'a> {
-            calibration: Option<&'a Calibration>,
-            unit_costs: &'a [UnitCosts],
-        }
-        if !unit_costs.is_empty() {
-            let units = toml::to_string_pretty(&Units {
-                calibration: calibration.as_ref(),
-                unit_costs: &unit_costs,
-            })
-            .map_err(std::io::Error::other)?;
-            text.push('\n');
-            text.push_str(&units);
-        }
-        std::io::Write::write_all(f, text.as_bytes())
-    })?;
+    write_meta(
+        &args.out,
+        &provenance,
+        calibration.as_ref(),
+        &unit_costs,
+        &[],
+    )?;
 
     let options = RunOptions {
         warmup: args.warmup,
@@ -200,6 +189,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     };
     let mut failures = Vec::new();
     let mut all_runs: Vec<RunSummary> = Vec::new();
+    let mut measured = false;
     for scene in scenes {
         let name = scene.name().to_owned();
         let dir = args.out.join(&name);
@@ -217,6 +207,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
             continue;
         }
         let failed_before = failures.len();
+        measured = true;
         let size = size.unwrap_or(scene.resolution());
         let mut harness = Harness::new(&gpu, scene, size, args.msaa)
             .with_context(|| format!("setting up scene `{name}`"))?;
@@ -306,10 +297,32 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         write_csv(&args.out.join("runs.csv"), &all_runs)?;
         progress.scene_done(&name, failures[failed_before..].to_vec())?;
     }
+    // The unit costs again, now the runs are done: how far the host moved while they ran
+    // (as a sweep does). The runs are recorded already; a calibration that fails here costs
+    // only this comparison.
+    let mut after = Vec::new();
+    if measured && !unit_costs.is_empty() && all_runs.iter().any(|r| r.model_ms.is_some()) {
+        match super::calibrate::unit_costs_at(&gpu, &targets) {
+            Ok(costs) => {
+                write_meta(
+                    &args.out,
+                    &provenance,
+                    calibration.as_ref(),
+                    &unit_costs,
+                    &costs,
+                )?;
+                after = costs;
+            }
+            Err(e) => eprintln!(
+                "the calibration after the runs failed ({e:#}); the runs are recorded, without it"
+            ),
+        }
+    }
+    let after_models = models_after(&args.out, &all_runs, &after)?;
     write_atomic(&args.out.join("README.md"), |f| {
         std::io::Write::write_all(
             f,
-            report(&all_runs, &provenance, &capture, &unit_costs).as_bytes(),
+            report(&all_runs, &provenance, &capture, &unit_costs, &after_models).as_bytes(),
         )
     })?;
     super::write_html(&args.out).context("writing report.html")?;
@@ -322,6 +335,132 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// Writes `meta.toml`: the provenance, then the raw limits and the unit costs fitted before the
+/// runs and, once measured, after them (`unit_costs_after`, as a sweep's).
+fn write_meta(
+    out: &Path,
+    provenance: &Provenance,
+    calibration: Option<&Calibration>,
+    unit_costs: &[UnitCosts],
+    unit_costs_after: &[UnitCosts],
+) -> anyhow::Result<()> {
+    write_atomic(&out.join("meta.toml"), |f| {
+        let mut text = provenance.to_toml();
+        #[derive(serde::Serialize)]
+        struct Units<'a> {
+            calibration: Option<&'a Calibration>,
+            unit_costs: &'a [UnitCosts],
+            #[serde(skip_serializing_if = "<[UnitCosts]>::is_empty")]
+            unit_costs_after: &'a [UnitCosts],
+        }
+        if !unit_costs.is_empty() {
+            let units = toml::to_string_pretty(&Units {
+                calibration,
+                unit_costs,
+                unit_costs_after,
+            })
+            .map_err(std::io::Error::other)?;
+            text.push('\n');
+            text.push_str(&units);
+        }
+        std::io::Write::write_all(f, text.as_bytes())
+    })?;
+    Ok(())
+}
+
+/// Each run's counted work priced with `after` (the unit costs fitted after the runs) from its
+/// scene's `frames.csv`, in the order of `runs`; `None` where it has no counted work, no
+/// costs priced its target, or there are no costs after.
+fn models_after(
+    out: &Path,
+    runs: &[RunSummary],
+    after: &[UnitCosts],
+) -> anyhow::Result<Vec<Option<f64>>> {
+    if after.is_empty() {
+        return Ok(vec![None; runs.len()]);
+    }
+    let mut frames: std::collections::HashMap<String, Vec<FrameRecord>> = Default::default();
+    let mut models = Vec::with_capacity(runs.len());
+    for run in runs {
+        if !frames.contains_key(&run.scene) {
+            let path = out.join(&run.scene).join("frames.csv");
+            frames.insert(
+                run.scene.clone(),
+                grassbench::sweep::read_rows(&path)
+                    .with_context(|| format!("reading {}", path.display()))?,
+            );
+        }
+        let own: Vec<FrameRecord> = frames[&run.scene]
+            .iter()
+            .filter(|f| f.technique == run.technique)
+            .cloned()
+            .collect();
+        let size = format!("{}x{}", run.width, run.height);
+        models.push(
+            UnitCosts::for_target(after, &size, run.msaa)
+                .and_then(|c| predict_run(c, &own))
+                .map(|p| p.total_ms),
+        );
+    }
+    Ok(models)
+}
+
+/// The README's paragraph on the calibration after the runs: each run's measured time against
+/// the model with the costs before (`runs`' own `model_ms`) and with those after (`after`, in
+/// the order of `runs`); empty without costs after.
+fn drift_paragraph(runs: &[RunSummary], after: &[Option<f64>]) -> String {
+    let priced: Vec<(&RunSummary, f64, f64, f64)> = runs
+        .iter()
+        .zip(after)
+        .filter_map(|(r, a)| Some((r, r.gpu_wall_ms_median?, r.model_ms?, (*a)?)))
+        .filter(|(_, _, b, a)| *b > 0.0 && *a > 0.0)
+        .collect();
+    if priced.is_empty() {
+        return String::new();
+    }
+    let within = |measured: f64, model: f64| (measured / model - 1.0).abs() <= 0.25;
+    let n = priced.len();
+    let count = |f: &dyn Fn(f64, f64, f64) -> bool| {
+        priced.iter().filter(|(_, m, b, a)| f(*m, *b, *a)).count()
+    };
+    let moved: Vec<f64> = priced.iter().map(|(_, _, b, a)| a / b).collect();
+    let (low, high) = moved
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
+            (l.min(*r), h.max(*r))
+        });
+    let out_with_both: Vec<String> = priced
+        .iter()
+        .filter(|(_, m, b, a)| !within(*m, *b) && !within(*m, *a))
+        .map(|(r, m, b, a)| {
+            format!(
+                "{} on {} ({:.2}, {:.2})",
+                r.technique,
+                r.scene,
+                m / b,
+                m / a
+            )
+        })
+        .collect();
+    let mut s = format!(
+        "
+The unit costs were fitted again after the runs (`unit_costs_after` in `meta.toml`): on a shared host the two fits differ by how far its speed moved while the runs were measured. Priced with the fit after, these runs' work costs {low:.2}-{high:.2} times what the fit before says (median {:.2}); within ±25 % of the model: {} of {n} runs with the fit before, {} with the fit after, {} with one or the other.",
+        runner::Percentiles::of(moved.iter().copied()).map_or(f64::NAN, |p| p.median),
+        count(&|m, b, _| within(m, b)),
+        count(&|m, _, a| within(m, a)),
+        count(&|m, b, a| within(m, b) || within(m, a)),
+    );
+    if !out_with_both.is_empty() {
+        let _ = write!(
+            s,
+            " Out with both (measured / model before, after): {}.",
+            out_with_both.join("; ")
+        );
+    }
+    s.push('\n');
+    s
 }
 
 /// One scene's output folder as runs come in: images, frames, runs and parameters, written
@@ -441,6 +580,7 @@ fn report(
     p: &Provenance,
     capture: &[u64],
     unit_costs: &[UnitCosts],
+    after: &[Option<f64>],
 ) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# grassbench results\n");
@@ -500,6 +640,7 @@ fn report(
             fmt_opt(r.host_other_cores, 2)
         );
     }
+    s.push_str(&drift_paragraph(runs, after));
     for costs in unit_costs.iter().filter(|c| !c.checks.is_empty()) {
         let _ = writeln!(
             s,
@@ -534,4 +675,47 @@ fn report(
         let _ = writeln!(s);
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run measured at `measured` ms whose model before the runs said `before`.
+    fn run(technique: &str, measured: f64, before: f64) -> RunSummary {
+        let mut r = RunSummary::failed("r", technique, "meadow", "");
+        r.status = "ok".into();
+        r.gpu_wall_ms_median = Some(measured);
+        r.model_ms = Some(before);
+        r
+    }
+
+    #[test]
+    fn the_readme_sets_each_run_against_both_fits() {
+        let runs = [
+            run("both", 22.0, 20.0),
+            run("before_only", 16.0, 20.0),
+            run("after_only", 30.0, 20.0),
+            run("neither", 40.0, 20.0),
+            run("unpriced", 40.0, 20.0),
+        ];
+        // The fit after prices every run's work at 24 ms; the last run has no counted work.
+        let after = [Some(24.0), Some(24.0), Some(24.0), Some(24.0), None];
+        let text = drift_paragraph(&runs, &after);
+        assert!(text.contains("costs 1.20-1.20 times"), "{text}");
+        assert!(
+            text.contains(
+                "2 of 4 runs with the fit before, 2 with the fit after, 3 with one or the other"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains(
+                "Out with both (measured / model before, after): neither on meadow (2.00, 1.67)."
+            ),
+            "{text}"
+        );
+        // Nothing without a fit after.
+        assert!(drift_paragraph(&runs, &[None; 5]).is_empty());
+    }
 }
