@@ -26,6 +26,7 @@
 //! `gpu_wall_ms`.
 
 pub mod checks;
+pub mod drift;
 pub mod fit;
 mod lstsq;
 pub mod measure;

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use grassbench::calibration::Calibration;
+use grassbench::cost::drift::{self, Drift};
 use grassbench::cost::{UnitCosts, apply_model, predict_run};
 use grassbench::metrics::grass_coverage;
 use grassbench::runner::{
@@ -417,23 +418,12 @@ fn drift_paragraph(runs: &[RunSummary], after: &[Option<f64>]) -> String {
         .filter_map(|(r, a)| Some((r, r.gpu_wall_ms_median?, r.model_ms?, (*a)?)))
         .filter(|(_, _, b, a)| *b > 0.0 && *a > 0.0)
         .collect();
-    if priced.is_empty() {
+    let Some(d) = Drift::of(priced.iter().map(|&(_, m, b, a)| (m, b, a))) else {
         return String::new();
-    }
-    let within = |measured: f64, model: f64| (measured / model - 1.0).abs() <= 0.25;
-    let n = priced.len();
-    let count = |f: &dyn Fn(f64, f64, f64) -> bool| {
-        priced.iter().filter(|(_, m, b, a)| f(*m, *b, *a)).count()
     };
-    let moved: Vec<f64> = priced.iter().map(|(_, _, b, a)| a / b).collect();
-    let (low, high) = moved
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
-            (l.min(*r), h.max(*r))
-        });
     let out_with_both: Vec<String> = priced
         .iter()
-        .filter(|(_, m, b, a)| !within(*m, *b) && !within(*m, *a))
+        .filter(|&&(_, m, b, a)| !drift::within(m, b) && !drift::within(m, a))
         .map(|(r, m, b, a)| {
             format!(
                 "{} on {} ({:.2}, {:.2})",
@@ -445,12 +435,15 @@ fn drift_paragraph(runs: &[RunSummary], after: &[Option<f64>]) -> String {
         })
         .collect();
     let mut s = format!(
-        "
-The unit costs were fitted again after the runs (`unit_costs_after` in `meta.toml`): on a shared host the two fits differ by how far its speed moved while the runs were measured. Priced with the fit after, these runs' work costs {low:.2}-{high:.2} times what the fit before says (median {:.2}); within ±25 % of the model: {} of {n} runs with the fit before, {} with the fit after, {} with one or the other.",
-        runner::Percentiles::of(moved.iter().copied()).map_or(f64::NAN, |p| p.median),
-        count(&|m, b, _| within(m, b)),
-        count(&|m, _, a| within(m, a)),
-        count(&|m, b, a| within(m, b) || within(m, a)),
+        "\nThe unit costs were fitted again after the runs (`unit_costs_after` in `meta.toml`): on a shared host the two fits differ by how far its speed moved while the runs were measured. Priced with the fit after, these runs' work costs {:.2}-{:.2} times what the fit before says (median {:.2}); within ±{:.0} % of the model: {} of {} runs with the fit before, {} with the fit after, {} with one or the other.",
+        d.moved.0,
+        d.moved.2,
+        d.moved.1,
+        drift::TOLERANCE * 100.0,
+        d.within_before,
+        d.runs,
+        d.within_after,
+        d.within_either,
     );
     if !out_with_both.is_empty() {
         let _ = write!(

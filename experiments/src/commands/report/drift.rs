@@ -9,10 +9,10 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use grassbench::cost::drift::{self, Drift};
 use grassbench::cost::{Term, UnitCosts};
 
 use super::configs::{Config, label, median};
-use super::projection::TRANSFER_TOLERANCE;
 
 /// One run priced with the costs from before and from after its sweep's runs.
 struct Priced<'a> {
@@ -20,13 +20,6 @@ struct Priced<'a> {
     measured_ms: f64,
     before_ms: f64,
     after_ms: f64,
-}
-
-impl Priced<'_> {
-    /// Whether `measured / predicted` is within the model's tolerance.
-    fn within(&self, predicted_ms: f64) -> bool {
-        (self.measured_ms / predicted_ms - 1.0).abs() <= TRANSFER_TOLERANCE
-    }
 }
 
 /// Writes the section, where `after` holds costs for some target `before` has too.
@@ -90,35 +83,31 @@ pub(super) fn drift(
         })
         .filter(|p| p.before_ms > 0.0 && p.after_ms > 0.0)
         .collect();
-    if priced.is_empty() {
+    let Some(d) = Drift::of(
+        priced
+            .iter()
+            .map(|p| (p.measured_ms, p.before_ms, p.after_ms)),
+    ) else {
         let _ = writeln!(
             md,
             "\nNo run here has counted work on a target both fits priced, so no run is priced with both.\n"
         );
         return;
-    }
-    let n = priced.len();
-    let count = |f: &dyn Fn(&Priced<'_>) -> bool| priced.iter().filter(|p| f(p)).count();
-    let range = |f: &dyn Fn(&Priced<'_>) -> f64| {
-        priced
-            .iter()
-            .map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
-                (l.min(r), h.max(r))
-            })
     };
-    let moved: Vec<f64> = priced.iter().map(|p| p.after_ms / p.before_ms).collect();
-    let (moved_low, moved_high) = range(&|p| p.after_ms / p.before_ms);
-    let (before_low, before_high) = range(&|p| p.measured_ms / p.before_ms);
-    let (after_low, after_high) = range(&|p| p.measured_ms / p.after_ms);
-    let tolerance = TRANSFER_TOLERANCE * 100.0;
+    let (n, tolerance) = (d.runs, drift::TOLERANCE * 100.0);
     let _ = writeln!(
         md,
-        "\nThe costs after the runs price these runs' work at {moved_low:.2}-{moved_high:.2} times the costs before (median {:.2}). Measured / model: with the costs before, **{} of {n} runs within ±{tolerance:.0} %** ({before_low:.2}-{before_high:.2}); with the costs after, **{} of {n}** ({after_low:.2}-{after_high:.2}); within ±{tolerance:.0} % of one or the other, {} of {n}. A run out with both is further from its model than the host moved.\n",
-        median(&moved).unwrap_or(f64::NAN),
-        count(&|p| p.within(p.before_ms)),
-        count(&|p| p.within(p.after_ms)),
-        count(&|p| p.within(p.before_ms) || p.within(p.after_ms)),
+        "\nThe costs after the runs price these runs' work at {:.2}-{:.2} times the costs before (median {:.2}). Measured / model: with the costs before, **{} of {n} runs within ±{tolerance:.0} %** ({:.2}-{:.2}); with the costs after, **{} of {n}** ({:.2}-{:.2}); within ±{tolerance:.0} % of one or the other, {} of {n}. A run out with both is further from its model than the host moved.\n",
+        d.moved.0,
+        d.moved.2,
+        d.moved.1,
+        d.within_before,
+        d.before.0,
+        d.before.1,
+        d.within_after,
+        d.after.0,
+        d.after.1,
+        d.within_either,
     );
     let _ = writeln!(
         md,
