@@ -185,18 +185,34 @@ impl BladeField {
 
     /// Every blade that grows inside `[min, max]`, in cell order.
     pub fn blades_in(&self, min: Vec2, max: Vec2, terrain: &Terrain) -> Vec<Blade> {
+        self.grown_in(min, max, terrain).collect()
+    }
+
+    /// The blades that grow inside `[min, max]`, in cell order, one at a time.
+    fn grown_in<'a>(
+        &'a self,
+        min: Vec2,
+        max: Vec2,
+        terrain: &'a Terrain,
+    ) -> impl Iterator<Item = Blade> + 'a {
         let (is, js) = self.cells_in(min, max);
-        let mut out = Vec::new();
-        for j in js {
-            for i in is.clone() {
-                let b = self.candidate(i, j, terrain);
+        js.flat_map(move |j| is.clone().map(move |i| (i, j)))
+            .map(|(i, j)| self.candidate(i, j, terrain))
+            .filter(move |b| {
                 let xz = Vec2::new(b.root.x, b.root.z);
-                if xz.cmpge(min).all() && xz.cmplt(max).all() && self.grows(&b, terrain) {
-                    out.push(b);
-                }
-            }
-        }
-        out
+                xz.cmpge(min).all() && xz.cmplt(max).all() && self.grows(b, terrain)
+            })
+    }
+
+    /// How many blades grow on the terrain ([`Self::all_blades`]'s length), without holding
+    /// them: for limits and estimates that need the exact count.
+    pub fn count(&self, terrain: &Terrain) -> u64 {
+        self.grown_in(
+            terrain.min_corner(),
+            terrain.min_corner() + terrain.size(),
+            terrain,
+        )
+        .count() as u64
     }
 
     /// Candidates over the whole terrain: an upper bound of [`Self::all_blades`]'s length,
@@ -238,6 +254,7 @@ mod tests {
             3,
         );
         let blades = f.all_blades(&t);
+        assert_eq!(f.count(&t), blades.len() as u64);
         let expected = 50.0 * 200.0;
         assert!(
             (blades.len() as f32 - expected).abs() < expected * 0.03,

@@ -381,7 +381,7 @@ impl Technique for Jahrmann {
         let defaults = grassbench::wgpu::Limits::default();
         let mut array = gpu::largest_buffer(scene.blades.candidate_count(&scene.terrain));
         if array > defaults.max_storage_buffer_binding_size {
-            array = gpu::largest_buffer(scene.blades.all_blades(&scene.terrain).len() as u64);
+            array = gpu::largest_buffer(scene.blades.count(&scene.terrain));
         }
         grassbench::wgpu::Limits {
             max_storage_buffer_binding_size: defaults.max_storage_buffer_binding_size.max(array),
