@@ -41,6 +41,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    steady_allocator();
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::List => commands::list(),
@@ -60,5 +61,47 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Starts the process again with glibc's heaps kept between frames, where the C library reads
+/// its tunables only at start-up (`grassbench::runner::allocator`: lavapipe's per-frame
+/// allocations otherwise put some processes in a state up to 1.4 times as slow). Returns where
+/// nothing is to be done; where starting again fails, warns and goes on with the defaults,
+/// which `meta.toml` then records.
+fn steady_allocator() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        use grassbench::runner::allocator;
+        use std::os::unix::process::CommandExt as _;
+
+        let var = |name: &str| std::env::var(name).ok();
+        let Some(tunables) = allocator::tunables_to_set(
+            var("GLIBC_TUNABLES").as_deref(),
+            var(allocator::OPT_OUT_VARIABLE).as_deref(),
+        ) else {
+            return;
+        };
+        let mut args = std::env::args_os();
+        let program = args.next();
+        let exe = match std::env::current_exe() {
+            Ok(exe) => exe,
+            Err(e) => {
+                eprintln!(
+                    "warning: glibc malloc keeps its defaults (no path to this program: {e})"
+                );
+                return;
+            }
+        };
+        let mut command = std::process::Command::new(exe);
+        if let Some(program) = program {
+            command.arg0(program);
+        }
+        // `exec` returns only when it failed.
+        let e = command.args(args).env("GLIBC_TUNABLES", tunables).exec();
+        eprintln!(
+            "warning: glibc malloc keeps its defaults (starting again with GLIBC_TUNABLES failed: {e}; set {}=system to skip the attempt)",
+            allocator::OPT_OUT_VARIABLE
+        );
     }
 }

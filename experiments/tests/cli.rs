@@ -357,11 +357,76 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     );
     let params = std::fs::read_to_string(out.join("football_field/params.csv")).unwrap();
     assert!(params.contains("segments,3"), "{params}");
+    // The program started itself again with glibc's heaps kept, and says so.
+    let allocator = table["allocator"].as_str().unwrap_or_default();
+    assert_eq!(allocator, expected_allocator(None), "{meta}");
+    assert!(
+        readme.contains(&format!("; allocator: {allocator}.")),
+        "{readme}"
+    );
     // A second run into the same folder is refused without --force.
     fails_with(&args, &["not empty", "--force"]);
     let mut forced = args.to_vec();
     forced.push("--force");
     assert!(grassbench(&forced).0);
+}
+
+/// What a `grassbench` started from this test's environment (with `GRASSBENCH_ALLOCATOR` set to
+/// `opt_out` where given) must record as its allocator: glibc's heaps kept where this build's C
+/// library reads tunables and neither the environment's own malloc tunables nor an opt-out stop
+/// it, the defaults or the environment's setting otherwise.
+fn expected_allocator(opt_out: Option<&str>) -> String {
+    use grassbench::runner::allocator::{OPT_OUT_VARIABLE, TUNABLE, describe, tunables_to_set};
+    let current = std::env::var("GLIBC_TUNABLES").ok();
+    let opt_out = opt_out
+        .map(str::to_owned)
+        .or_else(|| std::env::var(OPT_OUT_VARIABLE).ok());
+    let after = match tunables_to_set(current.as_deref(), opt_out.as_deref()) {
+        Some(set) if TUNABLE => Some(set),
+        _ => current,
+    };
+    describe(TUNABLE, after.as_deref(), opt_out.as_deref())
+}
+
+/// `GRASSBENCH_ALLOCATOR=system` leaves glibc's malloc at its defaults, recorded as such.
+#[test]
+fn the_allocator_opt_out_is_recorded() {
+    let d = temp("allocator");
+    let out = d.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_grassbench"))
+        .args([
+            "run",
+            "-t",
+            "reference",
+            "-s",
+            "football_field",
+            "--frames",
+            "1",
+        ])
+        .args(["--warmup", "0", "--size", "96x64", "--no-calibration", "-o"])
+        .arg(&out)
+        .env("GRASSBENCH_ALLOCATOR", "system")
+        .output()
+        .expect("binary runs");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let meta: toml::Table =
+        toml::from_str(&std::fs::read_to_string(out.join("meta.toml")).unwrap()).unwrap();
+    assert_eq!(
+        meta["allocator"].as_str().unwrap_or_default(),
+        expected_allocator(Some("system"))
+    );
+    if grassbench::runner::allocator::TUNABLE
+        && std::env::var("GLIBC_TUNABLES").map_or(true, |t| !t.contains("glibc.malloc."))
+    {
+        assert_eq!(
+            meta["allocator"].as_str().unwrap_or_default(),
+            "glibc malloc, its defaults (GRASSBENCH_ALLOCATOR=system)"
+        );
+    }
 }
 
 #[test]

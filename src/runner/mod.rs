@@ -13,6 +13,7 @@
 //! - `gpu_ts_*_ms` come from timestamp queries around each pass, where the adapter has them;
 //!   render and compute passes are kept apart because lavapipe's compute timestamps are wrong.
 
+pub mod allocator;
 pub mod bootstrap;
 mod harness;
 mod host;

@@ -30,6 +30,10 @@ pub struct Provenance {
     pub os: String,
     /// When, UTC (RFC 3339, from the system clock).
     pub date: String,
+    /// The process's memory allocator and its settings ([`super::allocator`]); empty in files
+    /// from before it was recorded.
+    #[serde(default)]
+    pub allocator: String,
     /// The adapter.
     pub adapter: AdapterSummary,
 }
@@ -52,6 +56,7 @@ impl Provenance {
             cpu_count: std::thread::available_parallelism().map_or(1, |n| n.get()),
             os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
             date: utc_now(),
+            allocator: super::allocator::this_process(),
             adapter: adapter.clone(),
         }
     }
@@ -65,8 +70,13 @@ impl Provenance {
     /// `after_command` (e.g. `; shard: all`). Ends with a newline.
     pub fn to_markdown(&self, after_command: &str) -> String {
         let a = &self.adapter;
+        let allocator = if self.allocator.is_empty() {
+            String::new()
+        } else {
+            format!("; allocator: {}", self.allocator)
+        };
         format!(
-            "Measured on `{}` ({}, {}; driver {} {}), CPU {} x{}, revision `{}` ({} build), {}.  \n\
+            "Measured on `{}` ({}, {}; driver {} {}), CPU {} x{}, revision `{}` ({} build), {}{allocator}.  \n\
              Command: `{}`{after_command}.\n",
             a.name,
             a.backend,
@@ -218,17 +228,29 @@ mod tests {
             cpu_count: 2,
             os: "linux x86_64".into(),
             date: "2026-12-02T00:00:00Z".into(),
+            allocator: "glibc malloc, its defaults".into(),
             adapter,
         };
         assert_eq!(
             p.to_markdown("; shard: all"),
             "Measured on `llvmpipe` (Vulkan, Cpu; driver llvmpipe Mesa 22.3.6), CPU EPYC x2, \
-             revision `abc` (release build), 2026-12-02T00:00:00Z.  \n\
+             revision `abc` (release build), 2026-12-02T00:00:00Z; allocator: glibc malloc, its \
+             defaults.  \n\
              Command: `grassbench sweep s.toml`; shard: all.\n"
         );
         assert!(
             p.to_markdown("")
                 .ends_with("Command: `grassbench sweep s.toml`.\n")
+        );
+        // A file from before the allocator was recorded says nothing of it.
+        let older = Provenance {
+            allocator: String::new(),
+            ..p
+        };
+        assert!(
+            older.to_markdown("").contains("2026-12-02T00:00:00Z.  \n"),
+            "{}",
+            older.to_markdown("")
         );
     }
 }
