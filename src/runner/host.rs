@@ -1,9 +1,13 @@
 //! What the rest of the host did while a run measured: the CPU time other processes took, and
-//! the time the hypervisor took away (steal). On a software rasteriser the GPU is the CPU, so
+//! the time the hypervisor took away (steal); and how much of this process's own time went to
+//! the kernel. On a software rasteriser the GPU is the CPU, so
 //! a compile or a second benchmark on the same cores slows every figure by up to the share of
 //! the cores it takes; recording it beside the figures tells a reader when a time moved for a
 //! reason outside the run (issue 19 §8: the same boulanger frame measured 60 ms in one run and
-//! 190-200 ms in others, with identical images).
+//! 190-200 ms in others, with identical images). The process's own kernel time tells a state of
+//! the process from one of the work: a heap trimmed and grown again every frame spends its
+//! time zeroing fresh pages (`super::allocator`: the reference's pitch at 640x360 spent 0.18
+//! cores in the kernel during its measured frames in that state, 0.009 with the heaps kept).
 //!
 //! Read from Linux's `/proc/stat` (every CPU's ticks by state) and `/proc/self/stat` (this
 //! process's user and system ticks, its rasteriser threads included); both count in the same
@@ -20,6 +24,8 @@ pub struct HostSample {
     steal: u64,
     /// This process's user + system ticks.
     own: u64,
+    /// This process's system ticks.
+    own_system: u64,
     /// CPUs counted.
     cpus: u64,
 }
@@ -31,6 +37,8 @@ pub struct HostLoad {
     pub other_cores: f64,
     /// Share of the CPUs' time the hypervisor gave to other machines, 0..1.
     pub steal: f64,
+    /// Cores this process (its rasteriser threads included) spent in the kernel, on average.
+    pub own_kernel_cores: f64,
 }
 
 impl HostSample {
@@ -69,6 +77,7 @@ impl HostSample {
             busy: total - idle - steal,
             steal,
             own: utime + stime,
+            own_system: stime,
             cpus: cpus.max(1),
         })
     }
@@ -82,11 +91,13 @@ impl HostSample {
         let busy = later.busy.saturating_sub(self.busy);
         let own = later.own.saturating_sub(self.own);
         let steal = later.steal.saturating_sub(self.steal);
+        let own_system = later.own_system.saturating_sub(self.own_system);
         // Ticks elapsed per CPU: the interval's length in ticks.
         let per_cpu = total as f64 / self.cpus as f64;
         Some(HostLoad {
             other_cores: (busy.saturating_sub(own) as f64 / per_cpu).max(0.0),
             steal: steal as f64 / total as f64,
+            own_kernel_cores: own_system as f64 / per_cpu,
         })
     }
 }
@@ -117,6 +128,8 @@ mod tests {
         let load = a.load_until(&b).unwrap();
         assert!((load.other_cores - 1.0).abs() < 1e-12, "{load:?}");
         assert_eq!(load.steal, 0.0);
+        // Of our core, 20 ticks in 100 were the kernel's.
+        assert!((load.own_kernel_cores - 0.2).abs() < 1e-12, "{load:?}");
         // Alone: we took one core, the other idled.
         let c = HostSample::parse(&stat(1100, 5100, 0), &own(400, 50)).unwrap();
         assert_eq!(a.load_until(&c).unwrap().other_cores, 0.0);
@@ -124,6 +137,7 @@ mod tests {
         let d = HostSample::parse(&stat(1100, 5050, 50), &own(400, 50)).unwrap();
         let load = a.load_until(&d).unwrap();
         assert_eq!((load.other_cores, load.steal), (0.0, 0.25));
+        assert_eq!(load.own_kernel_cores, 0.0);
         // No tick passed: nothing to say.
         assert_eq!(a.load_until(&a), None);
     }

@@ -475,6 +475,7 @@ pub fn run_interleaved(
                 let mut summary = RunSummary::from_frames(&frames, &technique.param_table());
                 summary.host_other_cores = host.map(|h| h.other_cores);
                 summary.host_steal = host.map(|h| h.steal);
+                summary.host_own_kernel_cores = host.map(|h| h.own_kernel_cores);
                 Ok(RunResult {
                     summary,
                     frames,

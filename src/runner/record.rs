@@ -575,6 +575,11 @@ pub struct RunSummary {
     /// Share of the CPUs' time the hypervisor gave to other machines meanwhile, 0..1.
     #[serde(default)]
     pub host_steal: Option<f64>,
+    /// Cores this process spent in the kernel (system time), on average, meanwhile
+    /// ([`super::HostLoad::own_kernel_cores`]; empty off Linux and in older files): high where
+    /// the process pays for fresh pages every frame rather than for the frame's work.
+    #[serde(default)]
+    pub host_own_kernel_cores: Option<f64>,
 }
 
 /// The status of a finished run, and of a row written before runs had a status.
@@ -709,6 +714,7 @@ impl RunSummary {
                 .map(|(w, n)| w.median * 1e6 / n as f64),
             host_other_cores: None,
             host_steal: None,
+            host_own_kernel_cores: None,
         }
     }
 

@@ -588,7 +588,9 @@ fn report(
          queries): lavapipe counts every pixel of each 4x4 block a triangle touches, so thin blades keep few of \
          their counted fragments. \
          *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
-         were measured: on a software rasteriser that time is taken from the GPU. Speed-up = the reference's \
+         were measured: on a software rasteriser that time is taken from the GPU; *kernel* how many this process \
+         spent in the kernel meanwhile (page faults, fresh pages zeroed: near 0 unless the process pays for \
+         memory every frame). Speed-up = the reference's \
          median GPU wall time over the technique's on the same scene, with its 95 % bootstrap interval over \
          both runs' frames: a technique is faster than another only where the intervals do not overlap. \
          *Model* is the GPU time the cost model predicts from the run's measured work (the adapter's unit costs, \
@@ -597,17 +599,17 @@ fn report(
     );
     let _ = writeln!(
         s,
-        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | model ms | measured / model | frame ms | blades drawn | blades represented | triangles | fragments (M) | kept (M) | overdraw | GPU MB | other processes (cores) |"
+        "| scene | technique | size | GPU wall ms (p5–p95) | speed-up (95 % interval) | model ms | measured / model | frame ms | blades drawn | blades represented | triangles | fragments (M) | kept (M) | overdraw | GPU MB | other processes (cores) | kernel (cores) |"
     );
     let _ = writeln!(
         s,
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     let count = |v: Option<u64>| fmt_opt(v.map(|n| n as f64), 0);
     for r in runs {
         let _ = writeln!(
             s,
-            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {}x{}{} | {} ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.scene,
             r.technique,
             r.width,
@@ -630,7 +632,8 @@ fn report(
             fmt_opt(r.fragments_passed.map(|f| f as f64 / 1e6), 3),
             fmt_opt(r.overdraw, 2),
             fmt_opt(r.gpu_bytes.map(|b| b as f64 / 1e6), 1),
-            fmt_opt(r.host_other_cores, 2)
+            fmt_opt(r.host_other_cores, 2),
+            fmt_opt(r.host_own_kernel_cores, 2)
         );
     }
     s.push_str(&drift_paragraph(runs, after));

@@ -15,7 +15,7 @@ use grassbench::runner::write_atomic;
 
 use super::fmt_opt as fmt;
 use super::sweep::SweepMeta;
-use configs::{BUSY_HOST_CORES, Config, label, load, median};
+use configs::{BUSY_HOST_CORES, Config, KERNEL_CORES, label, load, median};
 use grassbench::runner::bootstrap::Interval;
 use grassbench::sweep::REFERENCE;
 use plots::{
@@ -300,25 +300,26 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
             );
         }
     }
-    let busy: Vec<(&Config, f64)> = configs
-        .values()
-        .filter_map(|c| Some((c, c.busy_host()?)))
-        .collect();
-    if !busy.is_empty() {
-        let _ = writeln!(
-            md,
-            "\n**Warning: a busy host.** Other processes kept more than {BUSY_HOST_CORES} of a core busy while these configurations measured (`host_other_cores` in runs.csv); on a software rasteriser that time is taken from the GPU, so their times are too slow by up to that share of the cores:\n"
-        );
-        for (c, cores) in &busy {
-            let _ = writeln!(
-                md,
-                "- {} on {} {}: up to {cores:.2} cores",
-                label(c),
-                c.scene,
-                c.size
-            );
-        }
-    }
+    let flagged = |cores: fn(&Config) -> Option<f64>| -> Vec<(&Config, f64)> {
+        configs
+            .values()
+            .filter_map(|c| Some((c, cores(c)?)))
+            .collect()
+    };
+    warning(
+        &mut md,
+        &format!(
+            "**Warning: a busy host.** Other processes kept more than {BUSY_HOST_CORES} of a core busy while these configurations measured (`host_other_cores` in runs.csv); on a software rasteriser that time is taken from the GPU, so their times are too slow by up to that share of the cores:"
+        ),
+        &flagged(Config::busy_host),
+    );
+    warning(
+        &mut md,
+        &format!(
+            "**Warning: time in the kernel.** The process spent more than {KERNEL_CORES} of a core in the kernel while these configurations measured (`host_own_kernel_cores` in runs.csv): page faults and fresh pages, which a process that keeps its memory does not pay every frame (`GRASSBENCH_ALLOCATOR`, README), so their times hold more than their work:"
+        ),
+        &flagged(Config::kernel_time),
+    );
     parameters::section(&mut md, &configs);
     let _ = writeln!(md, "\n## CPU and GPU stages (ms)\n");
     let _ = writeln!(
@@ -422,10 +423,50 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     eprintln!("wrote {}", path.display());
     write_html(dir)
 }
+/// A warning paragraph, then one line per flagged configuration with its figure in cores;
+/// nothing where none is flagged.
+fn warning(md: &mut String, text: &str, flagged: &[(&Config, f64)]) {
+    if flagged.is_empty() {
+        return;
+    }
+    let _ = writeln!(md, "\n{text}\n");
+    for (c, cores) in flagged {
+        let _ = writeln!(
+            md,
+            "- {} on {} {}: up to {cores:.2} cores",
+            label(c),
+            c.scene,
+            c.size
+        );
+    }
+}
 
 /// The folder name of `plots` as REPORT.md links it (relative to the results folder).
 fn plots_link(plots: &std::path::Path) -> String {
     plots
         .file_name()
         .map_or("plots".into(), |n| n.to_string_lossy().into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_warning_names_each_flagged_configuration_and_nothing_without_one() {
+        let mut md = String::new();
+        warning(&mut md, "**Warning: time in the kernel.**", &[]);
+        assert_eq!(md, "");
+        let c = Config {
+            technique: "reference".into(),
+            scene: "football_field".into(),
+            size: "640x360".into(),
+            ..Config::default()
+        };
+        warning(&mut md, "**Warning: time in the kernel.**", &[(&c, 0.18)]);
+        assert_eq!(
+            md,
+            "\n**Warning: time in the kernel.**\n\n- reference on football_field 640x360: up to 0.18 cores\n"
+        );
+    }
 }
