@@ -576,8 +576,10 @@ pub struct RunSummary {
     #[serde(default)]
     pub host_steal: Option<f64>,
     /// Cores this process spent in the kernel (system time), on average, meanwhile
-    /// ([`super::HostLoad::own_kernel_cores`]; empty off Linux and in older files): high where
-    /// the process pays for fresh pages every frame rather than for the frame's work.
+    /// ([`super::HostLoad::own_kernel_cores`]; empty off Linux and in older files): time the
+    /// frames paid the operating system rather than their work, the rasteriser threads'
+    /// wake-ups on frames of a few milliseconds, fresh pages where the process returns memory
+    /// and takes it again every frame.
     #[serde(default)]
     pub host_own_kernel_cores: Option<f64>,
 }

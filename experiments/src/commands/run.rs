@@ -589,8 +589,8 @@ fn report(
          their counted fragments. \
          *Other processes* is how many CPU cores the rest of the host kept busy, on average, while the frames \
          were measured: on a software rasteriser that time is taken from the GPU; *kernel* how many this process \
-         spent in the kernel meanwhile (page faults, fresh pages zeroed: near 0 unless the process pays for \
-         memory every frame). Speed-up = the reference's \
+         spent in the kernel meanwhile (the rasteriser threads' wake-ups on frames of a few milliseconds, \
+         fresh pages where a process returns memory and takes it again every frame). Speed-up = the reference's \
          median GPU wall time over the technique's on the same scene, with its 95 % bootstrap interval over \
          both runs' frames: a technique is faster than another only where the intervals do not overlap. \
          *Model* is the GPU time the cost model predicts from the run's measured work (the adapter's unit costs, \

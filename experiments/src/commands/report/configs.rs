@@ -128,9 +128,11 @@ fn most_above(values: &[f64], bound: f64) -> Option<f64> {
 pub(super) const BUSY_HOST_CORES: f64 = 0.25;
 
 /// Cores of kernel time a run's own process may take before the report says so: measured
-/// during the measured frames on the 2.6 GHz EPYC, 0.00-0.015 with glibc's heaps kept and 0.18
-/// for the reference's pitch in the state that trimmed and regrew a heap every frame
-/// (`grassbench::runner::allocator`).
+/// during the measured frames on the 2.6 GHz EPYC, 0.00-0.015 for the reference, zhang and bakay
+/// at 640x360 with glibc's heaps kept and 0.18 for the reference's pitch in the state that
+/// trimmed and regrew a heap every frame (`grassbench::runner::allocator`); frames of a few
+/// milliseconds read up to 0.2 with the heaps kept (bakay's pitch at 320x180: 99 % of its
+/// system time in `futex`, the rasteriser threads' wake-ups, 150 calls a frame).
 pub(super) const KERNEL_CORES: f64 = 0.05;
 
 impl Config {

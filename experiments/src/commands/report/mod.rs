@@ -316,7 +316,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     warning(
         &mut md,
         &format!(
-            "**Warning: time in the kernel.** The process spent more than {KERNEL_CORES} of a core in the kernel while these configurations measured (`host_own_kernel_cores` in runs.csv): page faults and fresh pages, which a process that keeps its memory does not pay every frame (`GRASSBENCH_ALLOCATOR`, README), so their times hold more than their work:"
+            "**Warning: time in the kernel.** The process spent more than {KERNEL_CORES} of a core in the kernel while these configurations measured (`host_own_kernel_cores` in runs.csv), time their frames paid the operating system rather than their work: on frames of a few milliseconds mostly the rasteriser threads' wake-ups (`futex`), which the model's fixed cost per frame does not hold; in a process that returned memory and took it again every frame, fresh pages (`GRASSBENCH_ALLOCATOR`, README):"
         ),
         &flagged(Config::kernel_time),
     );
