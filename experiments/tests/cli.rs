@@ -12,9 +12,15 @@ fn grassbench(args: &[&str]) -> (bool, String, String) {
 
 /// `grassbench args` run in `dir`.
 fn grassbench_in(dir: &Path, args: &[&str]) -> (bool, String, String) {
+    grassbench_with(dir, args, &[])
+}
+
+/// `grassbench args` run in `dir` with the environment variables `env` set.
+fn grassbench_with(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_grassbench"))
         .args(args)
         .current_dir(dir)
+        .envs(env.iter().copied())
         .output()
         .expect("binary runs");
     (
@@ -393,26 +399,12 @@ fn expected_allocator(opt_out: Option<&str>) -> String {
 fn the_allocator_opt_out_is_recorded() {
     let d = temp("allocator");
     let out = d.join("out");
-    let run = Command::new(env!("CARGO_BIN_EXE_grassbench"))
-        .args([
-            "run",
-            "-t",
-            "reference",
-            "-s",
-            "football_field",
-            "--frames",
-            "1",
-        ])
-        .args(["--warmup", "0", "--size", "96x64", "--no-calibration", "-o"])
-        .arg(&out)
-        .env("GRASSBENCH_ALLOCATOR", "system")
-        .output()
-        .expect("binary runs");
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let args: Vec<&str> = "run -t reference -s football_field --frames 1 --warmup 0 \
+                           --size 96x64 --no-calibration -o out"
+        .split_whitespace()
+        .collect();
+    let (ok, _, err) = grassbench_with(&d, &args, &[("GRASSBENCH_ALLOCATOR", "system")]);
+    assert!(ok, "{err}");
     let meta: toml::Table =
         toml::from_str(&std::fs::read_to_string(out.join("meta.toml")).unwrap()).unwrap();
     assert_eq!(
@@ -530,8 +522,9 @@ fn missing_backend_names_the_fix() {
 fn gpu_memory_budget_refuses_with_the_numbers_before_creating_anything() {
     let out = temp("budget");
     let png = out.join("x.png");
-    let result = Command::new(env!("CARGO_BIN_EXE_grassbench"))
-        .args([
+    let (ok, _, err) = grassbench_with(
+        &out,
+        &[
             "render",
             "-t",
             "reference",
@@ -540,13 +533,11 @@ fn gpu_memory_budget_refuses_with_the_numbers_before_creating_anything() {
             "--size",
             "64x36",
             "-o",
-        ])
-        .arg(&png)
-        .env("GRASSBENCH_GPU_MEMORY_MB", "1")
-        .output()
-        .expect("binary runs");
-    let err = String::from_utf8_lossy(&result.stderr);
-    assert!(!result.status.success(), "a 1 MiB budget was accepted");
+            "x.png",
+        ],
+        &[("GRASSBENCH_GPU_MEMORY_MB", "1")],
+    );
+    assert!(!ok, "a 1 MiB budget was accepted");
     assert!(!err.contains("panicked"), "{err}");
     for needle in [
         "MiB of GPU memory",
@@ -558,17 +549,20 @@ fn gpu_memory_budget_refuses_with_the_numbers_before_creating_anything() {
     }
     assert!(!png.exists(), "an image was written anyway");
     // A budget that is not a number is named as such.
-    let result = Command::new(env!("CARGO_BIN_EXE_grassbench"))
-        .args(["render", "-t", "reference", "--size", "32x32", "-o"])
-        .arg(&png)
-        .env("GRASSBENCH_GPU_MEMORY_MB", "lots")
-        .output()
-        .expect("binary runs");
-    let err = String::from_utf8_lossy(&result.stderr);
-    assert!(
-        !result.status.success() && err.contains("GRASSBENCH_GPU_MEMORY_MB"),
-        "{err}"
+    let (ok, _, err) = grassbench_with(
+        &out,
+        &[
+            "render",
+            "-t",
+            "reference",
+            "--size",
+            "32x32",
+            "-o",
+            "x.png",
+        ],
+        &[("GRASSBENCH_GPU_MEMORY_MB", "lots")],
     );
+    assert!(!ok && err.contains("GRASSBENCH_GPU_MEMORY_MB"), "{err}");
 }
 
 /// A value a technique rejects anywhere in a sweep's grid refuses the file in `validate` and
