@@ -66,7 +66,7 @@ fn main() -> ExitCode {
 
 /// Starts the process again with glibc's heaps kept between frames, where the C library reads
 /// its tunables only at start-up (`grassbench::runner::allocator`: lavapipe's per-frame
-/// allocations otherwise put some processes in a state up to 1.4 times as slow). Returns where
+/// allocations otherwise put some processes in a state 1.2-1.3 times as slow). Returns where
 /// nothing is to be done; where starting again fails, warns and goes on with the defaults,
 /// which `meta.toml` then records.
 fn steady_allocator() {

@@ -6,10 +6,11 @@
 //! default, raised only when the process happens to free a large `mmap`ped block first), so a
 //! process may grow the heap a block at a time with `mprotect` and shrink it again in every
 //! frame, the kernel zeroing each fresh page: measured on the reference's pitch at 640x360
-//! (`results/run_to_run/README.md`, *The reference's other state*), 570-616 ms a frame and 1.9-2.1
-//! s of system time in five processes against 418-493 ms and 0.17-0.22 s with the heap kept.
-//! Which of the two a process fell into depended on what it had freed before, so the same work
-//! read up to 1.4 times as slow from one process to the next.
+//! (`results/run_to_run/README.md`, *The reference's other state, found*), 571-616 ms a frame
+//! and 1.85-2.11 s of system time in five processes against 418-493 ms and 0.17-0.22 s with the
+//! heaps kept. Which of the two a process fell into depended on what it had freed before, so the
+//! same work read 1.2-1.3 times as slow (medians of three processes each way on the pitch and
+//! the flyover) from one process to the next.
 //!
 //! The `grassbench` binary therefore starts itself again with [`STEADY_TUNABLES`] in
 //! `GLIBC_TUNABLES` (glibc reads its tunables only at start-up) unless the environment already
