@@ -336,6 +336,13 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
         after.iter().map(|c| (&c.size, c.msaa)).collect::<Vec<_>>(),
         [(&"96x64".to_owned(), false)]
     );
+    // The raw limits measured again with them, at the same size.
+    let raw_after: grassbench::calibration::Calibration =
+        table["calibration_after"].clone().try_into().unwrap();
+    assert!(
+        raw_after.size == "96x64" && raw_after.raw_blade_cost_ns > 0.0,
+        "{raw_after:?}"
+    );
     // With the calibration's coverage checks, priced, in meta.toml and the README.
     assert_eq!(
         costs[0].checks.len(),

@@ -162,6 +162,17 @@ fn tiny_sweep_runs_and_reports() {
         costs.into_iter().map(|c| (c.size, c.msaa)).collect()
     };
     assert_eq!(sizes("unit_costs_after"), sizes("unit_costs"));
+    // The raw limits measured again with them, at the same size, and the reference's share
+    // read against both (issue 20 §6).
+    let raw = |key: &str| -> grassbench::calibration::Calibration {
+        table[key].clone().try_into().unwrap()
+    };
+    let (before, after) = (raw("calibration"), raw("calibration_after"));
+    assert!(
+        after.size == before.size && after.raw_blade_cost_ns > 0.0,
+        "{after:?}"
+    );
+    assert!(report.contains("share of raw rate after"), "{report}");
     if counted {
         let section = report
             .split("## The calibration after the runs")

@@ -116,6 +116,30 @@ pub(crate) fn adapter_at(
     Ok((c, unit_costs_at(gpu, targets)?))
 }
 
+/// The raw limits (at `raw`'s size, where the runs had them) and the unit costs again, once the
+/// runs are done: how far the host moved while they ran, for the raw blade rate the reference
+/// is read against (issue 20 §6) as for the cost model.
+pub(crate) fn adapter_after(
+    gpu: &grassbench::GpuContext,
+    raw: Option<&Calibration>,
+    targets: &[(Size, bool)],
+) -> anyhow::Result<(Option<Calibration>, Vec<UnitCosts>)> {
+    let raw_after = match raw {
+        Some(before) => {
+            let size = Size::parse(&before.size)
+                .with_context(|| format!("the raw limits' size `{}`", before.size))?;
+            let c = measure(gpu, size).context("measuring the adapter's raw limits again")?;
+            eprintln!(
+                "  after the runs: raw reference blade {:.0} ns ({:.0} before)",
+                c.raw_blade_cost_ns, before.raw_blade_cost_ns
+            );
+            Some(c)
+        }
+        None => None,
+    };
+    Ok((raw_after, unit_costs_at(gpu, targets)?))
+}
+
 /// The adapter's unit costs for each distinct target of `targets` (size, MSAA; in their first
 /// order), each fit's summary printed as it is measured.
 pub(crate) fn unit_costs_at(

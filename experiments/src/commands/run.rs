@@ -180,6 +180,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         calibration.as_ref(),
         &unit_costs,
         &[],
+        None,
     )?;
 
     let options = RunOptions {
@@ -303,14 +304,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     // only this comparison.
     let mut after = Vec::new();
     if measured && !unit_costs.is_empty() && all_runs.iter().any(|r| r.model_ms.is_some()) {
-        match super::calibrate::unit_costs_at(&gpu, &targets) {
-            Ok(costs) => {
+        match super::calibrate::adapter_after(&gpu, calibration.as_ref(), &targets) {
+            Ok((raw_after, costs)) => {
                 write_meta(
                     &args.out,
                     &provenance,
                     calibration.as_ref(),
                     &unit_costs,
                     &costs,
+                    raw_after.as_ref(),
                 )?;
                 after = costs;
             }
@@ -339,13 +341,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
 }
 
 /// Writes `meta.toml`: the provenance, then the raw limits and the unit costs fitted before the
-/// runs and, once measured, after them (`unit_costs_after`, as a sweep's).
+/// runs and, once measured, after them (`unit_costs_after` and `calibration_after`, as a
+/// sweep's).
 fn write_meta(
     out: &Path,
     provenance: &Provenance,
     calibration: Option<&Calibration>,
     unit_costs: &[UnitCosts],
     unit_costs_after: &[UnitCosts],
+    calibration_after: Option<&Calibration>,
 ) -> anyhow::Result<()> {
     write_atomic(&out.join("meta.toml"), |f| {
         let mut text = provenance.to_toml();
@@ -355,12 +359,15 @@ fn write_meta(
             unit_costs: &'a [UnitCosts],
             #[serde(skip_serializing_if = "<[UnitCosts]>::is_empty")]
             unit_costs_after: &'a [UnitCosts],
+            #[serde(skip_serializing_if = "Option::is_none")]
+            calibration_after: Option<&'a Calibration>,
         }
         if !unit_costs.is_empty() {
             let units = toml::to_string_pretty(&Units {
                 calibration,
                 unit_costs,
                 unit_costs_after,
+                calibration_after,
             })
             .map_err(std::io::Error::other)?;
             text.push('\n');

@@ -83,6 +83,10 @@ pub struct SweepMeta {
     /// ran nothing, and in files written before them.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unit_costs_after: Vec<UnitCosts>,
+    /// The raw limits measured again with them, at the same size: the report reads the
+    /// reference against both raw blade rates. `None` where `unit_costs_after` is empty.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub calibration_after: Option<Calibration>,
 }
 
 /// Runs the sweep.
@@ -160,6 +164,7 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
         calibration: calibration.clone(),
         unit_costs: unit_costs.clone(),
         unit_costs_after: Vec::new(),
+        calibration_after: None,
     };
     store.write_meta(&toml::to_string_pretty(&meta)?)?;
 
@@ -226,8 +231,9 @@ pub fn sweep_with(args: &SweepArgs, techniques: &[TechniqueEntry]) -> anyhow::Re
     // The unit costs again, now the runs are done: how far the host moved while they ran. The
     // runs are recorded already; a calibration that fails here costs only this comparison.
     if !targets.is_empty() && attempted > failed {
-        match super::calibrate::unit_costs_at(&gpu, &targets) {
-            Ok(after) => {
+        match super::calibrate::adapter_after(&gpu, calibration.as_ref(), &targets) {
+            Ok((raw_after, after)) => {
+                meta.calibration_after = raw_after;
                 meta.unit_costs_after = after;
                 store.write_meta(&toml::to_string_pretty(&meta)?)?;
             }

@@ -347,8 +347,10 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         .filter(|c| !c.gpu_wall.is_empty())
         .collect();
     where_the_time_goes(&mut md, &ok, &plots)?;
-    if let Some(c) = meta.as_ref().and_then(|m| m.calibration.as_ref()) {
-        raw_rate::raw_rate(&mut md, &ok, c);
+    if let Some(m) = &meta
+        && let Some(c) = &m.calibration
+    {
+        raw_rate::raw_rate(&mut md, &ok, c, m.calibration_after.as_ref());
     }
     if let Some(m) = &meta {
         drift::drift(&mut md, &configs, &m.unit_costs, &m.unit_costs_after);
