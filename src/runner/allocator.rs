@@ -58,11 +58,7 @@ pub fn describe(tunable: bool, current: Option<&str>, opt_out: Option<&str>) -> 
         .filter(|t| t.starts_with("glibc.malloc."))
         .collect();
     if malloc.is_empty() {
-        let why = if opt_out.is_some() {
-            format!(" ({OPT_OUT_VARIABLE}={})", opt_out.unwrap_or_default())
-        } else {
-            String::new()
-        };
+        let why = opt_out.map_or(String::new(), |v| format!(" ({OPT_OUT_VARIABLE}={v})"));
         format!("glibc malloc, its defaults{why}")
     } else {
         let set = malloc.join(", ");

@@ -4,10 +4,11 @@
 //! a compile or a second benchmark on the same cores slows every figure by up to the share of
 //! the cores it takes; recording it beside the figures tells a reader when a time moved for a
 //! reason outside the run (issue 19 §8: the same boulanger frame measured 60 ms in one run and
-//! 190-200 ms in others, with identical images). The process's own kernel time tells a state of
-//! the process from one of the work: a heap trimmed and grown again every frame spends its
-//! time zeroing fresh pages (`super::allocator`: the reference's pitch at 640x360 spent 0.18
-//! cores in the kernel during its measured frames in that state, 0.009 with the heaps kept).
+//! 190-200 ms in others, with identical images). The process's own kernel time is time its
+//! frames paid the operating system rather than their work: a heap trimmed and grown again
+//! every frame zeroing fresh pages (`super::allocator`: the reference's pitch at 640x360 spent
+//! 0.18 cores in the kernel during its measured frames in that state, 0.009 with the heaps
+//! kept), and on frames of a few milliseconds the rasteriser threads' wake-ups (up to 0.2).
 //!
 //! Read from Linux's `/proc/stat` (every CPU's ticks by state) and `/proc/self/stat` (this
 //! process's user and system ticks, its rasteriser threads included); both count in the same

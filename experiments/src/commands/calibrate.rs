@@ -124,20 +124,13 @@ pub(crate) fn adapter_after(
     raw: Option<&Calibration>,
     targets: &[(Size, bool)],
 ) -> anyhow::Result<(Option<Calibration>, Vec<UnitCosts>)> {
-    let raw_after = match raw {
-        Some(before) => {
-            let size = Size::parse(&before.size)
-                .with_context(|| format!("the raw limits' size `{}`", before.size))?;
-            let c = measure(gpu, size).context("measuring the adapter's raw limits again")?;
-            eprintln!(
-                "  after the runs: raw reference blade {:.0} ns ({:.0} before)",
-                c.raw_blade_cost_ns, before.raw_blade_cost_ns
-            );
-            Some(c)
-        }
-        None => None,
+    let Some(before) = raw else {
+        return Ok((None, unit_costs_at(gpu, targets)?));
     };
-    Ok((raw_after, unit_costs_at(gpu, targets)?))
+    let size = Size::parse(&before.size)
+        .with_context(|| format!("the raw limits' size `{}`", before.size))?;
+    let (after, costs) = adapter_at(gpu, Some(size), targets)?;
+    Ok((Some(after), costs))
 }
 
 /// The adapter's unit costs for each distinct target of `targets` (size, MSAA; in their first

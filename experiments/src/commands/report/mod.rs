@@ -347,12 +347,10 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
         .filter(|c| !c.gpu_wall.is_empty())
         .collect();
     where_the_time_goes(&mut md, &ok, &plots)?;
-    if let Some(m) = &meta
-        && let Some(c) = &m.calibration
-    {
-        raw_rate::raw_rate(&mut md, &ok, c, m.calibration_after.as_ref());
-    }
     if let Some(m) = &meta {
+        if let Some(c) = &m.calibration {
+            raw_rate::raw_rate(&mut md, &ok, c, m.calibration_after.as_ref());
+        }
         drift::drift(&mut md, &configs, &m.unit_costs, &m.unit_costs_after);
     }
     if let Some(other) = &other {
@@ -425,6 +423,7 @@ pub fn report(args: &ReportArgs) -> anyhow::Result<()> {
     eprintln!("wrote {}", path.display());
     write_html(dir)
 }
+
 /// A warning paragraph, then one line per flagged configuration with its figure in cores;
 /// nothing where none is flagged.
 fn warning(md: &mut String, text: &str, flagged: &[(&Config, f64)]) {
