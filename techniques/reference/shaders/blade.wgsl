@@ -26,17 +26,18 @@ struct Params {
 override SEGMENTS: u32;
 
 struct Blade {
-    @location(0) root_threshold: vec4<f32>,  // root xyz, density threshold
+    @location(0) root: vec4<f32>,            // root xyz; w unused
     @location(1) shape: vec4<f32>,           // height, width, stiffness, colour variation
     @location(2) side_lean: vec4<f32>,       // xy: unit side axis (x, z); zw: rest lean (x, z)
 }
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
-    @location(0) world: vec3<f32>,
+    // xyz: world position; w: ambient occlusion. One slot, not two: on a software rasteriser
+    // every triangle that touches a pixel pays the set-up of each interpolated slot.
+    @location(0) world_ao: vec4<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) albedo: vec3<f32>,
-    @location(3) ao: f32,
 }
 
 // Blue (0) through green to red (1), for debug views.
@@ -48,17 +49,10 @@ fn heat(t: f32) -> vec3<f32> {
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32, blade: Blade) -> VsOut {
     var out: VsOut;
-    let root = blade.root_threshold.xyz;
+    let root = blade.root.xyz;
     let height = blade.shape.x;
     let width = blade.shape.y;
     let stiffness = blade.shape.z;
-
-    // The density map (Boulanger Sec. 3.4): a blade grows only where the density exceeds its
-    // threshold. Culled blades collapse outside the clip volume.
-    if (blade.root_threshold.w >= terrain_density(root.xz)) {
-        out.position = vec4(0.0, 0.0, 2.0, 1.0);
-        return out;
-    }
 
     // Bend: rest lean plus the wind's push, scaled by the blade's stiffness, plus a small
     // per-blade flutter whose speed follows the wind. Time comes from the globals only.
@@ -77,14 +71,17 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     // Walk up the blade segment by segment: each segment keeps its length (height / n), so the
     // blade never stretches however far it bends. The tilt from vertical at relative height s
     // is bend * s^profile: a large profile keeps the base stiff and bends the top (Bakay
-    // Sec. 3's "stiffness"); the powers come from the level table.
+    // Sec. 3's "stiffness"); the powers come from the level table. The walk runs all
+    // `SEGMENTS` steps and adds those below the vertex's level: a loop bounded by the level
+    // would differ between the lanes of a SIMD batch, and lavapipe runs such a loop masked,
+    // slower than the fixed one it unrolls (the same sums, so the same picture).
     let n = SEGMENTS;
     let level = min(min(vertex / 2u, n), MAX_LEVELS - 1u);
     let seg = height / f32(n);
     var p = root;
-    for (var i = 0u; i < level; i++) {
+    for (var i = 0u; i < SEGMENTS; i++) {
         let a = bend * params.levels[i].y;
-        p += seg * (sin(a) * dir + cos(a) * vec3(0.0, 1.0, 0.0));
+        p += select(vec3(0.0), seg * (sin(a) * dir + cos(a) * vec3(0.0, 1.0, 0.0)), i < level);
     }
     let s = f32(level) / f32(n);
     let at = params.levels[level];
@@ -112,16 +109,16 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     albedo = select(albedo, heat(bend / max(params.shape.w, 1e-3)), globals.frame.z == 2u);
 
     out.position = globals.view_proj * vec4(world, 1.0);
-    out.world = world;
+    // Darker near the root: neighbouring blades hide the sky (ambient occlusion).
+    out.world_ao = vec4(world, mix(0.3, 1.0, s));
     out.normal = normal;
     out.albedo = albedo;
-    // Darker near the root: neighbouring blades hide the sky (ambient occlusion).
-    out.ao = mix(0.3, 1.0, s);
     return out;
 }
 
 @fragment
 fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
-    let lit = shade_leaf(in.albedo, normalize(in.normal), in.world, in.ao, params.color_tip.w);
-    return vec4(apply_fog(lit, in.world), 1.0);
+    let world = in.world_ao.xyz;
+    let lit = shade_leaf(in.albedo, normalize(in.normal), world, in.world_ao.w, params.color_tip.w);
+    return vec4(apply_fog(lit, world), 1.0);
 }

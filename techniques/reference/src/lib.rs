@@ -10,7 +10,7 @@
 //! ## Algorithm
 //! - **Start-up.** The blade field (stratified, jittered, seeded; density and covering maps
 //!   applied as in Boulanger Sec. 3.4 and Zhang Sec. 5.5.2) is generated on the CPU once and
-//!   uploaded as one instance buffer of 48 bytes a blade: root and density threshold; height,
+//!   uploaded as one instance buffer of 48 bytes a blade: root; height,
 //!   width, stiffness and colour variation; the facing's unit side axis and the rest lean as
 //!   vectors (their sines and cosines taken once here, not at each of the blade's vertices).
 //! - **Vertex shader** (`shaders/blade.wgsl`). One instanced triangle strip per blade with
@@ -23,9 +23,10 @@
 //!   the blade keeps its length however far it bends (the length-preserving idea of Bakay
 //!   Sec. 3 and of Zhang's length constraints, Sec. 3.2.3). The powers that depend only on a
 //!   vertex's level (`s^p` at the levels and mid-points, the width's taper `(1 − s)^0.7`, the
-//!   colour's `s^0.8`) come from a table in the uniform ([`levels`]), filled once. The density threshold is tested
-//!   against the density map per blade on the GPU too, so a density map edited at run time is
-//!   honoured.
+//!   colour's `s^0.8`) come from a table in the uniform ([`levels`]), filled once. The walk
+//!   runs all `n` steps for every vertex and adds those below the vertex's level (a `select`,
+//!   not a loop bounded by the level). The density test is made once, when the field is
+//!   generated (no harness edits a density map while it runs): the shader does not repeat it.
 //! - **Shading.** Two-sided Lambert with light passing through from behind (the prelude's
 //!   `shade_leaf`), ambient darkened towards the root (occlusion by neighbours), colour from
 //!   root to tip with per-blade variation, the scene's fog. No alpha: blades are opaque
@@ -33,9 +34,10 @@
 //!
 //! ## Cost model
 //! `B` blades x `2n − 1` triangles, all submitted every frame in one draw call; vertex work
-//! `B·(2n + 1)·n/2` segment steps, each a `sin` and a `cos`, plus a `sin` and a `cos` of the
-//! vertex's own tilt and the flutter's `sin`: 5 transcendentals in the shader's text (the
-//! cost model's count, `results/cost_model`); no CPU work per frame. GPU memory: `48·B +
+//! `B·(2n + 1)·n` segment steps, each a `sin` and a `cos`, plus a `sin` and a `cos` of the
+//! vertex's own tilt and the flutter's `sin`: `2n + 3` transcendentals a vertex, 13 at the
+//! default 5 segments (the cost model's count, `results/cost_model`), and four texel loads
+//! of the wind; no CPU work per frame. GPU memory: `48·B +
 //! 320` bytes. On a software rasteriser the cost is dominated by triangle setup, i.e. linear
 //! in `B·n`; the vertex shader's transcendentals and arithmetic come next (lavapipe, at
 //! revision `bf07165`: 1.5 ns a transcendental, 0.04 ns a scalar operation, 238 of them a
@@ -45,10 +47,21 @@
 //! and lean as vectors brought them from 13 to 5 a vertex and the reference's frames down
 //! 16-20 % on the three canonical scenes at both sizes (two sweeps of
 //! `experiments/cost_model.toml` on the same quiet host, 20 minutes apart, revision `8a00d08`
-//! and the next; the pictures moved by at most one level in 255). On a software rasteriser both sides of a branch run for every
-//! vertex of a SIMD batch, so the density-culled blades' early return saves no time there
-//! (a test of the same early return for blades outside the view measured no gain either,
-//! and was dropped); on a GPU whose lanes of one blade take it together, it does.
+//! and the next; the pictures moved by at most one level in 255).
+//!
+//! On a software rasteriser a vertex shader pays for control flow that differs between the
+//! lanes of a SIMD batch (eight vertices on lavapipe's 256-bit vectors), not only for the
+//! work its lanes do. The shader's density test used to return early for blades the map
+//! culls: none are uploaded (the field was already thinned on the CPU), yet the branch cost
+//! the reference 11-23 % of its frame, because everything after a possible `return` runs
+//! masked. The walk's loop bounded by the vertex's level ran masked too; run for all `n`
+//! segments and unrolled it is faster though it evaluates more `sin`s and `cos`s. With the
+//! early return gone, the walk unrolled and the ambient occlusion carried in the world
+//! position's spare component (one interpolated slot fewer: every triangle that touches a
+//! pixel pays each slot's set-up), the reference's frames fell 24-29 % on the three
+//! canonical scenes, every picture byte for byte the same (`results/reference_shader`).
+//! The cost model does not see divergence: it prices the shader's operations, not its
+//! masks.
 //!
 //! ## Known artifacts
 //! Thin far blades alias into shimmering sub-pixel lines without MSAA (that is what ground
@@ -124,8 +137,8 @@ impl TechniqueParams for Params {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct BladeInstance {
-    /// Root xyz, density threshold.
-    pub root_threshold: [f32; 4],
+    /// Root xyz; w unused (the density test was made when the field was generated).
+    pub root: [f32; 4],
     /// Height, width, stiffness, colour variation.
     pub shape: [f32; 4],
     /// Unit side axis (x, z: the facing's cosine and sine), rest lean (x, z).
@@ -138,7 +151,7 @@ impl BladeInstance {
         let (sin_facing, cos_facing) = b.facing.sin_cos();
         let (sin_lean, cos_lean) = b.lean.x.sin_cos();
         Self {
-            root_threshold: b.root.extend(b.threshold).to_array(),
+            root: b.root.extend(0.0).to_array(),
             shape: [b.height, b.width, b.stiffness, b.variation],
             side_lean: [
                 cos_facing,
@@ -243,7 +256,7 @@ impl Technique for Reference {
         // An empty buffer cannot be bound: keep one zero blade (drawn with 0 instances).
         let contents: &[u8] = if instances.is_empty() {
             bytemuck::bytes_of(&BladeInstance {
-                root_threshold: [0.0; 4],
+                root: [0.0; 4],
                 shape: [0.0; 4],
                 side_lean: [0.0; 4],
             })
