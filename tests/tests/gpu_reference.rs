@@ -158,3 +158,47 @@ fn catching_up_gives_the_same_frame_as_running_through() -> anyhow::Result<()> {
     assert!(last.is_some_and(|img| img.as_raw() == direct.as_raw()));
     Ok(())
 }
+
+/// The bend pass binds the blades a chunk at a time so that its storage bindings stay within
+/// the device's limit: on a device whose limit holds only 640 blades, the football field's
+/// blades take many chunks, and every blade must still get its own bend (and its own
+/// flutter, hashed by its index in the whole field): the picture is the one a device with
+/// the default limit draws in one chunk, byte for byte.
+#[test]
+fn bend_pass_chunks_draw_the_one_chunk_picture() -> anyhow::Result<()> {
+    let choice = grassbench::gpu::BackendChoice::from_env()?;
+    let small = wgpu::Limits {
+        max_storage_buffer_binding_size: 640 * 48,
+        ..wgpu::Limits::default()
+    };
+    let field = scene("football_field", 0.2)?;
+    let blades = field.blades.count(&field.terrain);
+    let per_chunk = grassbench_reference::chunk_blades(&small);
+    assert_eq!(per_chunk, 640);
+    assert!(
+        blades > 20 * u64::from(per_chunk),
+        "{blades} blades: too few to need many chunks"
+    );
+    let one = render(
+        &gpu()?,
+        "reference",
+        field.clone(),
+        7,
+        TEST_SIZE,
+        &toml::Table::new(),
+    )?;
+    let chunked = grassbench::GpuContext::with_limits(choice, Some(small))?;
+    let many = render(
+        &chunked,
+        "reference",
+        field,
+        7,
+        TEST_SIZE,
+        &toml::Table::new(),
+    )?;
+    assert!(
+        one.as_raw() == many.as_raw(),
+        "the chunked bend pass draws a different picture"
+    );
+    Ok(())
+}

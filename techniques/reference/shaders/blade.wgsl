@@ -1,5 +1,6 @@
 // Reference grass: every blade of the scene as a curved strip, built in the vertex shader from
-// a per-blade instance (see `techniques/reference/src/lib.rs`). Composed after the prelude.
+// a per-blade instance and the bend `cs_bend` gave it this frame (see
+// `techniques/reference/src/lib.rs`). Composed after the prelude.
 
 // The most segments a blade may have (`Params::segments`' range), plus one: the strip's levels.
 const MAX_LEVELS: u32 = 16u;
@@ -29,7 +30,22 @@ struct Blade {
     @location(0) root: vec4<f32>,            // root xyz; w unused
     @location(1) shape: vec4<f32>,           // height, width, stiffness, colour variation
     @location(2) side_lean: vec4<f32>,       // xy: unit side axis (x, z); zw: rest lean (x, z)
+    @location(3) bent: vec4<f32>,            // this frame's bend (`blade_bend`)
 }
+
+// A blade as the bend pass reads it: `Blade`'s first three attributes, the same 48 bytes.
+struct BladeData {
+    root: vec4<f32>,
+    shape: vec4<f32>,
+    side_lean: vec4<f32>,
+}
+
+// The bend pass's chunk of the blades (bound a range at a time: the storage bindings stay
+// within WebGPU's default size) and of their bends, blade for blade.
+@group(1) @binding(1) var<storage, read> blades: array<BladeData>;
+@group(1) @binding(2) var<storage, read_write> bends: array<vec4<f32>>;
+// x: the chunk's first blade in the whole field; yzw: unused.
+@group(1) @binding(3) var<uniform> chunk: vec4<u32>;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -46,27 +62,47 @@ fn heat(t: f32) -> vec3<f32> {
     return clamp(vec3(2.0 * x - 0.5, 1.0 - abs(2.0 * x - 1.0), 1.5 - 2.0 * x), vec3(0.0), vec3(1.0)) * 0.6;
 }
 
-@vertex
-fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32, blade: Blade) -> VsOut {
-    var out: VsOut;
-    let root = blade.root.xyz;
-    let height = blade.shape.x;
-    let width = blade.shape.y;
-    let stiffness = blade.shape.z;
-
-    // Bend: rest lean plus the wind's push, scaled by the blade's stiffness, plus a small
-    // per-blade flutter whose speed follows the wind. Time comes from the globals only.
-    let wind = wind_at(root.xz);
-    let lean = blade.side_lean.zw;
+// The bend of blade `index` rooted at `root_xz`: its rest lean plus the wind's push, scaled by
+// its stiffness, plus a small per-blade flutter whose speed follows the wind. Time comes from
+// the globals only. xy: the bend's unit direction (x, z); z: the bend at the tip (rad), at
+// most `max_bend`; w: the wind speed (for the debug view).
+fn blade_bend(root_xz: vec2<f32>, stiffness: f32, lean: vec2<f32>, index: u32) -> vec4<f32> {
+    let wind = wind_at(root_xz);
     let speed = length(wind.xz);
-    let phase = hash_f32(instance) * 2.0 * PI;
+    let phase = hash_f32(index) * 2.0 * PI;
     let flutter = params.motion.x * speed * sin(globals.camera_pos.w * (3.0 + speed) + phase);
     let push = wind.xz * (params.shape.y / stiffness) * (1.0 + flutter);
     let bend_vec = lean + push;
     let bend_len = length(bend_vec);
     let bend = min(bend_len, params.shape.w);
     let dir2 = select(vec2(1.0, 0.0), bend_vec / bend_len, bend_len > 1e-5);
-    let dir = vec3(dir2.x, 0.0, dir2.y);
+    return vec4(dir2, bend, speed);
+}
+
+// Workgroup width of the bend pass (`BEND_WORKGROUP` in lib.rs).
+const BEND_WORKGROUP: u32 = 64u;
+
+// The bend pass: each blade's bend once a frame, not at each of its vertices (the flutter's
+// phase hashes the blade's index in the whole field, not in its chunk).
+@compute @workgroup_size(BEND_WORKGROUP)
+fn cs_bend(@builtin(global_invocation_id) id: vec3<u32>) {
+    let b = id.x;
+    if (b >= arrayLength(&blades)) {
+        return;
+    }
+    let blade = blades[b];
+    bends[b] = blade_bend(blade.root.xz, blade.shape.z, blade.side_lean.zw, chunk.x + b);
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32, blade: Blade) -> VsOut {
+    var out: VsOut;
+    let root = blade.root.xyz;
+    let height = blade.shape.x;
+    let width = blade.shape.y;
+    let dir = vec3(blade.bent.x, 0.0, blade.bent.y);
+    let bend = blade.bent.z;
+    let speed = blade.bent.w;
 
     // Walk up the blade segment by segment: each segment keeps its length (height / n), so the
     // blade never stretches however far it bends. The tilt from vertical at relative height s
