@@ -177,8 +177,9 @@ pub const STORAGE_CHAIN: u32 = 32;
 /// takes an invocation (`cs_divisions`: a loop of 16); the other spring updates take none.
 pub const DIVISION_CHAIN: u32 = 16;
 /// Transcendentals of one invocation of the strips' vertex shader (`blade_vertex`: the
-/// facing's `cos` and `sin`, the sway's `sin`).
-pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 3;
+/// facing's `cos` and `sin`, one `sincos` as the op counter counts them, and the sway's
+/// `sin`).
+pub const STRIP_VERTEX_TRANSCENDENTALS: u32 = 2;
 /// Transcendentals of one invocation of the layers' fragment shaders (`lit`: the fog's
 /// `exp`).
 pub const LIT_TRANSCENDENTALS: u32 = 1;

@@ -16,12 +16,14 @@
 //! [`super::trips`]), once where the data decide. So it is exact for straight-line shaders
 //! and loops of fixed length (most of the harness's), an upper bound where a branch skips
 //! work (debug views, early returns, a loop left early) and a lower bound where a loop whose
-//! trips the data decide runs more than once (the reference's segment walk up to its
-//! vertex's level; jahrmann's binary search over its ranges runs the halvings its pipeline
-//! sets, so it is counted by them).
+//! trips the data decide runs more than once (jahrmann's binary search over its ranges runs
+//! the halvings its pipeline sets, so it is counted by them). A sine and a cosine of the same
+//! value count as one transcendental ([`is_shared_cosine`]).
 //! On lavapipe, whose SIMD shaders run both sides of a branch for a whole batch, a branch's
-//! both sides are what is paid (the reference's early return for culled blades saved
-//! nothing: `techniques/reference/src/lib.rs`), so there the bound is the cost. That holds for
+//! both sides are what is paid, so there the bound is the cost; and more: code after a return
+//! or in a loop that some lanes of a batch may leave early runs masked, a cost of its own the
+//! count does not hold (the reference's early return for blades its density test culled, none
+//! of them uploaded, cost it 11-23 % of its frame: `results/reference_shader/`). That holds for
 //! a branch on a uniform too, which every invocation takes the same way: bakay's fragments
 //! branched on its level-of-detail mode, a lookup of each kind per texture, and dropping the
 //! side no invocation took made its meadow frames 4-8 ms shorter on lavapipe (now an entry
@@ -100,6 +102,21 @@ pub struct ShaderOps {
     /// constant divisor, `const` or pipeline-overridable, is a multiply and a shift after
     /// the driver's compilation, and is arithmetic only.
     pub divisions: u64,
+}
+
+/// Whether `fun` of `arg` is a cosine of a value whose sine the same function takes
+/// (`sines`): the pair counts as one transcendental. Compilers share the two's range
+/// reduction (a `sincos`); on lavapipe a cosine beside its sine costs next to nothing: the
+/// reference's walk with its 5 cosines a vertex replaced by square roots ran no faster, and
+/// with each cosine's argument made different from its sine's it ran 7-16 % slower, about
+/// the calibrated price of the 5 (`results/reference_shader/`, *A sine and a cosine*). On a
+/// GPU whose sine and cosine are separate instructions this counts one too few a pair.
+fn is_shared_cosine(
+    fun: naga::MathFunction,
+    arg: naga::Handle<naga::Expression>,
+    sines: &std::collections::HashSet<naga::Handle<naga::Expression>>,
+) -> bool {
+    fun == naga::MathFunction::Cos && sines.contains(&arg)
 }
 
 /// Whether `f` is a transcendental built-in: trigonometric and hyperbolic functions and
@@ -565,6 +582,20 @@ fn function_ops(
             }
         }
     });
+    // The values this function takes the sine of: a cosine of one of them is not counted (a
+    // sine and a cosine of the same value are one `sincos`, [`is_shared_cosine`]).
+    let sines: std::collections::HashSet<_> = function
+        .expressions
+        .iter()
+        .filter_map(|(_, e)| match e {
+            naga::Expression::Math {
+                fun: naga::MathFunction::Sin,
+                arg,
+                ..
+            } => Some(*arg),
+            _ => None,
+        })
+        .collect();
     let one = |h: naga::Handle<naga::Expression>, e: &naga::Expression| {
         let none = ShaderOps::default();
         let fetched = match e {
@@ -592,8 +623,8 @@ fn function_ops(
                 ..none
             },
             naga::Expression::ImageLoad { .. } => ShaderOps { loads: 1, ..none },
-            naga::Expression::Math { fun, .. } if is_transcendental(*fun) => ShaderOps {
-                transcendentals: 1,
+            naga::Expression::Math { fun, arg, .. } if is_transcendental(*fun) => ShaderOps {
+                transcendentals: u64::from(!is_shared_cosine(*fun, *arg, &sines)),
                 ..none
             },
             _ => none,
@@ -727,10 +758,43 @@ mod tests {
             .unwrap_or_else(|| panic!("no entry {name}"))
     }
 
+    /// A cosine counts nothing beside a sine of the same value, in the same function; of
+    /// another value, or alone, or beside a sine in another function, it counts one.
+    #[test]
+    fn a_sine_and_a_cosine_of_one_value_count_once() {
+        let source = "
+            fn sine(x: f32) -> f32 { return sin(x); }
+            @vertex fn pair(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+                let a = f32(v);
+                return vec4(sin(a), cos(a), 0.0, 1.0);
+            }
+            @vertex fn apart(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+                let a = f32(v);
+                return vec4(sin(a), cos(a + 1.0), cos(a * 2.0), 1.0);
+            }
+            @vertex fn across(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
+                let a = f32(v);
+                return vec4(sine(a), cos(a), 0.0, 1.0);
+            }
+        ";
+        let module = naga::front::wgsl::parse_str(source).unwrap();
+        let bound = Bound {
+            float: &[],
+            single_level: &[],
+        };
+        let transcendentals: HashMap<String, u64> = entry_ops(&module, bound, &[])
+            .into_iter()
+            .map(|(name, ops)| (name, ops.transcendentals))
+            .collect();
+        assert_eq!(transcendentals["pair"], 1);
+        assert_eq!(transcendentals["apart"], 3);
+        assert_eq!(transcendentals["across"], 2);
+    }
+
     #[test]
     fn calls_count_per_call_site_branches_once_and_loops_per_trip() {
-        // Two calls of a two-load function; `sin` and `cos` (`sqrt` and `length` are not
-        // transcendental). Arithmetic: each `height` call's `vec2<i32>` sum (2) and scalar
+        // Two calls of a two-load function; `sin` and `cos` of the same value, one `sincos`
+        // (`sqrt` and `length` are not transcendental). Arithmetic: each `height` call's `vec2<i32>` sum (2) and scalar
         // sum (1), the two `i32` and one `f32` conversions, the heights' sum, `sqrt`,
         // `length` of a `vec2` (2) and their sum.
         assert_eq!(
@@ -741,7 +805,7 @@ mod tests {
                 samples: 0,
                 float_samples: 0,
                 mip_blends: 0,
-                transcendentals: 2,
+                transcendentals: 1,
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
                 barriers: 0,
                 storage: 0,
