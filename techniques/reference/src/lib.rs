@@ -42,7 +42,8 @@
 //! (WebGPU's default binding); a bend invocation does four texel loads of the wind and a
 //! `sin`; vertex work `B·(2n + 1)·n` segment steps, each a `sin` and a `cos`, plus a `sin`
 //! and a `cos` of the vertex's own tilt: `2n + 2` transcendentals a vertex, 12 at the default
-//! 5 segments (the cost model's count, `results/cost_model`); no CPU work per frame. GPU
+//! 5 segments, which the cost model counts as `n + 1` (each cosine beside the sine of its
+//! angle is priced as part of it: `src/shaders/ops.rs`); no CPU work per frame. GPU
 //! memory: `64·B + 320` bytes and 16 a chunk. On a software rasteriser the cost is dominated by triangle setup, i.e. linear
 //! in `B·n`; the vertex shader's transcendentals and arithmetic come next (lavapipe, at
 //! revision `bf07165`: 1.5 ns a transcendental, 0.04 ns a scalar operation, 238 of them a
