@@ -9,7 +9,7 @@ use wgpu::util::DeviceExt as _;
 use super::workloads::{self, Shape, Workload, dispatch_grid};
 use super::{FragmentKind, Work};
 use crate::frame::FrameGlobals;
-use crate::shaders::PipelineCost;
+use crate::shaders::{PipelineCost, buffer_entry};
 use crate::target::{COLOR_FORMAT, DEPTH_FORMAT, Size};
 use crate::technique::{PassKind, WorkCounter};
 use crate::{Error, GpuContext, RenderTarget, Result, shaders};
@@ -80,16 +80,6 @@ impl<'g> Rig<'g> {
                 &workloads::texture_formats(),
                 &[workloads::SINGLE_LEVEL_SAMPLER],
             );
-            let buffer_entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility,
-                ty: wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            };
             let sampler_entry = |binding| wgpu::BindGroupLayoutEntry {
                 binding,
                 visibility: wgpu::ShaderStages::FRAGMENT,

@@ -20,8 +20,8 @@ pub use layout::struct_size;
 pub use loops::uniform_bound_loops;
 pub use ops::{Bound, ShaderOps, entry_ops, is_float, texture_globals};
 pub use pipeline::{
-    ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, compute_pipeline,
-    depth_less, depth_test, render_pipeline,
+    ComputePipeline, PassOps, PipelineCost, PipelineSpec, RenderPipeline, buffer_entry,
+    compute_pipeline, depth_less, depth_test, render_pipeline,
 };
 
 /// The prelude: `Globals`, bind group 0, `terrain_height`, `terrain_normal`, `terrain_density`,

@@ -148,6 +148,26 @@ impl std::ops::Deref for ComputePipeline {
     }
 }
 
+/// A bind group layout entry for one buffer of kind `ty` at `binding`, seen by `visibility`:
+/// not an array, no dynamic offset, its minimum size left to the shader's declaration (what
+/// nearly every buffer of the harness's pipelines is).
+pub fn buffer_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::BufferBindingType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// Creates the compute pipeline running `module`'s entry point `entry` with `layout` and the
 /// pipeline-overridable `constants` (as [`PipelineSpec::constants`]), its cost read off the
 /// shader.

@@ -81,6 +81,7 @@
 use grassbench::glam::Vec3;
 use grassbench::gpu::GpuEstimate;
 use grassbench::params::{TechniqueParams, check_ranges};
+use grassbench::shaders::buffer_entry;
 use grassbench::technique::{Technique, TechniqueEntry, Variants};
 use grassbench::wgpu::util::DeviceExt as _;
 use grassbench::{
@@ -345,16 +346,6 @@ impl Technique for Reference {
             contents: bytemuck::bytes_of(&uniform),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let buffer_entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
         let uniform = wgpu::BufferBindingType::Uniform;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("reference (group 1)"),
