@@ -79,7 +79,7 @@ fn blade_bend(root_xz: vec2<f32>, stiffness: f32, lean: vec2<f32>, index: u32) -
     return vec4(dir2, bend, speed);
 }
 
-// Workgroup width of the bend pass (`BEND_WORKGROUP` in lib.rs).
+// Workgroup width of the bend pass (`WORKGROUP` in src/bend.rs).
 const BEND_WORKGROUP: u32 = 64u;
 
 // The bend pass: each blade's bend once a frame, not at each of its vertices (the flutter's

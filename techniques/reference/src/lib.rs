@@ -17,7 +17,7 @@
 //!   bend `φ`, the length of the rest lean plus the wind push `wind_response · v / stiffness`
 //!   read from the scene's [`WindField`](grassbench::wind::WindField) texture (with a small
 //!   per-blade flutter), clamped to `max_bend`, and its direction, 16 bytes a blade. The blades
-//!   are bound a chunk at a time ([`chunk_blades`]), so the pass needs no storage binding
+//!   are bound a chunk at a time ([`chunk_blades`], `src/bend.rs`), so the pass needs no storage binding
 //!   larger than WebGPU's default however many blades there are.
 //! - **Vertex shader**. One instanced triangle strip per blade with `2n + 1` vertices for `n`
 //!   segments, reading its blade and its bend as instance attributes. The blade bends in the
@@ -78,6 +78,10 @@
 
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+mod bend;
+
+use bend::BendPass;
+pub use bend::chunk_blades;
 use grassbench::glam::Vec3;
 use grassbench::gpu::GpuEstimate;
 use grassbench::params::{TechniqueParams, check_ranges};
@@ -202,42 +206,6 @@ impl BladeInstance {
     };
 }
 
-/// Bytes of one blade's bend (`blade_bend` in `blade.wgsl`: direction, angle, wind speed).
-const BEND_BYTES: u64 = 16;
-
-/// The bends as the vertex shader reads them: one per blade, the strip's fourth attribute.
-const BEND_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
-    array_stride: BEND_BYTES,
-    step_mode: wgpu::VertexStepMode::Instance,
-    attributes: &wgpu::vertex_attr_array![3 => Float32x4],
-};
-
-/// Bytes of a chunk's uniform (its first blade, padded to a `vec4<u32>`).
-const CHUNK_UNIFORM_BYTES: u64 = 16;
-
-/// Invocations in a workgroup of the bend pass (`BEND_WORKGROUP` in `blade.wgsl`).
-pub const BEND_WORKGROUP: u32 = 64;
-
-/// Blades in a chunk of the bend pass, bound as one range of the blade and bend buffers: a
-/// whole number of workgroups (so every chunk starts at a multiple of 64 blades: 3 072 bytes
-/// of blades and 1 024 of bends, multiples of the 256 bytes WebGPU allows as the largest
-/// storage offset alignment), whose blades fit the device's storage binding size and whose
-/// workgroups fit one dimension of a dispatch.
-pub fn chunk_blades(limits: &wgpu::Limits) -> u32 {
-    let blade = std::mem::size_of::<BladeInstance>() as u64;
-    let groups = (limits.max_storage_buffer_binding_size / blade / u64::from(BEND_WORKGROUP))
-        .min(u64::from(limits.max_compute_workgroups_per_dimension))
-        .max(1);
-    u32::try_from(groups * u64::from(BEND_WORKGROUP)).unwrap_or(u32::MAX - BEND_WORKGROUP + 1)
-}
-
-/// One chunk of the bend pass: its bind group (the chunk's ranges and first blade) and its
-/// workgroups.
-struct BendChunk {
-    bind_group: wgpu::BindGroup,
-    workgroups: u32,
-}
-
 /// Mirror of the shader's `Params` uniform.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -259,11 +227,8 @@ pub struct Reference {
     params: Params,
     pipeline: grassbench::shaders::RenderPipeline,
     bind_group: wgpu::BindGroup,
-    bend_pipeline: grassbench::shaders::ComputePipeline,
-    bend_chunks: Vec<BendChunk>,
+    bend: BendPass,
     instances: wgpu::Buffer,
-    /// This frame's bend of every blade, written by the bend pass, read by the strips.
-    bends: wgpu::Buffer,
     blade_count: u32,
     gpu_bytes: u64,
 }
@@ -317,13 +282,6 @@ impl Technique for Reference {
             contents,
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
         });
-        let bend_bytes = (instances.len().max(1) as u64) * BEND_BYTES;
-        let bends = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("reference bends"),
-            size: bend_bytes,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
         let g = &scene.config.grass;
         let uniform = ParamsUniform {
             color_root: Vec3::from(g.color_root)
@@ -346,32 +304,13 @@ impl Technique for Reference {
             contents: bytemuck::bytes_of(&uniform),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let uniform = wgpu::BufferBindingType::Uniform;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("reference (group 1)"),
             entries: &[buffer_entry(
                 0,
                 wgpu::ShaderStages::VERTEX_FRAGMENT,
-                uniform,
+                wgpu::BufferBindingType::Uniform,
             )],
-        });
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let bend_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("reference bend (group 1)"),
-            entries: &[
-                buffer_entry(0, compute, uniform),
-                buffer_entry(
-                    1,
-                    compute,
-                    wgpu::BufferBindingType::Storage { read_only: true },
-                ),
-                buffer_entry(
-                    2,
-                    compute,
-                    wgpu::BufferBindingType::Storage { read_only: false },
-                ),
-                buffer_entry(3, compute, uniform),
-            ],
         });
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("reference (group 1)"),
@@ -381,78 +320,13 @@ impl Technique for Reference {
                 resource: uniform_buffer.as_entire_binding(),
             }],
         });
-        let blade_bytes = std::mem::size_of::<BladeInstance>() as u64;
-        let per_chunk = chunk_blades(&device.limits());
-        let bend_chunks = (0..instances.len() as u32)
-            .step_by(per_chunk as usize)
-            .map(|first| {
-                let count = per_chunk.min(instances.len() as u32 - first);
-                let first_blade = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("reference bend chunk"),
-                    contents: bytemuck::bytes_of(&[first, 0, 0, 0]),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                fn range(
-                    buffer: &wgpu::Buffer,
-                    first: u32,
-                    count: u32,
-                    bytes: u64,
-                ) -> wgpu::BufferBinding<'_> {
-                    wgpu::BufferBinding {
-                        buffer,
-                        offset: u64::from(first) * bytes,
-                        size: std::num::NonZeroU64::new(u64::from(count) * bytes),
-                    }
-                }
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("reference bend (group 1)"),
-                    layout: &bend_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: uniform_buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::Buffer(range(
-                                &instance_buffer,
-                                first,
-                                count,
-                                blade_bytes,
-                            )),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: wgpu::BindingResource::Buffer(range(
-                                &bends, first, count, BEND_BYTES,
-                            )),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: first_blade.as_entire_binding(),
-                        },
-                    ],
-                });
-                BendChunk {
-                    bind_group,
-                    workgroups: count.div_ceil(BEND_WORKGROUP),
-                }
-            })
-            .collect::<Vec<_>>();
         let module = shaders::module(device, "reference blade", SHADER);
-        let bend_pipeline = shaders::compute_pipeline(
-            device,
-            "reference bend",
-            &ctx.scene_gpu
-                .pipeline_layout(device, "reference bend", &[&bend_layout]),
-            &module,
-            "cs_bend",
-            &[],
-        );
+        let blade_count = instances.len() as u32;
+        let bend = BendPass::new(ctx, &module, &uniform_buffer, &instance_buffer, blade_count);
         let pipeline_layout = ctx
             .scene_gpu
             .pipeline_layout(device, "reference", &[&layout]);
-        let buffers = [Some(BladeInstance::LAYOUT), Some(BEND_LAYOUT)];
+        let buffers = [Some(BladeInstance::LAYOUT), Some(bend::LAYOUT)];
         let constants = [("SEGMENTS", f64::from(params.segments))];
         let pipeline = shaders::render_pipeline(
             device,
@@ -469,18 +343,13 @@ impl Technique for Reference {
             },
         );
         Ok(Self {
-            blade_count: instances.len() as u32,
-            gpu_bytes: bytes
-                + bend_bytes
-                + std::mem::size_of::<ParamsUniform>() as u64
-                + CHUNK_UNIFORM_BYTES * bend_chunks.len() as u64,
+            blade_count,
+            gpu_bytes: bytes + bend.bytes() + std::mem::size_of::<ParamsUniform>() as u64,
             params,
             pipeline,
             bind_group,
-            bend_pipeline,
-            bend_chunks,
+            bend,
             instances: instance_buffer,
-            bends,
         })
     }
 
@@ -488,13 +357,12 @@ impl Technique for Reference {
         // At most one instance and one bend per candidate (fewer where the density map thins
         // them), and a chunk's uniform per chunk of the bend pass.
         let candidates = scene.blades.candidate_count(&scene.terrain);
-        let chunks = candidates.div_ceil(u64::from(chunk_blades(&wgpu::Limits::default())));
         Ok(GpuEstimate::buffer(
             candidates.saturating_mul(std::mem::size_of::<BladeInstance>() as u64),
         )
-        .plus(GpuEstimate::buffer(candidates.saturating_mul(BEND_BYTES)))
+        .plus(BendPass::estimate(candidates))
         .plus(GpuEstimate::buffer(
-            std::mem::size_of::<ParamsUniform>() as u64 + CHUNK_UNIFORM_BYTES * chunks,
+            std::mem::size_of::<ParamsUniform>() as u64
         )))
     }
 
@@ -503,7 +371,7 @@ impl Technique for Reference {
     /// more; a device that offers less than the default is served too).
     fn required_limits(_scene: &Scene, _params: &Params) -> wgpu::Limits {
         wgpu::Limits {
-            max_storage_buffer_binding_size: u64::from(BEND_WORKGROUP)
+            max_storage_buffer_binding_size: u64::from(bend::WORKGROUP)
                 * std::mem::size_of::<BladeInstance>() as u64,
             ..wgpu::Limits::default()
         }
@@ -535,19 +403,12 @@ impl GrassTechnique for Reference {
         if self.blade_count == 0 {
             return;
         }
-        {
-            let mut pass = encoder.compute_pass("bend");
-            pass.set_pipeline(&self.bend_pipeline);
-            for chunk in &self.bend_chunks {
-                pass.set_bind_group(1, &chunk.bind_group, &[]);
-                pass.dispatch_workgroups(chunk.workgroups, 1, 1);
-            }
-        }
+        self.bend.encode(encoder);
         let mut pass = encoder.render_pass("blades");
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(1, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, self.instances.slice(..));
-        pass.set_vertex_buffer(1, self.bends.slice(..));
+        pass.set_vertex_buffer(1, self.bend.bends().slice(..));
         pass.draw(0..self.vertices_per_blade(), 0..self.blade_count);
     }
 
@@ -573,34 +434,6 @@ mod tests {
             std::mem::size_of::<ParamsUniform>()
         );
     }
-    /// Chunks are whole workgroups that fit the storage binding and one dispatch dimension.
-    #[test]
-    fn chunks_fit_the_binding_and_the_dispatch() {
-        let blade = std::mem::size_of::<BladeInstance>() as u64;
-        let defaults = wgpu::Limits::default();
-        let per_chunk = chunk_blades(&defaults);
-        assert_eq!(per_chunk % BEND_WORKGROUP, 0);
-        assert!(u64::from(per_chunk) * blade <= defaults.max_storage_buffer_binding_size);
-        // One more workgroup would not fit: the chunk is as large as the binding allows.
-        assert!(
-            u64::from(per_chunk + BEND_WORKGROUP) * blade
-                > defaults.max_storage_buffer_binding_size
-        );
-        // A device with a binding as large as memory: the dispatch dimension bounds the chunk.
-        let wide = wgpu::Limits {
-            max_storage_buffer_binding_size: u64::MAX,
-            ..defaults.clone()
-        };
-        assert_eq!(
-            chunk_blades(&wide),
-            defaults.max_compute_workgroups_per_dimension * BEND_WORKGROUP
-        );
-        // Every chunk starts at a multiple of 256 bytes in both buffers (WebGPU's largest
-        // storage offset alignment).
-        assert_eq!((u64::from(per_chunk) * blade) % 256, 0);
-        assert_eq!((u64::from(per_chunk) * BEND_BYTES) % 256, 0);
-    }
-
     /// Every key has a description, and `validate` accepts each end of the schema's ranges
     /// and refuses the values just past them (the schema is where the ranges are written).
     #[test]
