@@ -167,6 +167,18 @@ impl BendPass {
 mod tests {
     use super::*;
 
+    /// The shader's bend pass runs workgroups as wide as the dispatches count them.
+    #[test]
+    fn the_shader_s_workgroup_is_the_one_dispatched() {
+        let module = naga::front::wgsl::parse_str(&shaders::compose(crate::SHADER)).unwrap();
+        let entry = module
+            .entry_points
+            .iter()
+            .find(|e| e.name == "cs_bend")
+            .unwrap();
+        assert_eq!(entry.workgroup_size, [WORKGROUP, 1, 1]);
+    }
+
     /// Chunks are whole workgroups that fit the storage binding and one dispatch dimension.
     #[test]
     fn chunks_fit_the_binding_and_the_dispatch() {
