@@ -24,6 +24,13 @@ pub struct Provenance {
     pub wgpu_version: String,
     /// CPU model.
     pub cpu: String,
+    /// The CPU told apart from others of its name ([`CpuId`]'s text: vendor, family, model,
+    /// stepping, the kernel's clock reading and the widest vector extension), where virtual
+    /// machines name every model alike (`Intel(R) Xeon(R) Processor`): a software rasteriser's
+    /// unit costs, and the last bit of its pictures, follow the instructions the CPU has. Empty
+    /// in files from before it was recorded, or where the system does not say.
+    #[serde(default)]
+    pub cpu_id: String,
     /// Logical CPUs.
     pub cpu_count: usize,
     /// Operating system.
@@ -53,6 +60,9 @@ impl Provenance {
             grassbench_version: env!("CARGO_PKG_VERSION").to_owned(),
             wgpu_version: WGPU_VERSION.to_owned(),
             cpu: cpu_model(),
+            cpu_id: std::fs::read_to_string("/proc/cpuinfo")
+                .map(|text| CpuId::parse(&text).to_string())
+                .unwrap_or_default(),
             cpu_count: std::thread::available_parallelism().map_or(1, |n| n.get()),
             os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
             date: utc_now(),
@@ -75,8 +85,13 @@ impl Provenance {
         } else {
             format!("; allocator: {}", self.allocator)
         };
+        let cpu_id = if self.cpu_id.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", self.cpu_id)
+        };
         format!(
-            "Measured on `{}` ({}, {}; driver {} {}), CPU {} x{}, revision `{}` ({} build), {}{allocator}.  \n\
+            "Measured on `{}` ({}, {}; driver {} {}), CPU {}{cpu_id} x{}, revision `{}` ({} build), {}{allocator}.  \n\
              Command: `{}`{after_command}.\n",
             a.name,
             a.backend,
@@ -137,6 +152,82 @@ fn git_revision() -> String {
             if dirty { format!("{rev}+dirty") } else { rev }
         }
         None => "unknown".to_owned(),
+    }
+}
+
+/// What tells one CPU from another of the same name, read from Linux's `/proc/cpuinfo`
+/// (its first processor): each field empty where the file does not give it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CpuId {
+    /// `vendor_id` (`GenuineIntel`, `AuthenticAMD`).
+    pub vendor: String,
+    /// `cpu family`, `model` and `stepping`, as `6/167/1`.
+    pub family_model_stepping: String,
+    /// `cpu MHz`, rounded to the megahertz (a virtual machine's nominal clock).
+    pub mhz: String,
+    /// The widest SIMD extension among the flags: `avx512f`, `avx2`, `avx`, `sse4_2`, or empty.
+    pub simd: String,
+}
+
+impl CpuId {
+    /// The SIMD extensions looked for, widest first.
+    const SIMD: [&'static str; 4] = ["avx512f", "avx2", "avx", "sse4_2"];
+
+    /// Reads the first processor's block of `/proc/cpuinfo`'s text.
+    pub fn parse(cpuinfo: &str) -> Self {
+        let field = |key: &str| {
+            cpuinfo
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .filter_map(|l| l.split_once(':'))
+                .find(|(k, _)| k.trim() == key)
+                .map(|(_, v)| v.trim().to_owned())
+                .unwrap_or_default()
+        };
+        let fms = [field("cpu family"), field("model"), field("stepping")];
+        let flags = field("flags");
+        let flags: Vec<&str> = flags.split_whitespace().collect();
+        Self {
+            vendor: field("vendor_id"),
+            family_model_stepping: if fms.iter().all(String::is_empty) {
+                String::new()
+            } else {
+                fms.join("/")
+            },
+            mhz: field("cpu MHz")
+                .parse::<f64>()
+                .ok()
+                .filter(|mhz| mhz.is_finite() && *mhz > 0.0)
+                .map(|mhz| format!("{mhz:.0} MHz"))
+                .unwrap_or_default(),
+            simd: Self::SIMD
+                .iter()
+                .find(|s| flags.contains(s))
+                .map(|s| (*s).to_owned())
+                .unwrap_or_default(),
+        }
+    }
+}
+
+impl std::fmt::Display for CpuId {
+    /// `GenuineIntel 6/167/1, 2600 MHz, avx512f`: the fields that are known, in that order.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let known: Vec<&str> = [
+            self.vendor.as_str(),
+            self.family_model_stepping.as_str(),
+            self.mhz.as_str(),
+            self.simd.as_str(),
+        ]
+        .into_iter()
+        .filter(|s| !s.is_empty())
+        .collect();
+        match known.split_first() {
+            // The vendor names the rest: `GenuineIntel 6/167/1, ...`.
+            Some((vendor, rest)) if !self.vendor.is_empty() && !rest.is_empty() => {
+                write!(f, "{vendor} {}", rest.join(", "))
+            }
+            _ => f.write_str(&known.join(", ")),
+        }
     }
 }
 
@@ -225,6 +316,7 @@ mod tests {
             grassbench_version: "0.1.0".into(),
             wgpu_version: WGPU_VERSION.into(),
             cpu: "EPYC".into(),
+            cpu_id: String::new(),
             cpu_count: 2,
             os: "linux x86_64".into(),
             date: "2026-12-02T00:00:00Z".into(),
@@ -242,6 +334,18 @@ mod tests {
             p.to_markdown("")
                 .ends_with("Command: `grassbench sweep s.toml`.\n")
         );
+        // A CPU told apart by its identity, beside its name.
+        let identified = Provenance {
+            cpu_id: "AuthenticAMD 25/17/0, 2600 MHz, avx512f".into(),
+            ..p.clone()
+        };
+        assert!(
+            identified
+                .to_markdown("")
+                .contains("CPU EPYC (AuthenticAMD 25/17/0, 2600 MHz, avx512f) x2,"),
+            "{}",
+            identified.to_markdown("")
+        );
         // A file from before the allocator was recorded says nothing of it.
         let older = Provenance {
             allocator: String::new(),
@@ -252,5 +356,29 @@ mod tests {
             "{}",
             older.to_markdown("")
         );
+    }
+
+    /// Two virtual machines' `/proc/cpuinfo` as this project's hosts gave them (abridged), and
+    /// the file's second processor, which must not be read.
+    #[test]
+    fn cpu_id_tells_hosts_of_one_name_apart() {
+        let xeon = "processor\t: 0\nvendor_id\t: GenuineIntel\ncpu family\t: 6\nmodel\t\t: 167\n\
+                    model name\t: Intel(R) Xeon(R) Processor\nstepping\t: 1\ncpu MHz\t\t: 2600.000\n\
+                    flags\t\t: fpu sse4_2 avx avx2 avx512f avx512vl\n\n\
+                    processor\t: 1\nvendor_id\t: OtherVendor\nflags\t\t: fpu\n";
+        let id = CpuId::parse(xeon);
+        assert_eq!(id.family_model_stepping, "6/167/1");
+        assert_eq!(id.to_string(), "GenuineIntel 6/167/1, 2600 MHz, avx512f");
+        let epyc = "vendor_id\t: AuthenticAMD\ncpu family\t: 25\nmodel\t\t: 17\nstepping\t: 0\n\
+                    cpu MHz\t\t: 2595.124\nflags\t\t: fpu sse4_2 avx avx2\n";
+        assert_eq!(
+            CpuId::parse(epyc).to_string(),
+            "AuthenticAMD 25/17/0, 2595 MHz, avx2"
+        );
+        // Another system's text (or none): nothing invented.
+        assert_eq!(CpuId::parse("").to_string(), "");
+        assert_eq!(CpuId::parse("cpu MHz : NaN\n"), CpuId::default());
+        let no_vendor = CpuId::parse("flags : sse4_2\n");
+        assert_eq!(no_vendor.to_string(), "sse4_2");
     }
 }
