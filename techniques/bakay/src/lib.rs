@@ -181,7 +181,10 @@
 //! `e1e5cb1`: 14.7-17.9x the paper's time, 32.6 and 73.7 ms a shell (2.26x), faster than
 //! `reference` up to the same 33 and 17 shells; on the Xeon at `cfbfa08`: 6.0-6.6x, 13.2 and
 //! 27.7 ms a shell (2.1x), faster than `reference` up to 17 shells at 640x480 and 9 at
-//! 1024x768. (On 2026-12-01, before issue 19, at our defaults then and with the texture
+//! 1024x768. Against the reference's vertex shader of `59a14de` and `68eb6f4` (its frames
+//! about half as long), at `ab46b38` on a 2-vCPU Intel Xeon with AVX-512: 4.5-4.9x the paper's
+//! time from 9 shells on, 9.8 and 20.7 ms a shell (2.11x), faster than `reference` up to 17
+//! shells at 640x480 (0.71x) and 9 at 1024x768 (0.73x), 2.50x and 4.59x its time at 65. (On 2026-12-01, before issue 19, at our defaults then and with the texture
 //! 9 times the scene's density, the same table read 8.0 and 17.3 ms a shell on average from 1
 //! to 65 shells.)
 //! 3.0 MB of GPU memory on the meadow (unchanged: the texture's size does not depend on its
