@@ -14,13 +14,17 @@ comparison a re-made folder's README starts from (python3, standard library only
 version of that file committed at a revision, and prints what a re-make has to say: the counts
 that changed (anything else is timing), each run's GPU time against the old one and its
 measured / model ratio then and now, and whether the pictures in `images/` are byte for byte
-the same. Run it from the repository root.
+the same, and where they are not, how far they differ (share of pixels, largest step of a
+channel: another CPU's rounding moves a few pixels by a level or two, a change of what is drawn
+moves many). Run it from the repository root.
 """
 import csv
 import io
 import statistics
+import struct
 import subprocess
 import sys
+import zlib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -124,6 +128,67 @@ def diff(folder, rev="HEAD"):
         changed = git("diff", "--name-only", rev, "--", str(Path(folder) / "images")).decode().split()
         total = len(list(images.glob("*.png")))
         print(f"images: {total - len(changed)} of {total} byte for byte {rev}'s")
+        steps = [pixel_difference(git("show", f"{rev}:{name}"), (ROOT / name).read_bytes())
+                 for name in changed if (ROOT / name).exists()]
+        steps = [s for s in steps if s is not None]
+        if steps:
+            shares = [100 * s[0] for s in steps]
+            print(f"  the other {len(steps)}: {min(shares):.1f}-{max(shares):.1f} % of their pixels "
+                  f"differ, by at most {max(s[1] for s in steps)} of 255 in a channel")
+
+
+def png_pixels(data):
+    """(width, height, bytes per pixel, pixel bytes) of an 8-bit RGB or RGBA PNG (what the
+    harness writes), or None for any other kind."""
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    pos, idat, header = 8, b"", None
+    while pos + 8 <= len(data):
+        (length,) = struct.unpack(">I", data[pos:pos + 4])
+        kind, body = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+    if header is None or header[2] != 8 or header[3] not in (2, 6) or header[6] != 0:
+        return None
+    width, height, bpp = header[0], header[1], 3 if header[3] == 2 else 4
+    raw, stride = zlib.decompress(idat), width * bpp
+    out, prev, at = bytearray(), bytearray(stride), 0
+    for _ in range(height):
+        kind, line = raw[at], bytearray(raw[at + 1:at + 1 + stride])
+        at += 1 + stride
+        for x in range(stride):
+            a = line[x - bpp] if x >= bpp else 0
+            b, c = prev[x], prev[x - bpp] if x >= bpp else 0
+            if kind == 1:
+                line[x] = (line[x] + a) & 255
+            elif kind == 2:
+                line[x] = (line[x] + b) & 255
+            elif kind == 3:
+                line[x] = (line[x] + (a + b) // 2) & 255
+            elif kind == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        out += line
+        prev = line
+    return width, height, bpp, bytes(out)
+
+
+def pixel_difference(old_png, new_png):
+    """(share of pixels that differ, largest difference of a channel in 255ths) between two
+    PNGs of one size, or None where either is not an 8-bit RGB(A) PNG or the sizes differ."""
+    old, new = png_pixels(old_png), png_pixels(new_png)
+    if old is None or new is None or old[:3] != new[:3]:
+        return None
+    bpp, a, b = old[2], old[3], new[3]
+    differing, largest = 0, 0
+    for at in range(0, len(a), bpp):
+        step = max(abs(x - y) for x, y in zip(a[at:at + bpp], b[at:at + bpp]))
+        differing += step > 0
+        largest = max(largest, step)
+    return differing / (len(a) // bpp), largest
 
 
 def label(row):
