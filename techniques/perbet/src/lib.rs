@@ -109,7 +109,7 @@
 //! 1.30, a vertex at 1.75, a primitive at 0.77), so the speed-ups over the reference there are
 //! 3.8-8.4x at the presets' own densities (4.1-8.9x on the Xeon); on a 2.0 GHz AMD EPYC
 //! (`487fc0a`), whose frames took 2.8-4.9 times these, they were 3.3-6.8x. Against the
-//! reference's vertex shader of `59a14de` and `68eb6f4`, whose frames are 0.53-0.61 as long,
+//! reference's vertex shader of `59a14de` and `68eb6f4`, whose frames are 0.52-0.61 as long,
 //! they are 2.2-4.6x (`ab46b38`, a 2-vCPU Intel Xeon with AVX-512), and the high preset at
 //! 25.6 blades/m² on the 80 m meadow costs as much as the reference (0.97x).
 //!
