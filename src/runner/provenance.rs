@@ -48,6 +48,8 @@ pub struct Provenance {
 impl Provenance {
     /// Collects everything for `adapter` and the current process.
     pub fn collect(adapter: &AdapterSummary) -> Self {
+        // Linux's description of the CPUs (elsewhere absent: the architecture stands for it).
+        let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
         Self {
             command: command_line(std::env::args()),
             revision: git_revision(),
@@ -59,10 +61,10 @@ impl Provenance {
             .to_owned(),
             grassbench_version: env!("CARGO_PKG_VERSION").to_owned(),
             wgpu_version: WGPU_VERSION.to_owned(),
-            cpu: cpu_model(),
-            cpu_id: std::fs::read_to_string("/proc/cpuinfo")
-                .map(|text| CpuId::parse(&text).to_string())
-                .unwrap_or_default(),
+            cpu: Some(cpuinfo_field(&cpuinfo, "model name"))
+                .filter(|name| !name.is_empty())
+                .unwrap_or_else(|| std::env::consts::ARCH.to_owned()),
+            cpu_id: CpuId::parse(&cpuinfo).to_string(),
             cpu_count: std::thread::available_parallelism().map_or(1, |n| n.get()),
             os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
             date: utc_now(),
@@ -175,15 +177,7 @@ impl CpuId {
 
     /// Reads the first processor's block of `/proc/cpuinfo`'s text.
     pub fn parse(cpuinfo: &str) -> Self {
-        let field = |key: &str| {
-            cpuinfo
-                .lines()
-                .take_while(|l| !l.trim().is_empty())
-                .filter_map(|l| l.split_once(':'))
-                .find(|(k, _)| k.trim() == key)
-                .map(|(_, v)| v.trim().to_owned())
-                .unwrap_or_default()
-        };
+        let field = |key: &str| cpuinfo_field(cpuinfo, key);
         let fms = [field("cpu family"), field("model"), field("stepping")];
         let flags = field("flags");
         let flags: Vec<&str> = flags.split_whitespace().collect();
@@ -212,35 +206,30 @@ impl CpuId {
 impl std::fmt::Display for CpuId {
     /// `GenuineIntel 6/167/1, 2600 MHz, avx512f`: the fields that are known, in that order.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let known: Vec<&str> = [
-            self.vendor.as_str(),
-            self.family_model_stepping.as_str(),
-            self.mhz.as_str(),
-            self.simd.as_str(),
-        ]
-        .into_iter()
-        .filter(|s| !s.is_empty())
-        .collect();
-        match known.split_first() {
-            // The vendor names the rest: `GenuineIntel 6/167/1, ...`.
-            Some((vendor, rest)) if !self.vendor.is_empty() && !rest.is_empty() => {
-                write!(f, "{vendor} {}", rest.join(", "))
-            }
-            _ => f.write_str(&known.join(", ")),
-        }
+        let rest: Vec<&str> = [&self.family_model_stepping, &self.mhz, &self.simd]
+            .into_iter()
+            .map(String::as_str)
+            .filter(|s| !s.is_empty())
+            .collect();
+        // The vendor names the rest: `GenuineIntel 6/167/1, ...`.
+        let gap = if self.vendor.is_empty() || rest.is_empty() {
+            ""
+        } else {
+            " "
+        };
+        write!(f, "{}{gap}{}", self.vendor, rest.join(", "))
     }
 }
 
-fn cpu_model() -> String {
-    std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, v)| v.trim().to_owned())
-        })
-        .unwrap_or_else(|| std::env::consts::ARCH.to_owned())
+/// The value of `key` in the first processor's block of `/proc/cpuinfo`'s text, or empty.
+fn cpuinfo_field(cpuinfo: &str, key: &str) -> String {
+    cpuinfo
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .filter_map(|l| l.split_once(':'))
+        .find(|(k, _)| k.trim() == key)
+        .map(|(_, v)| v.trim().to_owned())
+        .unwrap_or_default()
 }
 
 /// Current UTC time as RFC 3339, computed from the Unix epoch (no date crate needed).
@@ -380,5 +369,13 @@ mod tests {
         assert_eq!(CpuId::parse("cpu MHz : NaN\n"), CpuId::default());
         let no_vendor = CpuId::parse("flags : sse4_2\n");
         assert_eq!(no_vendor.to_string(), "sse4_2");
+        assert_eq!(
+            CpuId::parse("vendor_id : GenuineIntel\n").to_string(),
+            "GenuineIntel"
+        );
+        assert_eq!(
+            cpuinfo_field(xeon, "model name"),
+            "Intel(R) Xeon(R) Processor"
+        );
     }
 }
