@@ -92,10 +92,12 @@ impl MeasuredSample {
     }
 }
 
-/// The terms the GPU's pipeline-statistics counters measure (the others are known by
-/// construction: draws, uploads, submissions). Texture fetches, transcendentals, arithmetic, barriers, storage words, integer divisions and mip blends are
+/// The terms the work counter measures (the others are known by construction: draws,
+/// uploads, submissions): the GPU's pipeline-statistics counters, and instances, which the
+/// harness counts into the counter's segments as it records the draws. Texture fetches,
+/// transcendentals, arithmetic, barriers, storage words, integer divisions and mip blends are
 /// the counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 21] = [
+pub const COUNTED_TERMS: [Term; 22] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -117,6 +119,7 @@ pub const COUNTED_TERMS: [Term; 21] = [
     Term::VertexStorage,
     Term::ComputeDivision,
     Term::TextureMipBlend,
+    Term::Instance,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -3,7 +3,7 @@
 //! micro-workloads whose work is known.
 //!
 //! - [`Work`]: what a frame made the GPU do (vertex invocations, primitives, fragments by
-//!   [`FragmentKind`], draws, compute invocations, bytes uploaded), from the GPU's own
+//!   [`FragmentKind`], draws and their instances, compute invocations, bytes uploaded), from the GPU's own
 //!   counters and the harness's, and what its shaders did inside those invocations (texel
 //!   loads and samples, those of floating-point texels and the vertex stage's loads apart,
 //!   transcendentals and scalar arithmetic by stage, compute shaders' workgroup barriers, compute and vertex shaders' storage-buffer words,

@@ -2,6 +2,7 @@
 //! recording, submitting and timing one submission of one or more workloads (see
 //! `measure` for what is run when, `workloads` for what each one is).
 
+use std::ops::Range;
 use std::time::Instant;
 
 use wgpu::util::DeviceExt as _;
@@ -29,7 +30,8 @@ const FETCH_TEXTURE_SIDE: u32 = 512;
 
 /// What the GPU's counters measured of one submission.
 pub(super) struct Counted {
-    /// Its work (draw calls and uploads as known: no counter sees them).
+    /// Its work (draw calls and uploads as known: no counter sees them; instances as the
+    /// harness counts them for a frame).
     pub work: Work,
     /// Samples that passed the depth test and were not discarded (occlusion queries around
     /// the render workloads).
@@ -430,10 +432,16 @@ impl<'g> Rig<'g> {
         let Some(counter) = counter else {
             return Ok((ms, None));
         };
-        let records = counter.read(gpu).ok_or_else(|| Error::DeviceLost {
-            during: label.clone(),
-            message: "reading the pipeline statistics failed".into(),
-        })?;
+        let records = counter
+            .read(gpu)
+            .map_err(|e| Error::Validation {
+                during: label.clone(),
+                message: e.to_string(),
+            })?
+            .ok_or_else(|| Error::DeviceLost {
+                during: label.clone(),
+                message: "reading the pipeline statistics failed".into(),
+            })?;
         let known = mix
             .iter()
             .fold(Work::default(), |a, w| a + w.work(self.target.size));
@@ -493,15 +501,19 @@ impl<'g> Rig<'g> {
                     costs.push(pipeline.cost());
                 }
                 pass.set_pipeline(pipeline);
-                match w.shape {
-                    Shape::OffscreenStrips { instances }
-                    | Shape::SubpixelStrips { instances }
+                // The draws, each a vertex range and an instance range.
+                let draws: Vec<(Range<u32>, Range<u32>)> = match w.shape {
+                    Shape::OffscreenStrips {
+                        vertices,
+                        instances,
+                    } => vec![(0..vertices, 0..instances)],
+                    Shape::SubpixelStrips { instances }
                     | Shape::MathStrips { instances }
                     | Shape::ArithmeticStrips { instances }
                     | Shape::LoadStrips { instances, .. }
                     | Shape::StorageStrips { instances }
                     | Shape::OnscreenBlades { instances, .. } => {
-                        pass.draw(0..workloads::STRIP_VERTICES, 0..instances);
+                        vec![(0..workloads::STRIP_VERTICES, 0..instances)]
                     }
                     Shape::Layers { layers, .. }
                     | Shape::HiddenLayers { layers, .. }
@@ -509,15 +521,22 @@ impl<'g> Rig<'g> {
                     | Shape::MathLayers { layers }
                     | Shape::ArithmeticLayers { layers } => {
                         let end = layer_base.saturating_add(layers);
-                        pass.draw(0..workloads::LAYER_VERTICES, layer_base..end);
+                        let range = layer_base..end;
                         layer_base = end;
+                        vec![(0..workloads::LAYER_VERTICES, range)]
                     }
-                    Shape::Draws { draws } => {
-                        for i in 0..draws {
-                            pass.draw(0..workloads::DRAW_VERTICES, i..i + 1);
-                        }
+                    Shape::Draws { draws } => (0..draws)
+                        .map(|i| (0..workloads::DRAW_VERTICES, i..i + 1))
+                        .collect(),
+                    Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => Vec::new(),
+                };
+                for (vertices, instances) in draws {
+                    // Instances are counted as the frame encoder counts them: by the
+                    // harness, into the segment's record.
+                    if let Some(c) = counter.as_deref_mut().filter(|_| query.is_some()) {
+                        c.add_instances(u64::from(instances.end - instances.start));
                     }
-                    Shape::Empty | Shape::Compute { .. } | Shape::Upload { .. } => {}
+                    pass.draw(vertices, instances);
                 }
                 if query.is_some() {
                     crate::technique::work::end_render(&mut pass);

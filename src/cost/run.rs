@@ -51,6 +51,9 @@ impl Work {
             compute_divisions: f(r.compute_divisions).unwrap_or(0.0),
             texture_mip_blends: f(r.texture_mip_blends).unwrap_or(0.0)
                 + f(r.background_texture_mip_blends).unwrap_or(0.0),
+            // Older records count no instances: their calibrations had no instance term (it
+            // was folded into the vertex and primitive prices), so none is priced.
+            instances: f(r.instances).unwrap_or(0.0) + f(r.background_instances).unwrap_or(0.0),
         })
     }
 
@@ -110,6 +113,7 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_vertex_storage_ms = p.map(|p| p.vertex_storage_ms);
     run.model_compute_division_ms = p.map(|p| p.compute_division_ms);
     run.model_texture_mip_blend_ms = p.map(|p| p.texture_mip_blend_ms);
+    run.model_instance_ms = p.map(|p| p.instance_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

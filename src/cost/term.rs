@@ -138,11 +138,21 @@ pub enum Term {
     /// `grassbench calibrate` at 320x180, 2026-12-05; most GPUs filter trilinearly at half
     /// their bilinear rate).
     TextureMipBlend,
+    /// An instance of a draw call: what a draw pays once per instance, whatever its vertices
+    /// (`crate::technique::PassCounts`; an indirect draw's instance count is read back from
+    /// its arguments). Not among the units issue 20 lists: the vertex and primitive terms
+    /// were calibrated on instanced strips of one shape, which folds a per-instance cost into
+    /// their prices, and a software rasteriser pays one (lavapipe's draw module runs each
+    /// instance as a pass of its own over the instance's vertices, in SIMD batches the last
+    /// of which is partly empty): the reference with 1 to 12 segments a blade cost about
+    /// 150 ns a blade that no other count saw (`results/cost_model/segments_probe/`,
+    /// 2026-12-06). Calibrated on strips of one triangle beside the vertices' strips of nine.
+    Instance,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 26] = [
+    pub const ALL: [Self; 27] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -169,6 +179,7 @@ impl Term {
         Self::VertexStorage,
         Self::ComputeDivision,
         Self::TextureMipBlend,
+        Self::Instance,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -200,6 +211,7 @@ impl Term {
             Self::VertexStorage => "vertex_storage",
             Self::ComputeDivision => "compute_division",
             Self::TextureMipBlend => "texture_mip_blend",
+            Self::Instance => "instance",
         }
     }
 
@@ -231,6 +243,7 @@ impl Term {
             Self::ComputeStorage | Self::VertexStorage => "storage word",
             Self::ComputeDivision => "integer division",
             Self::TextureMipBlend => "sample blending two mip levels",
+            Self::Instance => "instance",
         }
     }
 

@@ -90,6 +90,10 @@ pub struct Work {
     /// ([`crate::shaders::ShaderOps::mip_blends`]).
     #[serde(default)]
     pub texture_mip_blends: f64,
+    /// Instances drawn: each direct draw's instance range, each indirect draw's instance
+    /// count as its arguments held when the frame ended (`crate::technique::work`).
+    #[serde(default)]
+    pub instances: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -107,8 +111,9 @@ impl Work {
 
     /// The work the GPU's pipeline-statistics counters measured over some passes, all drawn
     /// with pipelines of `pipeline`'s cost: fragments of its kind, texture fetches and
-    /// transcendentals its shaders' per invocation times the invocations counted. Draw calls and uploads are not among the
-    /// counters: they are 0 here, for the caller to set from the harness's counts.
+    /// transcendentals its shaders' per invocation times the invocations counted, and the
+    /// instances the harness counted into the segments. Draw calls and uploads are not among
+    /// the counters: they are 0 here, for the caller to set from the harness's counts.
     pub fn from_counters(counted: &PassWork, pipeline: PipelineCost) -> Self {
         let ops = pipeline.ops(counted);
         let fetches = ops.all();
@@ -138,6 +143,7 @@ impl Work {
             vertex_storage: ops.vertex.storage as f64,
             compute_divisions: ops.compute.divisions as f64,
             texture_mip_blends: fetches.mip_blends as f64,
+            instances: counted.instances as f64,
         };
         *work.fragments_mut(pipeline.fragments) = counted.fragment_invocations as f64;
         work
@@ -173,6 +179,7 @@ impl Work {
             Term::VertexStorage => self.vertex_storage,
             Term::ComputeDivision => self.compute_divisions,
             Term::TextureMipBlend => self.texture_mip_blends,
+            Term::Instance => self.instances,
         }
     }
 
@@ -204,6 +211,7 @@ impl Work {
             vertex_storage: self.vertex_storage * k,
             compute_divisions: self.compute_divisions * k,
             texture_mip_blends: self.texture_mip_blends * k,
+            instances: self.instances * k,
         }
     }
 
@@ -246,6 +254,7 @@ impl std::ops::Add for Work {
             vertex_storage: self.vertex_storage + o.vertex_storage,
             compute_divisions: self.compute_divisions + o.compute_divisions,
             texture_mip_blends: self.texture_mip_blends + o.texture_mip_blends,
+            instances: self.instances + o.instances,
         }
     }
 }
@@ -282,13 +291,14 @@ mod tests {
             vertex_storage: 16.0,
             compute_divisions: 17.0,
             texture_mip_blends: 18.0,
+            instances: 19.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0,
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0,
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -322,6 +332,7 @@ mod tests {
             fragment_invocations: 100,
             compute_invocations: 64,
             samples_passed: 40,
+            instances: 3,
         };
         let kind = |fragments| PipelineCost {
             fragments,
@@ -393,6 +404,7 @@ mod tests {
                 compute_barriers: 128.0,
                 compute_storage: 640.0,
                 compute_divisions: 192.0,
+                instances: 3.0,
                 ..Work::default()
             }
         );

@@ -9,7 +9,8 @@
 //! | workload | draws | isolates |
 //! |---|---|---|
 //! | `empty` | nothing: the target's clear | fixed |
-//! | `vertices` | instanced 11-vertex strips (a 5-segment blade) entirely off screen: the clipper rejects every triangle | vertex |
+//! | `vertices` | instanced 43-vertex strips (a 21-segment blade) of degenerate triangles: the clipper passes none | vertex |
+//! | `instances` | the same strips cut to their first triangle, 3 vertices an instance | instance |
 //! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `single_level_texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] `textureSample`s of one mip level (a `Nearest` mipmap filter, [`SINGLE_LEVEL_SAMPLER`]) of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
@@ -135,6 +136,12 @@ fn arithmetic(entry: &str) -> f64 {
 pub const STRIP_VERTICES: u32 = 11;
 /// Triangles of a blade strip (`2 · 5 − 1`).
 pub const STRIP_TRIANGLES: u32 = 9;
+/// Vertices an instance of the `instances` workload draws: a blade strip's first triangle.
+pub const SHORT_STRIP_VERTICES: u32 = 3;
+/// Vertices an instance of the `vertices` workload draws: a blade strip of 21 segments (the
+/// same vertex shader), so that the vertices' and the instances' costs come apart against
+/// the `instances` workload's [`SHORT_STRIP_VERTICES`].
+pub const LONG_STRIP_VERTICES: u32 = 43;
 /// Vertices of a full-screen layer: one triangle twice the screen's size, so no edge crosses
 /// the screen (a quad's diagonal would add helper invocations where both its triangles
 /// shade partial 2x2 quads: lavapipe counted 1.25% more fragments than pixels).
@@ -194,8 +201,11 @@ pub const SIZE_STEPS: [u32; 4] = [1, 2, 4, 8];
 pub enum Shape {
     /// Nothing but the target's clear.
     Empty,
-    /// `instances` off-screen blade strips in one instanced draw.
+    /// `instances` off-screen blade strips of `vertices` vertices each, in one instanced
+    /// draw (every triangle degenerate: the clipper passes none).
     OffscreenStrips {
+        /// Vertices of a strip ([`STRIP_VERTICES`] for a 5-segment blade).
+        vertices: u32,
         /// Instances.
         instances: u32,
     },
@@ -436,11 +446,15 @@ impl Workload {
         let none = Work::default();
         match self.shape {
             Shape::Empty => none,
-            Shape::OffscreenStrips { instances } => {
-                let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
+            Shape::OffscreenStrips {
+                vertices,
+                instances,
+            } => {
+                let vertices = f64::from(instances) * f64::from(vertices);
                 Work {
                     vertex_invocations: vertices,
                     draw_calls: 1.0,
+                    instances: f64::from(instances),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
                     vertex_arithmetic: vertices * arithmetic("vs_offscreen"),
                     ..none
@@ -491,6 +505,7 @@ impl Workload {
                     vertex_invocations: vertices,
                     primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
                     draw_calls: 1.0,
+                    instances: f64::from(instances),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
                     vertex_arithmetic: vertices * arithmetic("vs_subpixel"),
                     ..none
@@ -504,6 +519,7 @@ impl Workload {
                     vertex_invocations: vertices,
                     primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
                     draw_calls: 1.0,
+                    instances: f64::from(layers),
                     fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
                     vertex_arithmetic: vertices * arithmetic("vs_layer"),
                     fragment_arithmetic: fragments * arithmetic(fragment_entry),
@@ -538,6 +554,7 @@ impl Workload {
                     vertex_invocations: vertices,
                     primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
                     draw_calls: 1.0,
+                    instances: f64::from(instances),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
                     vertex_arithmetic: vertices * arithmetic(ONSCREEN_BLADE_VERTEX),
                     fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
@@ -592,6 +609,7 @@ impl Workload {
                     vertex_invocations: vertices,
                     primitives: f64::from(draws),
                     draw_calls: f64::from(draws),
+                    instances: f64::from(draws),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
                     vertex_arithmetic: vertices * arithmetic("vs_subpixel"),
                     ..none
@@ -626,7 +644,10 @@ impl Workload {
     /// vertex add to.
     fn offscreen_strips(&self, instances: u32, size: Size) -> Work {
         Workload {
-            shape: Shape::OffscreenStrips { instances },
+            shape: Shape::OffscreenStrips {
+                vertices: STRIP_VERTICES,
+                instances,
+            },
             ..*self
         }
         .work(size)
@@ -666,7 +687,11 @@ impl Workload {
     /// `k` times larger, unclamped (uploads and the empty workload stay as they are).
     fn times(&self, k: u32) -> Self {
         let shape = match self.shape {
-            Shape::OffscreenStrips { instances } => Shape::OffscreenStrips {
+            Shape::OffscreenStrips {
+                vertices,
+                instances,
+            } => Shape::OffscreenStrips {
+                vertices,
                 instances: instances.saturating_mul(k),
             },
             Shape::SubpixelStrips { instances } => Shape::SubpixelStrips {
@@ -747,7 +772,21 @@ pub fn families() -> Vec<Workload> {
         Workload {
             name: "vertices",
             term: Term::Vertex,
-            shape: Shape::OffscreenStrips { instances: 20_000 },
+            shape: Shape::OffscreenStrips {
+                vertices: LONG_STRIP_VERTICES,
+                instances: 5_000,
+            },
+        },
+        // Eight times the vertices' instances, each of 3 vertices to their 43: an instance
+        // costs several vertices on a CPU rasteriser (lavapipe on the Xeon: about 150 ns an
+        // instance against 12 ns a vertex, `results/cost_model/segments_probe/`).
+        Workload {
+            name: "instances",
+            term: Term::Instance,
+            shape: Shape::OffscreenStrips {
+                vertices: SHORT_STRIP_VERTICES,
+                instances: 40_000,
+            },
         },
         Workload {
             name: "primitives",
@@ -959,7 +998,8 @@ mod tests {
             // fit's test: `fit::tests`).
             assert!(w.amount(f.term) > 0.0, "{}", f.name);
         }
-        // Layers: 1 triangle of 3 vertices per layer, every pixel shaded once per layer.
+        // Layers: 1 triangle of 3 vertices per layer (an instance each), every pixel shaded
+        // once per layer.
         let w = Workload {
             name: "x",
             term: Term::FragmentBlended,
@@ -976,6 +1016,7 @@ mod tests {
                 primitives: 3.0,
                 fragments_blended: 3.0 * 640.0 * 360.0,
                 draw_calls: 1.0,
+                instances: 3.0,
                 fragment_transcendentals: 3.0 * 640.0 * 360.0 * f64::from(LIT_TRANSCENDENTALS),
                 vertex_arithmetic: 9.0 * shader_ops("vs_layer").arithmetic as f64,
                 fragment_arithmetic: 3.0

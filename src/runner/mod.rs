@@ -261,7 +261,13 @@ impl<'g> World<'g> {
                 .then(|| selected.map(|p| p.ms).sum())
         };
         // GPU-counted work, the technique's passes apart from the core's background.
-        let work = view.work.as_mut().and_then(|w| w.read(gpu));
+        let work = match view.work.as_mut() {
+            Some(counter) => counter.read(gpu).map_err(|e| Error::Technique {
+                technique: info.id.to_owned(),
+                message: format!("{during}: {e}"),
+            })?,
+            None => None,
+        };
         let work_of = |core: bool| -> Option<PassWork> {
             work.as_ref().map(|w| {
                 w.iter()
@@ -336,6 +342,8 @@ impl<'g> World<'g> {
             background_primitives: background.map(|w| w.clipper_primitives_out),
             background_fragment_invocations: background.map(|w| w.fragment_invocations),
             background_draw_calls: Some(core_draws),
+            instances: grass.map(|w| w.instances),
+            background_instances: background.map(|w| w.instances),
             texture_loads: fetches.map(|f| f.loads),
             float_texture_loads: fetches.map(|f| f.float_loads),
             vertex_texture_loads: ops.map(|o| o.vertex.loads),

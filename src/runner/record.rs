@@ -110,6 +110,14 @@ pub struct FrameRecord {
     /// Draw calls of the core's background pass.
     #[serde(default)]
     pub background_draw_calls: Option<u64>,
+    /// Instances the technique's draws drew: direct draws' instance ranges, indirect draws'
+    /// instance counts read back from their arguments ([`crate::technique::work`]). Counted
+    /// with the pipeline statistics: empty where the adapter has none and in older files.
+    #[serde(default)]
+    pub instances: Option<u64>,
+    /// Instances the core's background pass drew.
+    #[serde(default)]
+    pub background_instances: Option<u64>,
     /// Texels of normalised or integer formats the technique's shaders read with
     /// `textureLoad`: each counted segment's invocations times the loads of one invocation of
     /// its pipeline's entry points ([`crate::shaders::PipelineCost`], a static count).
@@ -361,6 +369,10 @@ pub struct RunSummary {
     pub triangles: Option<u64>,
     /// Median draw calls.
     pub draw_calls: Option<u64>,
+    /// Median instances the technique's draws drew (counted with the pipeline statistics;
+    /// empty without them and in older files).
+    #[serde(default)]
+    pub instances: Option<u64>,
     /// Largest GPU memory held, bytes.
     pub gpu_bytes: Option<u64>,
     /// Median vertex shader invocations of the technique's passes (GPU-counted; empty without
@@ -546,6 +558,9 @@ pub struct RunSummary {
     /// Predicted ms of filtered samples' second mip level.
     #[serde(default)]
     pub model_texture_mip_blend_ms: Option<f64>,
+    /// Predicted ms of the draws' instances.
+    #[serde(default)]
+    pub model_instance_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -642,6 +657,7 @@ impl RunSummary {
             blades_represented: median_u64(&|r| r.blades_represented),
             triangles: median_u64(&|r| Some(r.triangles)),
             draw_calls: median_u64(&|r| Some(r.draw_calls)),
+            instances: median_u64(&|r| r.instances),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max(),
             vertex_invocations: median_u64(&|r| r.vertex_invocations),
             clipper_primitives_out: median_u64(&|r| r.clipper_primitives_out),
@@ -706,6 +722,7 @@ impl RunSummary {
             model_vertex_storage_ms: None,
             model_compute_division_ms: None,
             model_texture_mip_blend_ms: None,
+            model_instance_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -918,6 +935,8 @@ mod tests {
             background_primitives: None,
             background_fragment_invocations: None,
             background_draw_calls: None,
+            instances: None,
+            background_instances: None,
             texture_loads: None,
             float_texture_loads: None,
             vertex_texture_loads: None,

@@ -131,27 +131,48 @@ impl<'p> RenderPass<'p> {
         self.pass.set_scissor_rect(x, y, width, height);
     }
 
-    /// See [`wgpu::RenderPass::draw`]; counted.
-    pub fn draw(&mut self, vertices: Range<u32>, instances: Range<u32>) {
+    /// Counts a direct draw of `instances` (and its instances, where the frame counts work).
+    fn count_direct(&mut self, instances: &Range<u32>) {
         self.counts.draws += 1;
+        if let Some((work, _)) = self.work.as_mut() {
+            work.add_instances(u64::from(instances.end.saturating_sub(instances.start)));
+        }
+    }
+
+    /// Counts an indirect draw whose arguments are at `offset` in `buffer`: where the frame
+    /// counts work, their instance count is read back with the frame's queries.
+    fn count_indirect(&mut self, buffer: &wgpu::Buffer, offset: u64) {
+        self.counts.draws += 1;
+        if let Some((work, _)) = self.work.as_mut() {
+            work.add_indirect(buffer, offset);
+        }
+    }
+
+    /// See [`wgpu::RenderPass::draw`]; counted, with its instances.
+    pub fn draw(&mut self, vertices: Range<u32>, instances: Range<u32>) {
+        self.count_direct(&instances);
         self.pass.draw(vertices, instances);
     }
 
-    /// See [`wgpu::RenderPass::draw_indexed`]; counted.
+    /// See [`wgpu::RenderPass::draw_indexed`]; counted, with its instances.
     pub fn draw_indexed(&mut self, indices: Range<u32>, base_vertex: i32, instances: Range<u32>) {
-        self.counts.draws += 1;
+        self.count_direct(&instances);
         self.pass.draw_indexed(indices, base_vertex, instances);
     }
 
-    /// See [`wgpu::RenderPass::draw_indirect`]; counted.
+    /// See [`wgpu::RenderPass::draw_indirect`]; counted. Where the frame counts work, the
+    /// instance count in the arguments is copied out at the end of the frame's commands, so
+    /// `indirect_buffer` needs `COPY_SRC` usage besides `INDIRECT` (without it the frame's
+    /// work is not read, and the runner says why).
     pub fn draw_indirect(&mut self, indirect_buffer: &wgpu::Buffer, indirect_offset: u64) {
-        self.counts.draws += 1;
+        self.count_indirect(indirect_buffer, indirect_offset);
         self.pass.draw_indirect(indirect_buffer, indirect_offset);
     }
 
-    /// See [`wgpu::RenderPass::draw_indexed_indirect`]; counted.
+    /// See [`wgpu::RenderPass::draw_indexed_indirect`]; counted as
+    /// [`RenderPass::draw_indirect`] is.
     pub fn draw_indexed_indirect(&mut self, indirect_buffer: &wgpu::Buffer, indirect_offset: u64) {
-        self.counts.draws += 1;
+        self.count_indirect(indirect_buffer, indirect_offset);
         self.pass
             .draw_indexed_indirect(indirect_buffer, indirect_offset);
     }

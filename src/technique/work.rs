@@ -21,6 +21,12 @@
 //! counted though they skip the shader (`results/cost_model/README.md`, *A counted fragment
 //! need not be a shaded one* and *Fragments kept against fragments counted*).
 //!
+//! Beside the queries, each segment counts the instances its draws drew
+//! ([`PassWork::instances`]): a direct draw's from its instance range as the pass wrapper
+//! records it, an indirect draw's from its arguments, copied out at the end of the frame's
+//! commands (the arguments' buffer needs `COPY_SRC`). A CPU rasteriser pays a cost per
+//! instance that no counter sees (lavapipe: about 130 ns, `results/cost_model/`).
+//!
 //! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
 //! recorded and the figures are `None`, never zeros.
 
@@ -57,10 +63,15 @@ pub struct PassWork {
     /// Samples that passed the depth and stencil tests and were not discarded (an occlusion
     /// query; one a pixel without MSAA). 0 for compute passes.
     pub samples_passed: u64,
+    /// Instances drawn: the harness's count, not a GPU counter (statistics queries count
+    /// none). A direct draw's instance range as recorded; an indirect draw's instance count
+    /// as its arguments held at the end of the frame's commands, copied out beside the
+    /// queries' results ([`WorkCounter::resolve`]). 0 for compute passes.
+    pub instances: u64,
 }
 
 impl PassWork {
-    fn from_counters(c: &[u64], samples_passed: u64) -> Self {
+    fn from_counters(c: &[u64], samples_passed: u64, instances: u64) -> Self {
         Self {
             vertex_invocations: c[0],
             clipper_invocations: c[1],
@@ -68,6 +79,7 @@ impl PassWork {
             fragment_invocations: c[3],
             compute_invocations: c[4],
             samples_passed,
+            instances,
         }
     }
 }
@@ -83,6 +95,7 @@ impl std::ops::Add for PassWork {
             fragment_invocations: self.fragment_invocations + o.fragment_invocations,
             compute_invocations: self.compute_invocations + o.compute_invocations,
             samples_passed: self.samples_passed + o.samples_passed,
+            instances: self.instances + o.instances,
         }
     }
 }
@@ -108,6 +121,23 @@ pub struct PassWorkRecord {
     pub work: PassWork,
 }
 
+/// Why an indirect draw's instances cannot be counted ([`WorkCounter::add_indirect`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum UncountedIndirect {
+    /// The arguments' buffer cannot be copied from.
+    #[error(
+        "an indirect draw's arguments are in a buffer without `COPY_SRC` usage, so the harness \
+         cannot read its instance count: create the buffer with `wgpu::BufferUsages::COPY_SRC`"
+    )]
+    NotCopyable,
+    /// The frame drew more indirect draws than the counter has room for.
+    #[error(
+        "a frame drew more than {MAX_COUNTED_INDIRECT_DRAWS} indirect draws, the most whose \
+         instances the harness counts: raise `MAX_COUNTED_INDIRECT_DRAWS`"
+    )]
+    TooMany,
+}
+
 /// A statistics query set, an occlusion query set and the buffers to read them back, reused
 /// frame after frame.
 pub struct WorkCounter {
@@ -119,6 +149,21 @@ pub struct WorkCounter {
     /// Occlusion queries begun this frame (one for each render segment, numbered apart from
     /// the statistics queries, so every query resolved was written).
     occlusions: u32,
+    /// The frame's indirect draws whose instance counts are copied out, in order: the
+    /// buffer, the offset of the instance count's word in it, the segment drawn in.
+    indirect: Vec<IndirectDraw>,
+    /// Why an indirect draw of this frame could not be counted, if one could not.
+    uncounted: Option<UncountedIndirect>,
+}
+
+/// An indirect draw whose instance count is read back with the frame's queries.
+struct IndirectDraw {
+    buffer: wgpu::Buffer,
+    /// Offset of the arguments' instance count (the second word of both layouts,
+    /// `DrawIndirectArgs` and `DrawIndexedIndirectArgs`).
+    offset: u64,
+    /// Index of the segment it was drawn in.
+    segment: usize,
 }
 
 /// A segment of the frame: what its queries count and how to read them back.
@@ -130,6 +175,8 @@ struct Segment {
     pipeline: Option<PipelineCost>,
     /// Its occlusion query's index (render segments only).
     occlusion: Option<u32>,
+    /// Instances of its direct draws.
+    instances: u64,
 }
 
 /// The queries of one segment: its statistics query (set, index) and, in a render pass, the
@@ -169,6 +216,13 @@ pub(crate) fn end_render(pass: &mut wgpu::RenderPass<'_>) {
 /// results follow (a multiple of 256, as `resolve_query_set` requires of an offset).
 const STATISTICS_BYTES: u64 = MAX_COUNTED_PASSES as u64 * COUNTERS * 8;
 const _: () = assert!(STATISTICS_BYTES.is_multiple_of(wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT));
+/// Bytes of the occlusion results, which follow the statistics results.
+const OCCLUSION_BYTES: u64 = MAX_COUNTED_PASSES as u64 * 8;
+/// Most indirect draws a frame can count the instances of: their instance counts, one
+/// 32-bit word each, follow the occlusion results in the read-back buffer.
+pub const MAX_COUNTED_INDIRECT_DRAWS: u32 = 256;
+/// Size of a draw's instance count in its indirect arguments (a `u32`).
+const INSTANCE_COUNT_BYTES: u64 = 4;
 
 impl WorkCounter {
     /// A counter, or `None` when the device has no pipeline-statistics queries.
@@ -176,7 +230,7 @@ impl WorkCounter {
         if !gpu.has_pipeline_statistics() {
             return None;
         }
-        let size = STATISTICS_BYTES + u64::from(MAX_COUNTED_PASSES) * 8;
+        let size = STATISTICS_BYTES + OCCLUSION_BYTES;
         Some(Self {
             queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass work"),
@@ -196,12 +250,14 @@ impl WorkCounter {
             }),
             readback: gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("pass work readback"),
-                size,
+                size: size + u64::from(MAX_COUNTED_INDIRECT_DRAWS) * INSTANCE_COUNT_BYTES,
                 usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
                 mapped_at_creation: false,
             }),
             passes: Vec::new(),
             occlusions: 0,
+            indirect: Vec::new(),
+            uncounted: None,
         })
     }
 
@@ -214,6 +270,8 @@ impl WorkCounter {
     pub(crate) fn begin_frame(&mut self) {
         self.passes.clear();
         self.occlusions = 0;
+        self.indirect.clear();
+        self.uncounted = None;
     }
 
     /// The queries of the next segment (`None` once [`MAX_COUNTED_PASSES`] are taken): a
@@ -238,6 +296,7 @@ impl WorkCounter {
             kind,
             pipeline,
             occlusion,
+            instances: 0,
         });
         Some(SegmentQueries {
             statistics: (self.queries.clone(), index),
@@ -262,8 +321,51 @@ impl WorkCounter {
         }
     }
 
-    /// Resolves the frame's queries into the read-back buffer (at the end of its encoding).
+    /// Counts `instances` drawn directly in the segment being counted.
+    pub(crate) fn add_instances(&mut self, instances: u64) {
+        if let Some(s) = self.passes.last_mut() {
+            s.instances += instances;
+        }
+    }
+
+    /// Counts the instances of an indirect draw in the segment being counted: the instance
+    /// count of the arguments at `offset` in `buffer` is copied out when the frame's queries
+    /// are resolved. Where it cannot be (the buffer lacks `COPY_SRC`, or the frame drew more
+    /// than [`MAX_COUNTED_INDIRECT_DRAWS`] indirectly), the frame's work is not read: the
+    /// reason is kept for [`WorkCounter::read`].
+    pub(crate) fn add_indirect(&mut self, buffer: &wgpu::Buffer, offset: u64) {
+        let why = if !buffer.usage().contains(wgpu::BufferUsages::COPY_SRC) {
+            Some(UncountedIndirect::NotCopyable)
+        } else if self.indirect.len() >= MAX_COUNTED_INDIRECT_DRAWS as usize {
+            Some(UncountedIndirect::TooMany)
+        } else {
+            None
+        };
+        match (why, self.passes.len().checked_sub(1)) {
+            (Some(why), _) => {
+                self.uncounted.get_or_insert(why);
+            }
+            (None, Some(segment)) => self.indirect.push(IndirectDraw {
+                buffer: buffer.clone(),
+                offset: offset + INSTANCE_COUNT_BYTES,
+                segment,
+            }),
+            (None, None) => {}
+        }
+    }
+
+    /// Resolves the frame's queries into the read-back buffer (at the end of its encoding),
+    /// and copies its indirect draws' instance counts beside them.
     pub(crate) fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        for (k, d) in self.indirect.iter().enumerate() {
+            encoder.copy_buffer_to_buffer(
+                &d.buffer,
+                d.offset,
+                &self.readback,
+                STATISTICS_BYTES + OCCLUSION_BYTES + k as u64 * INSTANCE_COUNT_BYTES,
+                INSTANCE_COUNT_BYTES,
+            );
+        }
         let n = self.passes.len() as u32;
         if n > 0 {
             encoder.resolve_query_set(&self.queries, 0..n, &self.resolve, 0);
@@ -289,15 +391,24 @@ impl WorkCounter {
     }
 
     /// Reads the last frame's work per pass. Call after the frame's submission completed;
-    /// `None` when the read-back failed.
-    pub fn read(&mut self, gpu: &GpuContext) -> Option<Vec<PassWorkRecord>> {
+    /// `Ok(None)` when the read-back failed, `Err` when an indirect draw's instances could not
+    /// be counted (nothing is read: a frame's work is counted whole or not at all).
+    pub fn read(
+        &mut self,
+        gpu: &GpuContext,
+    ) -> Result<Option<Vec<PassWorkRecord>>, UncountedIndirect> {
+        if let Some(why) = self.uncounted {
+            return Err(why);
+        }
+        Ok(self.read_counted(gpu))
+    }
+
+    fn read_counted(&mut self, gpu: &GpuContext) -> Option<Vec<PassWorkRecord>> {
         let n = self.passes.len() as u64;
         if n == 0 {
             return Some(Vec::new());
         }
-        let slice = self
-            .readback
-            .slice(..STATISTICS_BYTES + u64::from(self.occlusions) * 8);
+        let slice = self.readback.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
             let _ = tx.send(r);
@@ -306,21 +417,34 @@ impl WorkCounter {
             return None;
         }
         let records = slice.get_mapped_range().ok().map(|data| {
-            let all: &[u64] = bytemuck::cast_slice(&data);
+            let (queries, indirect) = data.split_at((STATISTICS_BYTES + OCCLUSION_BYTES) as usize);
+            let all: &[u64] = bytemuck::cast_slice(queries);
             let (counters, passed) = all.split_at((STATISTICS_BYTES / 8) as usize);
+            let counts: &[u32] = bytemuck::cast_slice(indirect);
             self.passes
                 .iter()
+                .enumerate()
                 .zip(counters.chunks_exact(COUNTERS as usize))
-                .map(|(s, c)| PassWorkRecord {
-                    label: s.label.clone(),
-                    kind: s.kind,
-                    pipeline: s.pipeline,
-                    work: PassWork::from_counters(
-                        c,
-                        s.occlusion
-                            .and_then(|i| passed.get(i as usize).copied())
-                            .unwrap_or(0),
-                    ),
+                .map(|((i, s), c)| {
+                    let indirect: u64 = self
+                        .indirect
+                        .iter()
+                        .zip(counts)
+                        .filter(|(d, _)| d.segment == i)
+                        .map(|(_, &n)| u64::from(n))
+                        .sum();
+                    PassWorkRecord {
+                        label: s.label.clone(),
+                        kind: s.kind,
+                        pipeline: s.pipeline,
+                        work: PassWork::from_counters(
+                            c,
+                            s.occlusion
+                                .and_then(|i| passed.get(i as usize).copied())
+                                .unwrap_or(0),
+                            s.instances + indirect,
+                        ),
+                    }
                 })
                 .collect()
         });

@@ -12,7 +12,7 @@
 
 use anyhow::Context as _;
 use grassbench::cost::checks::{self, coverage_checks};
-use grassbench::cost::workloads::{Chain, Fetch, Shape, Workload};
+use grassbench::cost::workloads::{self, Chain, Fetch, Shape, Workload};
 use grassbench::cost::{
     COUNTED_TERMS, FragmentKind, MeasuredSample, Options, Term, UnitCosts, Work,
     calibrate_units_with,
@@ -275,7 +275,10 @@ fn held_out_mix() -> Vec<Workload> {
         w(
             "vertices",
             Term::Vertex,
-            Shape::OffscreenStrips { instances: 30_000 },
+            Shape::OffscreenStrips {
+                vertices: workloads::STRIP_VERTICES,
+                instances: 30_000,
+            },
         ),
         w(
             "primitives",

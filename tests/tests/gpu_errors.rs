@@ -128,3 +128,140 @@ fn invalid_draw_fails_the_frame() -> anyhow::Result<()> {
     harness.frame(&mut grassbench::technique::NoGrass, 1, false)?;
     Ok(())
 }
+
+/// A technique that draws one off-screen triangle indirectly, from arguments in a buffer with
+/// `COPY_SRC` usage where `COPYABLE`, without it where not.
+struct IndirectDraw<const COPYABLE: bool> {
+    pipeline: grassbench::shaders::RenderPipeline,
+    args: wgpu::Buffer,
+}
+
+impl<const COPYABLE: bool> Technique for IndirectDraw<COPYABLE> {
+    type Params = NoParams;
+    const INFO: TechniqueInfo = TechniqueInfo {
+        id: "indirect",
+        name: "indirect",
+        paper: "-",
+        gpu_state: false,
+        debug_views: &[],
+    };
+    const VARIANTS: Variants = Variants {
+        finest: "",
+        others: &[],
+    };
+
+    fn new(ctx: &InitContext<'_>, _params: NoParams) -> grassbench::Result<Self> {
+        let device = &ctx.gpu.device;
+        let module = grassbench::shaders::module(
+            device,
+            "indirect",
+            "@vertex fn vs() -> @builtin(position) vec4<f32> { return vec4(2.0, 2.0, 0.5, 1.0); }\n\
+             @fragment fn fs() -> @location(0) vec4<f32> { return vec4(1.0); }",
+        );
+        let layout = ctx.scene_gpu.pipeline_layout(device, "indirect", &[]);
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("indirect"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: grassbench::target::DEPTH_FORMAT,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets: &[Some(grassbench::target::COLOR_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let usage = if COPYABLE {
+            wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC
+        } else {
+            wgpu::BufferUsages::INDIRECT
+        };
+        let args = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("indirect args"),
+            size: 16,
+            usage,
+            mapped_at_creation: true,
+        });
+        // 3 vertices, 7 instances, from vertex 0 and instance 0.
+        let bytes: Vec<u8> = [3u32, 7, 0, 0]
+            .iter()
+            .flat_map(|w| w.to_le_bytes())
+            .collect();
+        args.slice(..)
+            .get_mapped_range_mut()
+            .map_err(|e| grassbench::Error::Technique {
+                technique: "indirect".into(),
+                message: format!("{e:?}"),
+            })?
+            .copy_from_slice(&bytes);
+        args.unmap();
+        Ok(Self {
+            pipeline: grassbench::shaders::RenderPipeline::from_raw(
+                pipeline,
+                grassbench::shaders::PipelineCost::default(),
+            ),
+            args,
+        })
+    }
+
+    fn estimate(_: &Scene, _: &NoParams) -> grassbench::Result<GpuEstimate> {
+        Ok(GpuEstimate::default())
+    }
+
+    fn params(&self) -> &NoParams {
+        &NoParams {}
+    }
+}
+
+impl<const COPYABLE: bool> GrassTechnique for IndirectDraw<COPYABLE> {
+    fn encode(&self, encoder: &mut FrameEncoder<'_>) {
+        let mut pass = encoder.render_pass("indirect");
+        pass.set_pipeline(&self.pipeline);
+        pass.draw_indirect(&self.args, 0);
+    }
+    fn stats(&self) -> TechniqueStats {
+        TechniqueStats::default()
+    }
+}
+
+#[test]
+fn an_indirect_draw_counts_its_instances_or_fails_the_frame_saying_why() -> anyhow::Result<()> {
+    let gpu = gpu()?;
+    assert!(gpu.has_pipeline_statistics(), "{}", gpu.summary.name);
+    let mut harness = Harness::new(&gpu, scene("meadow", 0.01)?, TEST_SIZE, false)?;
+    // Arguments the harness can copy: the frame counts the 7 instances they hold.
+    let entry = grassbench::technique::entry::<IndirectDraw<true>>();
+    let mut copyable = harness.create(&entry, &toml::Table::new())?;
+    let record = harness.frame(copyable.as_mut(), 0, false)?.record;
+    assert_eq!(record.instances, Some(7));
+    assert_eq!(record.vertex_invocations, Some(21));
+    // Arguments it cannot copy: no frame whose work leaves out the instances, an error that
+    // names the fix.
+    let entry = grassbench::technique::entry::<IndirectDraw<false>>();
+    let mut uncopyable = harness.create(&entry, &toml::Table::new())?;
+    let err = harness
+        .frame(uncopyable.as_mut(), 1, false)
+        .err()
+        .expect("the frame must fail");
+    let text = err.to_string();
+    assert!(text.contains("frame 1 of `indirect`"), "{text}");
+    assert!(text.contains("wgpu::BufferUsages::COPY_SRC"), "{text}");
+    // The harness keeps working afterwards.
+    harness.frame(copyable.as_mut(), 2, false)?;
+    Ok(())
+}

@@ -4,6 +4,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use anyhow::Context as _;
 use grassbench::compare;
 use grassbench::runner::Harness;
 use grassbench::wind::WindConfig;
@@ -163,6 +164,18 @@ fn counts_are_the_gpus_and_follow_the_cull() -> anyhow::Result<()> {
     );
     assert_eq!(stats.blades_represented as f64, counters["represented_far"]);
     assert_eq!(record.blades_drawn, Some(stats.blades_drawn));
+    // The frame encoder counts the instances of the two indirect draws from their arguments,
+    // copied out at the end of the frame: frame 8's are what the technique's own counts of
+    // frame 8 say, once they arrive a frame later.
+    let instances = record.instances.context("instances counted")?;
+    harness.frame(t.as_mut(), 9, false)?;
+    let next: std::collections::BTreeMap<_, _> = t.counters().into_iter().collect();
+    assert_eq!(
+        instances as f64,
+        next["drawn_near"] + next["drawn_far"],
+        "frame 8's instances against its counts {next:?}"
+    );
+    assert!(instances > 0);
 
     // The CPU mirror of frame 7's cull (the camera path moves: frame 7's camera): the tile
     // selection's verdicts on the blades it does not dispatch, `cull::verdict` on the others.

@@ -40,6 +40,10 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
         assert_eq!(r.vertex_invocations, Some(blades * (2 * segments + 1)));
         assert_eq!(r.clipper_invocations, Some(blades * (2 * segments - 1)));
         assert_eq!(r.clipper_invocations, Some(r.triangles));
+        // One instance a blade (the encoder's count of its draws' instance ranges); the
+        // background's draws are counted apart.
+        assert_eq!(r.instances, Some(blades));
+        assert!(r.background_instances.is_some_and(|n| n > 0), "{r:?}");
         // Its bend pass runs once per blade, in whole 64-wide workgroups (one chunk here).
         assert_eq!(
             r.compute_invocations,
@@ -246,9 +250,10 @@ fn a_backend_without_statistics_leaves_the_work_empty() -> anyhow::Result<()> {
             r.vertex_invocations,
             r.fragment_invocations,
             r.compute_invocations,
-            r.overdraw
+            r.overdraw,
+            r.instances
         ),
-        (None, None, None, None),
+        (None, None, None, None, None),
         "no statistics on GL: empty, never zero"
     );
     Ok(())

@@ -41,8 +41,11 @@ pub fn draw(ui: &egui::Ui, pane: &PaneDisplay, pic: egui::Rect, k: usize, figure
         {
             let mega = |n: u64| n as f64 / 1e6;
             lines.push(format!(
-                "work {:.2} M vertices · {:.2} M fragments ({}) · overdraw {overdraw:.2}{}",
+                "work {:.2} M vertices{} · {:.2} M fragments ({}) · overdraw {overdraw:.2}{}",
                 mega(vs),
+                // In how many instances of the technique's draws.
+                r.instances
+                    .map_or(String::new(), |n| format!(" in {n} instances")),
                 mega(fs),
                 // Of them, the samples kept: passed the depth test, not discarded.
                 r.fragments_passed

@@ -377,6 +377,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU vertex storage",
     "GPU compute divisions",
     "GPU texture mip blends",
+    "GPU instances",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
