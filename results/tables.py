@@ -32,7 +32,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # The work columns of runs.csv: what a technique did, not how long it took. FLIP is here too:
 # the same pictures give the same FLIP.
 COUNTS = [
-    "blades_drawn", "blades_represented", "triangles", "draw_calls", "instances", "gpu_bytes",
+    "blades_drawn", "blades_represented", "triangles", "draw_calls", "instances", "gpu_bytes", "primitive_inputs",
     "vertex_invocations", "clipper_primitives_out", "fragment_invocations",
     "compute_invocations", "fragments_opaque", "fragments_alpha_tested", "fragments_blended",
     "fragments_passed", "upload_bytes", "background_fragment_invocations", "texture_loads",

@@ -97,7 +97,7 @@ impl MeasuredSample {
 /// harness counts into the counter's segments as it records the draws. Texture fetches,
 /// transcendentals, arithmetic, barriers, storage words, integer divisions and mip blends are
 /// the counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 22] = [
+pub const COUNTED_TERMS: [Term; 23] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -120,6 +120,7 @@ pub const COUNTED_TERMS: [Term; 22] = [
     Term::ComputeDivision,
     Term::TextureMipBlend,
     Term::Instance,
+    Term::PrimitiveInput,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -46,6 +46,8 @@ pub(super) struct Rig<'g> {
     group1: wgpu::BindGroup,
     offscreen: crate::shaders::RenderPipeline,
     subpixel: crate::shaders::RenderPipeline,
+    /// The sub-pixel strips with a fragment shader reading no interpolated slot.
+    bare_subpixel: crate::shaders::RenderPipeline,
     layers: [crate::shaders::RenderPipeline; 3],
     /// The coverage checks' hidden layers, by fragment kind (as `layers`).
     hidden: [crate::shaders::RenderPipeline; 3],
@@ -298,9 +300,16 @@ impl<'g> Rig<'g> {
                     None,
                 ),
                 subpixel: pipeline(
+                    "unit costs: primitive inputs",
+                    "vs_subpixel",
+                    workloads::subpixel_fragment_entry(true),
+                    true,
+                    None,
+                ),
+                bare_subpixel: pipeline(
                     "unit costs: primitives",
                     "vs_subpixel",
-                    "fs_opaque",
+                    workloads::subpixel_fragment_entry(false),
                     true,
                     None,
                 ),
@@ -507,7 +516,7 @@ impl<'g> Rig<'g> {
                         vertices,
                         instances,
                     } => vec![(0..vertices, 0..instances)],
-                    Shape::SubpixelStrips { instances }
+                    Shape::SubpixelStrips { instances, .. }
                     | Shape::MathStrips { instances }
                     | Shape::ArithmeticStrips { instances }
                     | Shape::LoadStrips { instances, .. }
@@ -582,6 +591,10 @@ impl<'g> Rig<'g> {
     fn pipeline(&self, w: &Workload) -> Option<&crate::shaders::RenderPipeline> {
         match w.shape {
             Shape::OffscreenStrips { .. } => Some(&self.offscreen),
+            Shape::SubpixelStrips {
+                interpolated: false,
+                ..
+            } => Some(&self.bare_subpixel),
             Shape::SubpixelStrips { .. } | Shape::Draws { .. } => Some(&self.subpixel),
             // In bounds: one pipeline per kind (`FragmentKind::ALL`) and width
             // (`BladeWidth::ALL`).

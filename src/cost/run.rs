@@ -54,6 +54,9 @@ impl Work {
             // Older records count no instances: their calibrations had no instance term (it
             // was folded into the vertex and primitive prices), so none is priced.
             instances: f(r.instances).unwrap_or(0.0) + f(r.background_instances).unwrap_or(0.0),
+            // Likewise their primitives' input slots.
+            primitive_inputs: f(r.primitive_inputs).unwrap_or(0.0)
+                + f(r.background_primitive_inputs).unwrap_or(0.0),
         })
     }
 
@@ -114,6 +117,7 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_compute_division_ms = p.map(|p| p.compute_division_ms);
     run.model_texture_mip_blend_ms = p.map(|p| p.texture_mip_blend_ms);
     run.model_instance_ms = p.map(|p| p.instance_ms);
+    run.model_primitive_input_ms = p.map(|p| p.primitive_input_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

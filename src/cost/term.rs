@@ -148,11 +148,21 @@ pub enum Term {
     /// 150 ns a blade that no other count saw (`results/cost_model/segments_probe/`,
     /// 2026-12-06). Calibrated on strips of one triangle beside the vertices' strips of nine.
     Instance,
+    /// An input slot of the fragment shader (`@location`), set up for a primitive that reached
+    /// rasterisation: on top of [`Term::Primitive`], which every primitive pays. Not among the
+    /// units issue 20 lists: a rasteriser computes a plane equation for each interpolated slot
+    /// of every triangle it sets up, before it knows whether the triangle covers a pixel
+    /// (lavapipe on the Xeon, sub-pixel strips covering no pixel centre: 68 ns a triangle whose
+    /// fragment shader reads no slot, 73.5 with one `vec3`, 99.9 with three, 135 with the
+    /// calibration's five; `grassbench calibrate` at 640x360, 2026-12-06). The primitive term
+    /// alone, calibrated on five slots, over-priced a technique's triangles whose shader reads
+    /// fewer (the reference's three).
+    PrimitiveInput,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 27] = [
+    pub const ALL: [Self; 28] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -180,6 +190,7 @@ impl Term {
         Self::ComputeDivision,
         Self::TextureMipBlend,
         Self::Instance,
+        Self::PrimitiveInput,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -212,6 +223,7 @@ impl Term {
             Self::ComputeDivision => "compute_division",
             Self::TextureMipBlend => "texture_mip_blend",
             Self::Instance => "instance",
+            Self::PrimitiveInput => "primitive_input",
         }
     }
 
@@ -244,6 +256,7 @@ impl Term {
             Self::ComputeDivision => "integer division",
             Self::TextureMipBlend => "sample blending two mip levels",
             Self::Instance => "instance",
+            Self::PrimitiveInput => "input slot of a primitive",
         }
     }
 

@@ -94,6 +94,11 @@ pub struct Work {
     /// count as its arguments held when the frame ended (`crate::technique::work`).
     #[serde(default)]
     pub instances: f64,
+    /// Fragment shader input slots set up for the primitives that reached rasterisation: each
+    /// segment's primitives times its fragment shader's slots
+    /// ([`crate::shaders::PipelineCost::fragment_inputs`]).
+    #[serde(default)]
+    pub primitive_inputs: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -144,6 +149,8 @@ impl Work {
             compute_divisions: ops.compute.divisions as f64,
             texture_mip_blends: fetches.mip_blends as f64,
             instances: counted.instances as f64,
+            primitive_inputs: counted.clipper_primitives_out as f64
+                * f64::from(pipeline.fragment_inputs),
         };
         *work.fragments_mut(pipeline.fragments) = counted.fragment_invocations as f64;
         work
@@ -180,6 +187,7 @@ impl Work {
             Term::ComputeDivision => self.compute_divisions,
             Term::TextureMipBlend => self.texture_mip_blends,
             Term::Instance => self.instances,
+            Term::PrimitiveInput => self.primitive_inputs,
         }
     }
 
@@ -212,6 +220,7 @@ impl Work {
             compute_divisions: self.compute_divisions * k,
             texture_mip_blends: self.texture_mip_blends * k,
             instances: self.instances * k,
+            primitive_inputs: self.primitive_inputs * k,
         }
     }
 
@@ -255,6 +264,7 @@ impl std::ops::Add for Work {
             compute_divisions: self.compute_divisions + o.compute_divisions,
             texture_mip_blends: self.texture_mip_blends + o.texture_mip_blends,
             instances: self.instances + o.instances,
+            primitive_inputs: self.primitive_inputs + o.primitive_inputs,
         }
     }
 }
@@ -292,13 +302,14 @@ mod tests {
             compute_divisions: 17.0,
             texture_mip_blends: 18.0,
             instances: 19.0,
+            primitive_inputs: 20.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0,
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0,
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -381,6 +392,7 @@ mod tests {
                 storage: 10,
                 divisions: 3,
             },
+            fragment_inputs: 4,
         };
         assert_eq!(
             Work::from_counters(&counted, fetching),
@@ -405,6 +417,8 @@ mod tests {
                 compute_storage: 640.0,
                 compute_divisions: 192.0,
                 instances: 3.0,
+                // 7 primitives, 4 input slots each.
+                primitive_inputs: 28.0,
                 ..Work::default()
             }
         );

@@ -11,7 +11,8 @@
 //! | `empty` | nothing: the target's clear | fixed |
 //! | `vertices` | instanced 43-vertex strips (a 21-segment blade) of degenerate triangles: the clipper passes none | vertex |
 //! | `instances` | the same strips cut to their first triangle, 3 vertices an instance | instance |
-//! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre | primitive |
+//! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre, a fragment shader that reads no interpolated slot | primitive |
+//! | `primitive_inputs` | the same strips with a fragment shader reading the blade's five interpolated slots | a fragment input slot of a primitive |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `single_level_texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] `textureSample`s of one mip level (a `Nearest` mipmap filter, [`SINGLE_LEVEL_SAMPLER`]) of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
 //! | `texture_samples` | the same samples trilinear, minified between two levels | a sample's second mip level |
@@ -132,6 +133,24 @@ fn arithmetic(entry: &str) -> f64 {
     shader_ops(entry).arithmetic as f64
 }
 
+/// The input slots fragment entry point `entry` of [`SHADER`] reads
+/// ([`crate::shaders::fragment_inputs`]), as a count.
+pub fn fragment_inputs(entry: &str) -> f64 {
+    static MODULE: OnceLock<Option<naga::Module>> = OnceLock::new();
+    MODULE
+        .get_or_init(|| naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER)).ok())
+        .as_ref()
+        .map_or(0.0, |m| {
+            f64::from(crate::shaders::fragment_inputs(m, entry))
+        })
+}
+
+/// The fragment entry point of the sub-pixel strips: `fs_opaque` (the blade's five slots) or,
+/// where `interpolated` is false, `fs_bare` (none).
+pub fn subpixel_fragment_entry(interpolated: bool) -> &'static str {
+    if interpolated { "fs_opaque" } else { "fs_bare" }
+}
+
 /// Vertices of a blade strip (5 segments: `2 · 5 + 1`).
 pub const STRIP_VERTICES: u32 = 11;
 /// Triangles of a blade strip (`2 · 5 − 1`).
@@ -240,6 +259,9 @@ pub enum Shape {
     SubpixelStrips {
         /// Instances.
         instances: u32,
+        /// Whether their fragment shader reads the blade's interpolated slots
+        /// ([`subpixel_fragment_entry`]): the rasteriser sets each up for every triangle.
+        interpolated: bool,
     },
     /// `layers` full-screen triangles in one instanced draw.
     Layers {
@@ -499,11 +521,17 @@ impl Workload {
                     ..base
                 }
             }
-            Shape::SubpixelStrips { instances } => {
+            Shape::SubpixelStrips {
+                instances,
+                interpolated,
+            } => {
                 let vertices = f64::from(instances) * f64::from(STRIP_VERTICES);
+                let primitives = f64::from(instances) * f64::from(STRIP_TRIANGLES);
                 Work {
                     vertex_invocations: vertices,
-                    primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
+                    primitives,
+                    primitive_inputs: primitives
+                        * fragment_inputs(subpixel_fragment_entry(interpolated)),
                     draw_calls: 1.0,
                     instances: f64::from(instances),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
@@ -518,6 +546,9 @@ impl Workload {
                 let mut work = Work {
                     vertex_invocations: vertices,
                     primitives: f64::from(layers) * f64::from(LAYER_TRIANGLES),
+                    primitive_inputs: f64::from(layers)
+                        * f64::from(LAYER_TRIANGLES)
+                        * fragment_inputs(fragment_entry),
                     draw_calls: 1.0,
                     instances: f64::from(layers),
                     fragment_transcendentals: fragments * f64::from(LIT_TRANSCENDENTALS),
@@ -553,6 +584,9 @@ impl Workload {
                 let mut work = Work {
                     vertex_invocations: vertices,
                     primitives: f64::from(instances) * f64::from(STRIP_TRIANGLES),
+                    primitive_inputs: f64::from(instances)
+                        * f64::from(STRIP_TRIANGLES)
+                        * fragment_inputs(layer_fragment_entry(kind)),
                     draw_calls: 1.0,
                     instances: f64::from(instances),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
@@ -608,6 +642,8 @@ impl Workload {
                 Work {
                     vertex_invocations: vertices,
                     primitives: f64::from(draws),
+                    primitive_inputs: f64::from(draws)
+                        * fragment_inputs(subpixel_fragment_entry(true)),
                     draw_calls: f64::from(draws),
                     instances: f64::from(draws),
                     vertex_transcendentals: vertices * f64::from(STRIP_VERTEX_TRANSCENDENTALS),
@@ -694,8 +730,12 @@ impl Workload {
                 vertices,
                 instances: instances.saturating_mul(k),
             },
-            Shape::SubpixelStrips { instances } => Shape::SubpixelStrips {
+            Shape::SubpixelStrips {
+                instances,
+                interpolated,
+            } => Shape::SubpixelStrips {
                 instances: instances.saturating_mul(k),
+                interpolated,
             },
             Shape::MathStrips { instances } => Shape::MathStrips {
                 instances: instances.saturating_mul(k),
@@ -788,10 +828,24 @@ pub fn families() -> Vec<Workload> {
                 instances: 40_000,
             },
         },
+        // The same strips twice: with a fragment shader reading none of their slots, then
+        // the blade's five, which a rasteriser sets up for each triangle (none covers a pixel
+        // centre: no fragment is shaded either way).
         Workload {
             name: "primitives",
             term: Term::Primitive,
-            shape: Shape::SubpixelStrips { instances: 5_000 },
+            shape: Shape::SubpixelStrips {
+                instances: 5_000,
+                interpolated: false,
+            },
+        },
+        Workload {
+            name: "primitive_inputs",
+            term: Term::PrimitiveInput,
+            shape: Shape::SubpixelStrips {
+                instances: 5_000,
+                interpolated: true,
+            },
         },
         layers("fragments_opaque", FragmentKind::Opaque),
         layers("fragments_alpha_tested", FragmentKind::AlphaTested),
@@ -1017,6 +1071,8 @@ mod tests {
                 fragments_blended: 3.0 * 640.0 * 360.0,
                 draw_calls: 1.0,
                 instances: 3.0,
+                // Each triangle sets up the five slots `fs_blended` reads.
+                primitive_inputs: 15.0,
                 fragment_transcendentals: 3.0 * 640.0 * 360.0 * f64::from(LIT_TRANSCENDENTALS),
                 vertex_arithmetic: 9.0 * shader_ops("vs_layer").arithmetic as f64,
                 fragment_arithmetic: 3.0

@@ -301,6 +301,18 @@ impl<'g> World<'g> {
             })
         };
         let (ops, background_ops) = (ops_of(false), ops_of(true));
+        // Fragment input slots set up for the technique's (or the core's) primitives: each
+        // segment's primitives times its fragment shader's slots.
+        let inputs_of = |core: bool| -> Option<u64> {
+            work.as_ref().map(|w| {
+                w.iter()
+                    .filter(|p| p.label.starts_with("core.") == core)
+                    .filter_map(|p| {
+                        Some(p.work.clipper_primitives_out * u64::from(p.pipeline?.fragment_inputs))
+                    })
+                    .sum()
+            })
+        };
         // Texture fetches are summed over the stages (the vertex stage's are priced again
         // apart).
         let (fetches, background_fetches) = (ops.map(|o| o.all()), background_ops.map(|o| o.all()));
@@ -344,6 +356,8 @@ impl<'g> World<'g> {
             background_draw_calls: Some(core_draws),
             instances: grass.map(|w| w.instances),
             background_instances: background.map(|w| w.instances),
+            primitive_inputs: inputs_of(false),
+            background_primitive_inputs: inputs_of(true),
             texture_loads: fetches.map(|f| f.loads),
             float_texture_loads: fetches.map(|f| f.float_loads),
             vertex_texture_loads: ops.map(|o| o.vertex.loads),

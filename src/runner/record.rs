@@ -118,6 +118,14 @@ pub struct FrameRecord {
     /// Instances the core's background pass drew.
     #[serde(default)]
     pub background_instances: Option<u64>,
+    /// Fragment shader input slots set up for the technique's primitives that reached
+    /// rasterisation: each counted segment's primitives times its fragment shader's slots
+    /// ([`crate::shaders::PipelineCost::fragment_inputs`]).
+    #[serde(default)]
+    pub primitive_inputs: Option<u64>,
+    /// The same for the core's background pass.
+    #[serde(default)]
+    pub background_primitive_inputs: Option<u64>,
     /// Texels of normalised or integer formats the technique's shaders read with
     /// `textureLoad`: each counted segment's invocations times the loads of one invocation of
     /// its pipeline's entry points ([`crate::shaders::PipelineCost`], a static count).
@@ -373,6 +381,9 @@ pub struct RunSummary {
     /// empty without them and in older files).
     #[serde(default)]
     pub instances: Option<u64>,
+    /// Median fragment input slots set up for the technique's primitives.
+    #[serde(default)]
+    pub primitive_inputs: Option<u64>,
     /// Largest GPU memory held, bytes.
     pub gpu_bytes: Option<u64>,
     /// Median vertex shader invocations of the technique's passes (GPU-counted; empty without
@@ -561,6 +572,9 @@ pub struct RunSummary {
     /// Predicted ms of the draws' instances.
     #[serde(default)]
     pub model_instance_ms: Option<f64>,
+    /// Predicted ms of the primitives' fragment input slots.
+    #[serde(default)]
+    pub model_primitive_input_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -658,6 +672,7 @@ impl RunSummary {
             triangles: median_u64(&|r| Some(r.triangles)),
             draw_calls: median_u64(&|r| Some(r.draw_calls)),
             instances: median_u64(&|r| r.instances),
+            primitive_inputs: median_u64(&|r| r.primitive_inputs),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max(),
             vertex_invocations: median_u64(&|r| r.vertex_invocations),
             clipper_primitives_out: median_u64(&|r| r.clipper_primitives_out),
@@ -723,6 +738,7 @@ impl RunSummary {
             model_compute_division_ms: None,
             model_texture_mip_blend_ms: None,
             model_instance_ms: None,
+            model_primitive_input_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -937,6 +953,8 @@ mod tests {
             background_draw_calls: None,
             instances: None,
             background_instances: None,
+            primitive_inputs: None,
+            background_primitive_inputs: None,
             texture_loads: None,
             float_texture_loads: None,
             vertex_texture_loads: None,

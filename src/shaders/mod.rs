@@ -15,7 +15,7 @@ mod trips;
 mod walk;
 
 pub use branches::{UniformBranch, uniform_branches};
-pub use kind::{FragmentKind, Module, discarding_fragment_entries};
+pub use kind::{FragmentKind, Module, discarding_fragment_entries, fragment_inputs};
 pub use layout::struct_size;
 pub use loops::uniform_bound_loops;
 pub use ops::{Bound, ShaderOps, entry_ops, is_float, texture_globals};

@@ -51,6 +51,9 @@ pub struct PipelineCost {
     pub fragment_ops: ShaderOps,
     /// Costly operations of one compute shader invocation.
     pub compute_ops: ShaderOps,
+    /// Input slots its fragment shader reads ([`super::fragment_inputs`]): set up for every
+    /// triangle rasterised.
+    pub fragment_inputs: u32,
 }
 
 impl PipelineCost {
@@ -68,6 +71,7 @@ impl PipelineCost {
             vertex_ops: module.ops(vertex, constants),
             fragment_ops: module.ops(fragment, constants),
             compute_ops: ShaderOps::default(),
+            fragment_inputs: module.fragment_inputs(fragment),
         }
     }
 

@@ -442,3 +442,11 @@ fn cs_divisions(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workg
     let rest = vec4(hash_f32(i), hash_f32(i ^ 0x5bd1e995u) + f32(h) * 1e-9, 0.0, 1.0);
     springs[k] = p + (rest - p) * 0.1;
 }
+
+// The sub-pixel strips of the `primitives` workload: a fragment shader reading no interpolated
+// slot, so the rasteriser sets none up for their triangles (`primitive_inputs` draws the same
+// strips with `fs_opaque`, which reads the blade's five). No fragment is shaded either way.
+@fragment
+fn fs_bare(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4(p.z, 0.5, 0.2, 1.0);
+}

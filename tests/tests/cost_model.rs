@@ -191,12 +191,19 @@ fn check_coverage(costs: &UnitCosts, timed: &[MeasuredSample], size: Size, sampl
 /// own price. A compute invocation's own cost, beyond the 8 storage words and the arithmetic
 /// of the spring update it runs, may be next to nothing too (at 320x180 on the 2-vCPU EPYC:
 /// 0.25 ± 0.75 and 2.0 ± 0.85 ns in two calibrations, 2026-12-05, against 4.3 ns for its
-/// words): resolved to within half the spring update's whole price an invocation.
+/// words): resolved to within half the spring update's whole price an invocation. Likewise a
+/// vertex invocation's own cost beyond its shader's operations, since the instances are priced
+/// apart (on the Xeon: 0-0.33 ± 0.49-0.74 ns, 2026-12-06, against about 5 ns for the strips'
+/// vertex shader's operations): resolved to within half the strips' whole price a vertex.
 fn unresolved(costs: &grassbench::cost::UnitCosts) -> Vec<String> {
     let spring = grassbench::cost::workloads::shader_ops("cs_springs");
     let spring_update_ns = costs.get(Term::Compute).value
         + costs.get(Term::ComputeStorage).value * spring.storage as f64
         + costs.get(Term::ComputeArithmetic).value * spring.arithmetic as f64;
+    let strip = grassbench::cost::workloads::shader_ops("vs_offscreen");
+    let strip_vertex_ns = costs.get(Term::Vertex).value
+        + costs.get(Term::VertexTranscendental).value * strip.transcendentals as f64
+        + costs.get(Term::VertexArithmetic).value * strip.arithmetic as f64;
     Term::ALL
         .into_iter()
         .filter(|&t| {
@@ -214,6 +221,9 @@ fn unresolved(costs: &grassbench::cost::UnitCosts) -> Vec<String> {
                 Some(b) => c.value >= 0.0 && c.standard_error < costs.get(b).value,
                 None if t == Term::Compute => {
                     c.value >= 0.0 && c.standard_error < 0.5 * spring_update_ns
+                }
+                None if t == Term::Vertex => {
+                    c.value >= 0.0 && c.standard_error < 0.5 * strip_vertex_ns
                 }
                 None => c.value > 0.0 && c.standard_error < 0.5 * c.value,
             };
@@ -236,6 +246,13 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             // A full-screen layer is one triangle twice the screen's size: the clipper may
             // cut it at the guard band into pieces (lavapipe: 3, i.e. 2 more per layer).
             Term::Primitive => assert!(k <= c && c <= k + 2.0 * layers, "{what}"),
+            // Those pieces set up the layers' fragment input slots too.
+            Term::PrimitiveInput => {
+                let slots = workloads::fragment_inputs(workloads::layer_fragment_entry(
+                    FragmentKind::Opaque,
+                ));
+                assert!(k <= c && c <= k + 2.0 * layers * slots, "{what}")
+            }
             // lavapipe counts fragment invocations in whole 4x4 blocks, and blocks on the
             // seams between the clipped pieces shade twice: 1.25% more than the pixels at
             // 640x360 (2 columns of blocks per layer). No fragment from the sub-pixel or
@@ -283,7 +300,10 @@ fn held_out_mix() -> Vec<Workload> {
         w(
             "primitives",
             Term::Primitive,
-            Shape::SubpixelStrips { instances: 10_000 },
+            Shape::SubpixelStrips {
+                instances: 10_000,
+                interpolated: true,
+            },
         ),
         w("opaque", Term::FragmentOpaque, layers(FragmentKind::Opaque)),
         w(

@@ -43,6 +43,9 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
         // One instance a blade (the encoder's count of its draws' instance ranges); the
         // background's draws are counted apart.
         assert_eq!(r.instances, Some(blades));
+        // Every primitive rasterised sets up the three slots its fragment shader reads
+        // (`world_ao`, `normal`, `albedo`).
+        assert_eq!(r.primitive_inputs, r.clipper_primitives_out.map(|n| 3 * n));
         assert!(r.background_instances.is_some_and(|n| n > 0), "{r:?}");
         // Its bend pass runs once per blade, in whole 64-wide workgroups (one chunk here).
         assert_eq!(

@@ -200,9 +200,11 @@ impl Config {
                 r.model_vertex_storage_ms.unwrap_or(0.0),
                 r.model_compute_division_ms.unwrap_or(0.0),
                 r.model_texture_mip_blend_ms.unwrap_or(0.0),
-                // Runs modelled before the instance term priced their instances with their
-                // vertices and primitives.
+                // Runs modelled before the instance and primitive input terms priced their
+                // instances with their vertices and primitives, and their primitives' input
+                // slots with the primitives.
                 r.model_instance_ms.unwrap_or(0.0),
+                r.model_primitive_input_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

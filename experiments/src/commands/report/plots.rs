@@ -378,6 +378,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU compute divisions",
     "GPU texture mip blends",
     "GPU instances",
+    "GPU primitive input slots",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
