@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The reference's segments probe: measured = a + b·(primitive + vertex terms) + c·(the vertex
-stage's operations: transcendental + arithmetic terms), least squares over the runs. b and c
+stage's operations: transcendental + arithmetic terms), least squares over the runs (the
+primitive terms include the primitives' fragment input slots where the runs price them). b and c
 are factors on the model's own prices (1 = priced right); a is the frame's part that does not
 grow with segments. Python 3, standard library only: python3 fit.py RESULTS_DIR..."""
 import csv
@@ -31,7 +32,9 @@ for folder in sys.argv[1:]:
     for r in rows:
         f = lambda k: float(r[k] or 0)
         seg = dict(kv.split("=", 1) for kv in r["params"].split(";"))["segments"]
-        base = f("model_primitive_ms") + f("model_vertex_ms")
+        # A primitive's fragment input slots are part of its price (a term since `de20c67`;
+        # empty in older runs).
+        base = f("model_primitive_ms") + f("model_primitive_input_ms") + f("model_vertex_ms")
         ops = f("model_vertex_transcendental_ms") + f("model_vertex_arithmetic_ms")
         X.append((1.0, base, ops))
         y.append(f("gpu_wall_ms_median"))
