@@ -11,6 +11,44 @@ use grassbench::technique::{
 use grassbench::{Scene, wgpu};
 use grassbench_tests::{TEST_SIZE, gpu, scene};
 
+/// A pipeline drawing with `source`'s `vs` and `fs` into the frame's colour target, with
+/// `depth` state where the pass's depth attachment is to be used, classified as costing nothing.
+fn test_pipeline(
+    ctx: &InitContext<'_>,
+    label: &str,
+    source: &str,
+    depth: Option<wgpu::DepthStencilState>,
+) -> grassbench::shaders::RenderPipeline {
+    let device = &ctx.gpu.device;
+    let module = grassbench::shaders::module(device, label, source);
+    let layout = ctx.scene_gpu.pipeline_layout(device, label, &[]);
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: depth,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &[Some(grassbench::target::COLOR_FORMAT.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    grassbench::shaders::RenderPipeline::from_raw(
+        pipeline,
+        grassbench::shaders::PipelineCost::default(),
+    )
+}
+
 /// A technique that draws with the pipeline it was given (none, or one whose shader reads a
 /// binding its layout does not have).
 struct BadDraw {
@@ -33,40 +71,14 @@ impl Technique for BadDraw {
 
     /// Builds a pipeline whose shader reads a binding its layout does not have.
     fn new(ctx: &InitContext<'_>, _params: NoParams) -> grassbench::Result<Self> {
-        let device = &ctx.gpu.device;
-        let module = grassbench::shaders::module(
-            device,
-            "broken",
-            "@group(1) @binding(0) var<uniform> missing: vec4<f32>;\n\
-             @vertex fn vs() -> @builtin(position) vec4<f32> { return missing; }\n\
-             @fragment fn fs() -> @location(0) vec4<f32> { return vec4(1.0); }",
-        );
-        let layout = ctx.scene_gpu.pipeline_layout(device, "broken", &[]);
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("broken"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs"),
-                compilation_options: Default::default(),
-                targets: &[Some(grassbench::target::COLOR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
         Ok(BadDraw {
-            pipeline: Some(grassbench::shaders::RenderPipeline::from_raw(
-                pipeline,
-                grassbench::shaders::PipelineCost::default(),
+            pipeline: Some(test_pipeline(
+                ctx,
+                "broken",
+                "@group(1) @binding(0) var<uniform> missing: vec4<f32>;\n\
+                 @vertex fn vs() -> @builtin(position) vec4<f32> { return missing; }\n\
+                 @fragment fn fs() -> @location(0) vec4<f32> { return vec4(1.0); }",
+                None,
             )),
         })
     }
@@ -152,40 +164,19 @@ impl<const COPYABLE: bool> Technique for IndirectDraw<COPYABLE> {
 
     fn new(ctx: &InitContext<'_>, _params: NoParams) -> grassbench::Result<Self> {
         let device = &ctx.gpu.device;
-        let module = grassbench::shaders::module(
-            device,
+        let pipeline = test_pipeline(
+            ctx,
             "indirect",
             "@vertex fn vs() -> @builtin(position) vec4<f32> { return vec4(2.0, 2.0, 0.5, 1.0); }\n\
              @fragment fn fs() -> @location(0) vec4<f32> { return vec4(1.0); }",
-        );
-        let layout = ctx.scene_gpu.pipeline_layout(device, "indirect", &[]);
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("indirect"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
+            Some(wgpu::DepthStencilState {
                 format: grassbench::target::DEPTH_FORMAT,
                 depth_write_enabled: Some(false),
                 depth_compare: Some(wgpu::CompareFunction::Always),
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs"),
-                compilation_options: Default::default(),
-                targets: &[Some(grassbench::target::COLOR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         let usage = if COPYABLE {
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC
         } else {
@@ -210,13 +201,7 @@ impl<const COPYABLE: bool> Technique for IndirectDraw<COPYABLE> {
             })?
             .copy_from_slice(&bytes);
         args.unmap();
-        Ok(Self {
-            pipeline: grassbench::shaders::RenderPipeline::from_raw(
-                pipeline,
-                grassbench::shaders::PipelineCost::default(),
-            ),
-            args,
-        })
+        Ok(Self { pipeline, args })
     }
 
     fn estimate(_: &Scene, _: &NoParams) -> grassbench::Result<GpuEstimate> {
