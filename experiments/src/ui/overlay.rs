@@ -40,19 +40,24 @@ pub fn draw(ui: &egui::Ui, pane: &PaneDisplay, pic: egui::Rect, k: usize, figure
             (r.vertex_invocations, r.fragment_invocations, r.overdraw)
         {
             let mega = |n: u64| n as f64 / 1e6;
+            // Two lines: the geometry, then the fragments (one line overflowed a 480-pixel
+            // pane).
             lines.push(format!(
-                "work {:.2} M vertices{} · {:.2} M fragments ({}) · overdraw {overdraw:.2}{}",
+                "work {:.2} M vertices{}{}",
                 mega(vs),
                 // In how many instances of the technique's draws.
                 r.instances
                     .map_or(String::new(), |n| format!(" in {n} instances")),
+                r.compute_invocations
+                    .filter(|&c| c > 0)
+                    .map_or(String::new(), |c| format!(" · {:.2} M compute", mega(c)))
+            ));
+            lines.push(format!(
+                "{:.2} M fragments ({}) · overdraw {overdraw:.2}",
                 mega(fs),
                 // Of them, the samples kept: passed the depth test, not discarded.
                 r.fragments_passed
                     .map_or("-".to_owned(), |p| format!("{:.2} M kept", mega(p))),
-                r.compute_invocations
-                    .filter(|&c| c > 0)
-                    .map_or(String::new(), |c| format!(" · {:.2} M compute", mega(c)))
             ));
         }
     }
