@@ -146,7 +146,8 @@ pub enum Term {
     /// instance as a pass of its own over the instance's vertices, in SIMD batches the last
     /// of which is partly empty): the reference with 1 to 12 segments a blade cost about
     /// 150 ns a blade that no other count saw (`results/cost_model/segments_probe/`,
-    /// 2026-12-06). Calibrated on strips of one triangle beside the vertices' strips of nine.
+    /// 2026-12-06). Calibrated on strips of 3 vertices an instance beside the `vertices`
+    /// workload's strips of 43 (`crate::cost::workloads`): 110-124 ns an instance there.
     Instance,
     /// An input slot of the fragment shader (`@location`), set up for a primitive that reached
     /// rasterisation: on top of [`Term::Primitive`], which every primitive pays. Not among the

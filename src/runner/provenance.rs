@@ -24,7 +24,7 @@ pub struct Provenance {
     pub wgpu_version: String,
     /// CPU model.
     pub cpu: String,
-    /// The CPU told apart from others of its name ([`CpuId`]'s text: vendor, family, model,
+    /// The CPU told apart from others of its name (`CpuId`'s text: vendor, family, model,
     /// stepping, the kernel's clock reading and the widest vector extension), where virtual
     /// machines name every model alike (`Intel(R) Xeon(R) Processor`): a software rasteriser's
     /// unit costs, and the last bit of its pictures, follow the instructions the CPU has. Empty

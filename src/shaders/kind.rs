@@ -117,7 +117,8 @@ impl Module {
 /// The input slots (`@location`s, flat ones too) fragment entry point `entry` of `module`
 /// reads, arguments and the members of struct arguments alike: what a rasteriser sets up for
 /// every triangle it rasterises, one plane equation a slot (lavapipe: a sub-pixel triangle 68 ns
-/// with none, 135 with five, `results/cost_model/README.md`, *The interpolated inputs*).
+/// with none, 135 with five, `results/cost_model/README.md`, *Instances and interpolated
+/// inputs*).
 /// 0 for a name that is no fragment entry point.
 pub fn fragment_inputs(module: &naga::Module, entry: &str) -> u32 {
     let Some(ep) = module

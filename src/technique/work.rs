@@ -25,7 +25,8 @@
 //! ([`PassWork::instances`]): a direct draw's from its instance range as the pass wrapper
 //! records it, an indirect draw's from its arguments, copied out at the end of the frame's
 //! commands (the arguments' buffer needs `COPY_SRC`). A CPU rasteriser pays a cost per
-//! instance that no counter sees (lavapipe: about 130 ns, `results/cost_model/`).
+//! instance that no counter sees (lavapipe: 110-124 ns, `results/cost_model/README.md`,
+//! *Instances and interpolated inputs*).
 //!
 //! Where the adapter lacks `PIPELINE_STATISTICS_QUERY` (Metal, GL, some drivers) nothing is
 //! recorded and the figures are `None`, never zeros.
@@ -66,7 +67,7 @@ pub struct PassWork {
     /// Instances drawn: the harness's count, not a GPU counter (statistics queries count
     /// none). A direct draw's instance range as recorded; an indirect draw's instance count
     /// as its arguments held at the end of the frame's commands, copied out beside the
-    /// queries' results ([`WorkCounter::resolve`]). 0 for compute passes.
+    /// queries' results (`WorkCounter::resolve`). 0 for compute passes.
     pub instances: u64,
 }
 
@@ -121,7 +122,7 @@ pub struct PassWorkRecord {
     pub work: PassWork,
 }
 
-/// Why an indirect draw's instances cannot be counted ([`WorkCounter::add_indirect`]).
+/// Why an indirect draw's instances cannot be counted (`WorkCounter::add_indirect`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum UncountedIndirect {
     /// The arguments' buffer cannot be copied from.
