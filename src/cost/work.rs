@@ -149,8 +149,7 @@ impl Work {
             compute_divisions: ops.compute.divisions as f64,
             texture_mip_blends: fetches.mip_blends as f64,
             instances: counted.instances as f64,
-            primitive_inputs: counted.clipper_primitives_out as f64
-                * f64::from(pipeline.fragment_inputs),
+            primitive_inputs: pipeline.primitive_inputs(counted) as f64,
         };
         *work.fragments_mut(pipeline.fragments) = counted.fragment_invocations as f64;
         work

@@ -118,8 +118,8 @@ pub fn texture_formats() -> [(&'static str, wgpu::TextureFormat); FETCH_TEXTURES
 pub fn shader_ops(entry: &str) -> ShaderOps {
     static OPS: OnceLock<Vec<(String, ShaderOps)>> = OnceLock::new();
     OPS.get_or_init(|| {
-        naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER))
-            .map(|m| bound(|b| crate::shaders::entry_ops(&m, b, &[])))
+        module()
+            .map(|m| bound(|b| crate::shaders::entry_ops(m, b, &[])))
             .unwrap_or_default()
     })
     .iter()
@@ -136,13 +136,18 @@ fn arithmetic(entry: &str) -> f64 {
 /// The input slots fragment entry point `entry` of [`SHADER`] reads
 /// ([`crate::shaders::fragment_inputs`]), as a count.
 pub fn fragment_inputs(entry: &str) -> f64 {
+    module().map_or(0.0, |m| {
+        f64::from(crate::shaders::fragment_inputs(m, entry))
+    })
+}
+
+/// [`SHADER`] composed and parsed, once (`None` if naga cannot parse it: `tests` parse it and
+/// say why).
+fn module() -> Option<&'static naga::Module> {
     static MODULE: OnceLock<Option<naga::Module>> = OnceLock::new();
     MODULE
         .get_or_init(|| naga::front::wgsl::parse_str(&crate::shaders::compose(SHADER)).ok())
         .as_ref()
-        .map_or(0.0, |m| {
-            f64::from(crate::shaders::fragment_inputs(m, entry))
-        })
 }
 
 /// The fragment entry point of the sub-pixel strips: `fs_opaque` (the blade's five slots) or,

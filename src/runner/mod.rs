@@ -307,9 +307,7 @@ impl<'g> World<'g> {
             work.as_ref().map(|w| {
                 w.iter()
                     .filter(|p| p.label.starts_with("core.") == core)
-                    .filter_map(|p| {
-                        Some(p.work.clipper_primitives_out * u64::from(p.pipeline?.fragment_inputs))
-                    })
+                    .filter_map(|p| Some(p.pipeline?.primitive_inputs(&p.work)))
                     .sum()
             })
         };

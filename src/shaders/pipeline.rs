@@ -84,6 +84,12 @@ impl PipelineCost {
         }
     }
 
+    /// The fragment input slots set up for `work`'s primitives drawn with pipelines of this
+    /// cost: each rasterised primitive times [`PipelineCost::fragment_inputs`].
+    pub fn primitive_inputs(&self, work: &crate::technique::work::PassWork) -> u64 {
+        work.clipper_primitives_out * u64::from(self.fragment_inputs)
+    }
+
     /// The costly operations of `work` done with pipelines of this cost: each stage's
     /// invocations times what one invocation does.
     pub fn ops(&self, work: &crate::technique::work::PassWork) -> PassOps {
