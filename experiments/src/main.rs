@@ -42,6 +42,8 @@ enum Command {
 
 fn main() -> ExitCode {
     steady_allocator();
+    // The revision this binary was built from, for every meta.toml it writes.
+    grassbench::runner::record_build_revision(env!("GRASSBENCH_BUILD_REVISION"));
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::List => commands::list(),

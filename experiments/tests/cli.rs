@@ -321,6 +321,14 @@ fn run_writes_csv_images_and_meta_and_refuses_to_overwrite() {
     // process's first primitive-heavy submissions find lavapipe slow: `calibrate::adapter_at`),
     // and recorded with them at the run's size.
     let table: toml::Table = toml::from_str(&meta).unwrap();
+    // The revision the binary was built from, beside the tree's it ran in: the same commit
+    // here (the test's build is of this tree), `+dirty` on either side as the tree was then.
+    let commit = |key: &str| {
+        let revision = table[key].as_str().unwrap_or_default();
+        revision.trim_end_matches("+dirty").to_owned()
+    };
+    assert!(!commit("build_revision").is_empty(), "{meta}");
+    assert_eq!(commit("build_revision"), commit("revision"), "{meta}");
     let raw: grassbench::calibration::Calibration =
         table["calibration"].clone().try_into().unwrap();
     assert_eq!(raw.size, "96x64");

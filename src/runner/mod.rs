@@ -28,7 +28,7 @@ use std::time::Instant;
 pub use crate::files::{write_atomic, write_csv};
 pub use harness::Harness;
 pub use host::{HostLoad, HostSample};
-pub use provenance::{Provenance, WGPU_VERSION, command_line};
+pub use provenance::{Provenance, WGPU_VERSION, command_line, record_build_revision};
 pub use record::{FrameRecord, LevelRow, RunSummary};
 pub use stats::Percentiles;
 pub use view::View;

@@ -7,6 +7,17 @@ use crate::gpu::AdapterSummary;
 /// The wgpu version this build uses (a test checks it against `Cargo.lock`).
 pub const WGPU_VERSION: &str = "30.0.1";
 
+/// The revision the running program was built from, once its `main` has said it
+/// ([`record_build_revision`]).
+static BUILD_REVISION: std::sync::OnceLock<&'static str> = std::sync::OnceLock::new();
+
+/// Records the revision this program was built from, for every [`Provenance`] it collects
+/// after (`grassbench`'s `main` passes what its build script read: `experiments/build.rs`).
+/// The first call holds; later ones are ignored.
+pub fn record_build_revision(revision: &'static str) {
+    let _ = BUILD_REVISION.set(revision);
+}
+
 /// Command, adapter, revision, build and machine behind a set of figures.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize, PartialEq)]
 pub struct Provenance {
@@ -16,6 +27,14 @@ pub struct Provenance {
     /// `git describe`-like revision of the working tree (`+dirty` when sources outside `results/`
     /// are modified), or `unknown`.
     pub revision: String,
+    /// The revision the running program was built from, as [`Provenance::revision`] reads
+    /// it (`+dirty` when its sources differed from the commit), where the program says
+    /// ([`record_build_revision`]: the `grassbench` command does); empty in files from before
+    /// it was recorded and from programs that do not say. Where it is not the revision of the
+    /// tree the run read, the figures are the build's: a binary built before a change, or
+    /// from an uncommitted one, and run in a tree that has moved on.
+    #[serde(default)]
+    pub build_revision: String,
     /// `release` or `debug`.
     pub build_profile: String,
     /// grassbench version.
@@ -53,6 +72,7 @@ impl Provenance {
         Self {
             command: command_line(std::env::args()),
             revision: git_revision(),
+            build_revision: BUILD_REVISION.get().copied().unwrap_or_default().to_owned(),
             build_profile: if cfg!(debug_assertions) {
                 "debug"
             } else {
@@ -92,8 +112,14 @@ impl Provenance {
         } else {
             format!(" ({})", self.cpu_id)
         };
+        // A binary built from other sources than the tree it ran in says so.
+        let build = if self.build_revision.is_empty() || self.build_revision == self.revision {
+            format!("{} build", self.build_profile)
+        } else {
+            format!("{} build of `{}`", self.build_profile, self.build_revision)
+        };
         format!(
-            "Measured on `{}` ({}, {}; driver {} {}), CPU {}{cpu_id} x{}, revision `{}` ({} build), {}{allocator}.  \n\
+            "Measured on `{}` ({}, {}; driver {} {}), CPU {}{cpu_id} x{}, revision `{}` ({build}), {}{allocator}.  \n\
              Command: `{}`{after_command}.\n",
             a.name,
             a.backend,
@@ -103,7 +129,6 @@ impl Provenance {
             self.cpu,
             self.cpu_count,
             self.revision,
-            self.build_profile,
             self.date,
             self.command,
         )
@@ -130,32 +155,7 @@ pub fn command_line(args: impl IntoIterator<Item = String>) -> String {
         .join(" ")
 }
 
-fn git_revision() -> String {
-    let run = |args: &[&str]| {
-        std::process::Command::new("git")
-            .args(args)
-            .output()
-            .ok()
-            .filter(|o| o.status.success())
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
-    };
-    match run(&["rev-parse", "--short=12", "HEAD"]) {
-        Some(rev) => {
-            // Outputs under results/ are not sources: rewriting them does not make a build dirty.
-            let dirty = run(&[
-                "status",
-                "--porcelain",
-                "--untracked-files=no",
-                "--",
-                ".",
-                ":(exclude)results",
-            ])
-            .is_some_and(|s| !s.is_empty());
-            if dirty { format!("{rev}+dirty") } else { rev }
-        }
-        None => "unknown".to_owned(),
-    }
-}
+include!("git_revision.rs");
 
 /// What tells one CPU from another of the same name, read from Linux's `/proc/cpuinfo`
 /// (its first processor): each field empty where the file does not give it.
@@ -301,6 +301,7 @@ mod tests {
         let p = Provenance {
             command: "grassbench sweep s.toml".into(),
             revision: "abc".into(),
+            build_revision: "abc".into(),
             build_profile: "release".into(),
             grassbench_version: "0.1.0".into(),
             wgpu_version: WGPU_VERSION.into(),
@@ -335,6 +336,26 @@ mod tests {
             "{}",
             identified.to_markdown("")
         );
+        // A binary built from other sources than the tree it ran in names them.
+        let moved = Provenance {
+            build_revision: "9f0+dirty".into(),
+            ..p.clone()
+        };
+        assert!(
+            moved
+                .to_markdown("")
+                .contains("revision `abc` (release build of `9f0+dirty`),"),
+            "{}",
+            moved.to_markdown("")
+        );
+        // A file from before the build's revision was recorded reads as it did.
+        let mut table: toml::Table = toml::from_str(&p.to_toml()).expect("provenance TOML parses");
+        table.remove("build_revision");
+        let before: Provenance = toml::Value::Table(table)
+            .try_into()
+            .expect("provenance without a build revision parses");
+        assert_eq!(before.build_revision, "");
+        assert_eq!(before.to_markdown(""), p.to_markdown(""));
         // A file from before the allocator was recorded says nothing of it.
         let older = Provenance {
             allocator: String::new(),
