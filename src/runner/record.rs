@@ -837,9 +837,17 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", Some(281.9147005))
+            ("reference", Some(269.87390400000004))
         );
-        // The newest columns: texel loads by stage. The reference reads its wind map (4
+        // The newest columns: instances drawn (the reference's, one a blade) and the input slots
+        // its primitives set up (its fragment shader reads 3).
+        assert_eq!(reference.instances, Some(433_720));
+        assert_eq!(
+            reference.primitive_inputs,
+            reference.clipper_primitives_out.map(|p| 3 * p)
+        );
+        assert!(reference.model_instance_ms.is_some_and(|ms| ms > 0.0));
+        // Texel loads by stage. The reference reads its wind map (4
         // floating-point texels a blade) in its bend pass, once a blade, and nothing in its
         // vertex stage since `68eb6f4`.
         assert_eq!(reference.compute_invocations, Some(433_728));
