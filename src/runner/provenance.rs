@@ -60,8 +60,37 @@ pub struct Provenance {
     /// from before it was recorded.
     #[serde(default)]
     pub allocator: String,
+    /// The environment variables set for the process that change how a software driver
+    /// works ([`DRIVER_VARIABLES`], `NAME=value`, comma-separated), empty where none is set
+    /// and in files from before it was recorded. `LP_NUM_THREADS=0` makes llvmpipe and lavapipe
+    /// rasterise in the submitting thread, after its vertices, rather than in threads of their
+    /// own beside it: the same work, a different time (`results/cost_model/README.md`).
+    #[serde(default)]
+    pub driver_environment: String,
     /// The adapter.
     pub adapter: AdapterSummary,
+}
+
+/// The environment variables [`Provenance::driver_environment`] records: those that change
+/// how Mesa's software rasterisers (llvmpipe, lavapipe) run, and which one runs. None takes
+/// a path, so a record names no folder of the machine it was made on.
+pub const DRIVER_VARIABLES: [&str; 6] = [
+    "LP_NUM_THREADS",
+    "LP_NATIVE_VECTOR_WIDTH",
+    "LP_DEBUG",
+    "LP_PERF",
+    "GALLIUM_DRIVER",
+    "MESA_LOADER_DRIVER_OVERRIDE",
+];
+
+/// [`Provenance::driver_environment`]'s text: each of [`DRIVER_VARIABLES`] that `lookup` finds
+/// set, as `NAME=value`, in the list's order, comma-separated.
+pub fn driver_environment(lookup: impl Fn(&str) -> Option<String>) -> String {
+    DRIVER_VARIABLES
+        .iter()
+        .filter_map(|name| lookup(name).map(|value| format!("{name}={value}")))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 impl Provenance {
@@ -89,6 +118,7 @@ impl Provenance {
             os: format!("{} {}", std::env::consts::OS, std::env::consts::ARCH),
             date: utc_now(),
             allocator: super::allocator::this_process(),
+            driver_environment: driver_environment(|name| std::env::var(name).ok()),
             adapter: adapter.clone(),
         }
     }
@@ -107,6 +137,11 @@ impl Provenance {
         } else {
             format!("; allocator: {}", self.allocator)
         };
+        let environment = if self.driver_environment.is_empty() {
+            String::new()
+        } else {
+            format!("; driver environment: `{}`", self.driver_environment)
+        };
         let cpu_id = if self.cpu_id.is_empty() {
             String::new()
         } else {
@@ -119,7 +154,7 @@ impl Provenance {
             format!("{} build of `{}`", self.build_profile, self.build_revision)
         };
         format!(
-            "Measured on `{}` ({}, {}; driver {} {}), CPU {}{cpu_id} x{}, revision `{}` ({build}), {}{allocator}.  \n\
+            "Measured on `{}` ({}, {}; driver {} {}), CPU {}{cpu_id} x{}, revision `{}` ({build}), {}{allocator}{environment}.  \n\
              Command: `{}`{after_command}.\n",
             a.name,
             a.backend,
@@ -311,6 +346,7 @@ mod tests {
             os: "linux x86_64".into(),
             date: "2026-12-02T00:00:00Z".into(),
             allocator: "glibc malloc, its defaults".into(),
+            driver_environment: String::new(),
             adapter,
         };
         assert_eq!(
@@ -356,6 +392,28 @@ mod tests {
             .expect("provenance without a build revision parses");
         assert_eq!(before.build_revision, "");
         assert_eq!(before.to_markdown(""), p.to_markdown(""));
+        // Rasterisation moved into the submitting thread is said; a file from before the
+        // driver's environment was recorded reads as it did.
+        let serial = Provenance {
+            driver_environment: driver_environment(|name| {
+                (name == "LP_NUM_THREADS").then(|| "0".to_owned())
+            }),
+            ..p.clone()
+        };
+        assert!(
+            serial
+                .to_markdown("")
+                .contains("its defaults; driver environment: `LP_NUM_THREADS=0`.  \n"),
+            "{}",
+            serial.to_markdown("")
+        );
+        let mut table: toml::Table =
+            toml::from_str(&serial.to_toml()).expect("provenance TOML parses");
+        table.remove("driver_environment");
+        let before: Provenance = toml::Value::Table(table)
+            .try_into()
+            .expect("provenance without a driver environment parses");
+        assert_eq!(before.to_markdown(""), p.to_markdown(""));
         // A file from before the allocator was recorded says nothing of it.
         let older = Provenance {
             allocator: String::new(),
@@ -365,6 +423,21 @@ mod tests {
             older.to_markdown("").contains("2026-12-02T00:00:00Z.  \n"),
             "{}",
             older.to_markdown("")
+        );
+    }
+
+    #[test]
+    fn driver_environment_lists_the_variables_set_in_order() {
+        assert_eq!(driver_environment(|_| None), "");
+        let set = |name: &str| match name {
+            "GALLIUM_DRIVER" => Some("llvmpipe".to_owned()),
+            "LP_NUM_THREADS" => Some("0".to_owned()),
+            "HOME" => Some("/root".to_owned()),
+            _ => None,
+        };
+        assert_eq!(
+            driver_environment(set),
+            "LP_NUM_THREADS=0, GALLIUM_DRIVER=llvmpipe"
         );
     }
 
