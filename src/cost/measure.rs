@@ -97,7 +97,7 @@ impl MeasuredSample {
 /// harness counts into the counter's segments as it records the draws. Texture fetches,
 /// transcendentals, arithmetic, barriers, storage words, integer divisions and mip blends are
 /// the counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 23] = [
+pub const COUNTED_TERMS: [Term; 24] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -121,6 +121,7 @@ pub const COUNTED_TERMS: [Term; 23] = [
     Term::TextureMipBlend,
     Term::Instance,
     Term::PrimitiveInput,
+    Term::TextureExplicitLevel,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -7,7 +7,7 @@
 //!   counters and the harness's, and what its shaders did inside those invocations (texel
 //!   loads and samples, those of floating-point texels and the vertex stage's loads apart,
 //!   transcendentals and scalar arithmetic by stage, compute shaders' workgroup barriers, compute and vertex shaders' storage-buffer words,
-//!   compute shaders' integer divisions, samples that blend two mip levels: the
+//!   compute shaders' integer divisions, samples that blend two mip levels, samples at a level each invocation gives: the
 //!   counted invocations times their entry points' operations,
 //!   `crate::shaders::ShaderOps`);
 //! - [`Term`]: the model's terms, one unit cost each, plus a fixed cost per submission;

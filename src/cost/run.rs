@@ -57,6 +57,9 @@ impl Work {
             // Likewise their primitives' input slots.
             primitive_inputs: f(r.primitive_inputs).unwrap_or(0.0)
                 + f(r.background_primitive_inputs).unwrap_or(0.0),
+            // Likewise their samples at a level of their own.
+            texture_explicit_levels: f(r.texture_explicit_levels).unwrap_or(0.0)
+                + f(r.background_texture_explicit_levels).unwrap_or(0.0),
         })
     }
 
@@ -118,6 +121,7 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_texture_mip_blend_ms = p.map(|p| p.texture_mip_blend_ms);
     run.model_instance_ms = p.map(|p| p.instance_ms);
     run.model_primitive_input_ms = p.map(|p| p.primitive_input_ms);
+    run.model_texture_explicit_level_ms = p.map(|p| p.texture_explicit_level_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)

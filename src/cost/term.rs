@@ -159,11 +159,23 @@ pub enum Term {
     /// alone, calibrated on five slots, over-priced a technique's triangles whose shader reads
     /// fewer (the reference's three).
     PrimitiveInput,
+    /// A filtered sample whose mip level the shader gives each invocation
+    /// (`crate::shaders::ShaderOps::explicit_levels`: a `textureSampleLevel` at a level not
+    /// known when the pipeline is made, a `textureSampleGrad`, a `textureSampleBias` by such a
+    /// bias), on top of [`Term::TextureSample`] or [`Term::FloatTextureSample`], which every
+    /// sample pays. Not among the units issue 20 lists: the sample terms are calibrated on
+    /// `textureSample`, whose level a rasteriser picks once for a 2x2 quad, and a SIMD
+    /// rasteriser picks a level lane by lane where the shader gives one a lane. lavapipe on the
+    /// Xeon: bakay's two lookups a fragment at the level it computes (`lod = "minor_axis"`)
+    /// cost 1.2-1.7 ns a sample more than the same lookups made `textureSample`s, its meadow
+    /// and flyover at 640x360, three rounds each way (2026-12-07); its lookups then took
+    /// about 18-23 ms of the 27 by which the model under-predicted its meadow.
+    TextureExplicitLevel,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 28] = [
+    pub const ALL: [Self; 29] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -192,6 +204,7 @@ impl Term {
         Self::TextureMipBlend,
         Self::Instance,
         Self::PrimitiveInput,
+        Self::TextureExplicitLevel,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -225,6 +238,7 @@ impl Term {
             Self::TextureMipBlend => "texture_mip_blend",
             Self::Instance => "instance",
             Self::PrimitiveInput => "primitive_input",
+            Self::TextureExplicitLevel => "texture_explicit_level",
         }
     }
 
@@ -258,6 +272,7 @@ impl Term {
             Self::TextureMipBlend => "sample blending two mip levels",
             Self::Instance => "instance",
             Self::PrimitiveInput => "input slot of a primitive",
+            Self::TextureExplicitLevel => "sample at a level of its own",
         }
     }
 

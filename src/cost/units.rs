@@ -143,6 +143,11 @@ pub struct UnitCosts {
     /// primitives with their calibration's five slots).
     #[serde(default)]
     pub primitive_input_ns: UnitCost,
+    /// Per filtered sample at a level the shader gives each invocation, on top of its
+    /// sample's cost, ns (0 before the term: calibrations made before it priced such samples
+    /// as those whose level a quad picks).
+    #[serde(default)]
+    pub texture_explicit_level_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
     /// The coverage checks ([`super::checks`]), timed with the samples and priced with these
@@ -233,6 +238,9 @@ pub struct Prediction {
     /// The primitives' fragment input slots, ms.
     #[serde(default)]
     pub primitive_input_ms: f64,
+    /// Samples' levels picked lane by lane, ms.
+    #[serde(default)]
+    pub texture_explicit_level_ms: f64,
 }
 
 impl UnitCosts {
@@ -298,6 +306,7 @@ impl UnitCosts {
             texture_mip_blend_ns: stored(Term::TextureMipBlend),
             instance_ns: stored(Term::Instance),
             primitive_input_ns: stored(Term::PrimitiveInput),
+            texture_explicit_level_ns: stored(Term::TextureExplicitLevel),
             fit,
             checks: Vec::new(),
         }
@@ -334,6 +343,7 @@ impl UnitCosts {
             Term::TextureMipBlend => self.texture_mip_blend_ns,
             Term::Instance => self.instance_ns,
             Term::PrimitiveInput => self.primitive_input_ns,
+            Term::TextureExplicitLevel => self.texture_explicit_level_ns,
         }
     }
 
@@ -375,6 +385,7 @@ impl UnitCosts {
             texture_mip_blend_ms: ms(Term::TextureMipBlend),
             instance_ms: ms(Term::Instance),
             primitive_input_ms: ms(Term::PrimitiveInput),
+            texture_explicit_level_ms: ms(Term::TextureExplicitLevel),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -469,6 +480,7 @@ impl Prediction {
             Term::TextureMipBlend => self.texture_mip_blend_ms,
             Term::Instance => self.instance_ms,
             Term::PrimitiveInput => self.primitive_input_ms,
+            Term::TextureExplicitLevel => self.texture_explicit_level_ms,
         }
     }
 
@@ -494,10 +506,11 @@ mod tests {
         // transcendentals 2 / 0.5 / 1 ns (vertex, fragment, compute), scalar operations 0.2 /
         // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns, a compute shader's storage word 0.5 ns,
         // a vertex shader's 1 ns, a compute shader's integer division 4 ns, a sample's second
-        // mip level 2 ns, an instance 200 ns, a primitive's input slot 20 ns.
+        // mip level 2 ns, an instance 200 ns, a primitive's input slot 20 ns, a sample's level
+        // picked lane by lane 3 ns.
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6, 2e-4, 2e-5,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6, 2e-4, 2e-5, 3e-6,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -537,18 +550,19 @@ mod tests {
             texture_mip_blends: 1.5e6,
             instances: 2.5e4,
             primitive_inputs: 5e4,
+            texture_explicit_levels: 1e5,
         };
         let p = costs.predict(&work);
         // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
-        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 + 3 + 5 + 1 ms.
+        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 + 3 + 5 + 1 + 0.3 ms.
         let expected = [
             1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
-            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0, 3.0, 5.0, 1.0,
+            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0, 3.0, 5.0, 1.0, 0.3,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 43.81).abs() < 1e-9);
+        assert!((p.total_ms - 44.11).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -594,7 +608,7 @@ mod tests {
     fn unit_costs_round_trip_through_toml_and_older_files_read() {
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
-            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6, 2e-4, 2e-5,
+            2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6, 2e-4, 2e-5, 3e-6,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -665,5 +679,7 @@ mod tests {
         assert!(!older.contains("instance_ns"), "{older}");
         assert_eq!(read.primitive_input_ns, UnitCost::default());
         assert!(!older.contains("primitive_input_ns"), "{older}");
+        assert_eq!(read.texture_explicit_level_ns, UnitCost::default());
+        assert!(!older.contains("explicit_level_ns"), "{older}");
     }
 }

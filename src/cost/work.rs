@@ -99,6 +99,10 @@ pub struct Work {
     /// ([`crate::shaders::PipelineCost::fragment_inputs`]).
     #[serde(default)]
     pub primitive_inputs: f64,
+    /// Filtered samples, of any stage and format, whose mip level the shader gives each
+    /// invocation ([`crate::shaders::ShaderOps::explicit_levels`]).
+    #[serde(default)]
+    pub texture_explicit_levels: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -150,6 +154,7 @@ impl Work {
             texture_mip_blends: fetches.mip_blends as f64,
             instances: counted.instances as f64,
             primitive_inputs: pipeline.primitive_inputs(counted) as f64,
+            texture_explicit_levels: fetches.explicit_levels as f64,
         };
         *work.fragments_mut(pipeline.fragments) = counted.fragment_invocations as f64;
         work
@@ -187,6 +192,7 @@ impl Work {
             Term::TextureMipBlend => self.texture_mip_blends,
             Term::Instance => self.instances,
             Term::PrimitiveInput => self.primitive_inputs,
+            Term::TextureExplicitLevel => self.texture_explicit_levels,
         }
     }
 
@@ -220,6 +226,7 @@ impl Work {
             texture_mip_blends: self.texture_mip_blends * k,
             instances: self.instances * k,
             primitive_inputs: self.primitive_inputs * k,
+            texture_explicit_levels: self.texture_explicit_levels * k,
         }
     }
 
@@ -264,6 +271,7 @@ impl std::ops::Add for Work {
             texture_mip_blends: self.texture_mip_blends + o.texture_mip_blends,
             instances: self.instances + o.instances,
             primitive_inputs: self.primitive_inputs + o.primitive_inputs,
+            texture_explicit_levels: self.texture_explicit_levels + o.texture_explicit_levels,
         }
     }
 }
@@ -302,13 +310,14 @@ mod tests {
             texture_mip_blends: 18.0,
             instances: 19.0,
             primitive_inputs: 20.0,
+            texture_explicit_levels: 21.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0,
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0,
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -350,7 +359,8 @@ mod tests {
         };
         // 11 vertices fetching 8 floating-point texels each (a bilinear height and wind) with
         // 5 transcendentals and 40 scalar operations, 100 fragments sampling 3 textures (and
-        // 2 of floating-point texels, 4 of the 5 blending two mip levels) and loading 1 texel with 1 transcendental and 20
+        // 2 of floating-point texels, 4 of the 5 blending two mip levels, 2 at a level each fragment
+        // gives) and loading 1 texel with 1 transcendental and 20
         // operations, 64 compute invocations loading 4 with 2 and 3 reaching 2 barriers,
         // moving 10 words of storage and taking 3 integer divisions.
         let fetching = PipelineCost {
@@ -361,6 +371,7 @@ mod tests {
                 samples: 0,
                 float_samples: 0,
                 mip_blends: 0,
+                explicit_levels: 0,
                 transcendentals: 5,
                 arithmetic: 40,
                 barriers: 0,
@@ -373,6 +384,7 @@ mod tests {
                 samples: 3,
                 float_samples: 2,
                 mip_blends: 4,
+                explicit_levels: 2,
                 transcendentals: 1,
                 arithmetic: 20,
                 barriers: 0,
@@ -385,6 +397,7 @@ mod tests {
                 samples: 0,
                 float_samples: 0,
                 mip_blends: 0,
+                explicit_levels: 0,
                 transcendentals: 2,
                 arithmetic: 3,
                 barriers: 2,
@@ -406,6 +419,7 @@ mod tests {
                 texture_samples: 300.0,
                 float_texture_samples: 200.0,
                 texture_mip_blends: 400.0,
+                texture_explicit_levels: 200.0,
                 vertex_transcendentals: 55.0,
                 fragment_transcendentals: 100.0,
                 compute_transcendentals: 128.0,

@@ -16,6 +16,7 @@
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `single_level_texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] `textureSample`s of one mip level (a `Nearest` mipmap filter, [`SINGLE_LEVEL_SAMPLER`]) of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
 //! | `texture_samples` | the same samples trilinear, minified between two levels | a sample's second mip level |
+//! | `explicit_level_texture_samples` | the one-level samples with `textureSampleLevel` at a level each fragment gives | a sample's level picked lane by lane |
 //! | `float_texture_loads`, `float_texture_samples` | the same loads of the texels in [`FLOAT_LOAD_FORMAT`], trilinear samples in [`FLOAT_SAMPLE_FORMAT`] | floating-point texel load, sample |
 //! | `vertex_texture_loads`, `vertex_float_texture_loads` | the off-screen strips with [`LOADS_PER_VERTEX`] `textureLoad`s per vertex of the RGBA8 / floating-point texture | what a load costs a vertex shader more |
 //! | `transcendentals_vertex`, `_fragment`, `_compute` | the off-screen strips / an opaque layer / the spring update with [`MATH_CHAIN`] more transcendentals (`sin`, `cos`, `pow`) per vertex / fragment / invocation | transcendental by stage |
@@ -344,6 +345,9 @@ pub enum Fetch {
     Samples,
     /// The same samples of one mip level ([`SINGLE_LEVEL_SAMPLER`]).
     SingleLevelSamples,
+    /// The same one-level samples with `textureSampleLevel`, at a level each fragment gives
+    /// (a fraction that differs between neighbouring pixels): the level picked lane by lane.
+    ExplicitLevelSamples,
     /// The same loads of the texture of floating-point texels ([`FLOAT_LOAD_FORMAT`]).
     FloatLoads,
     /// The same samples of the texture of floating-point texels ([`FLOAT_SAMPLE_FORMAT`]).
@@ -352,10 +356,11 @@ pub enum Fetch {
 
 impl Fetch {
     /// Every fetch, in declaration order (`fetch as usize` is its position).
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 6] = [
         Self::Loads,
         Self::Samples,
         Self::SingleLevelSamples,
+        Self::ExplicitLevelSamples,
         Self::FloatLoads,
         Self::FloatSamples,
     ];
@@ -366,6 +371,7 @@ impl Fetch {
             Self::Loads => "fs_loads",
             Self::Samples => "fs_samples",
             Self::SingleLevelSamples => "fs_single_level_samples",
+            Self::ExplicitLevelSamples => "fs_explicit_level_samples",
             Self::FloatLoads => "fs_float_loads",
             Self::FloatSamples => "fs_float_samples",
         }
@@ -635,10 +641,13 @@ impl Workload {
                     texture_loads: per(LOADS_PER_FRAGMENT, Fetch::Loads),
                     float_texture_loads: per(LOADS_PER_FRAGMENT, Fetch::FloatLoads),
                     texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::Samples)
-                        + per(SAMPLES_PER_FRAGMENT, Fetch::SingleLevelSamples),
+                        + per(SAMPLES_PER_FRAGMENT, Fetch::SingleLevelSamples)
+                        + per(SAMPLES_PER_FRAGMENT, Fetch::ExplicitLevelSamples),
                     float_texture_samples: per(SAMPLES_PER_FRAGMENT, Fetch::FloatSamples),
                     // Read off the shader: the trilinear samples' (tested below).
                     texture_mip_blends: base.fragments_opaque * ops.mip_blends as f64,
+                    // Likewise (the explicit-level samples', tested below).
+                    texture_explicit_levels: base.fragments_opaque * ops.explicit_levels as f64,
                     ..base
                 }
             }
@@ -868,6 +877,14 @@ pub fn families() -> Vec<Workload> {
             term: Term::TextureSample,
             shape: Shape::FetchLayers {
                 fetch: Fetch::SingleLevelSamples,
+                layers: 1,
+            },
+        },
+        Workload {
+            name: "explicit_level_texture_samples",
+            term: Term::TextureExplicitLevel,
+            shape: Shape::FetchLayers {
+                fetch: Fetch::ExplicitLevelSamples,
                 layers: 1,
             },
         },

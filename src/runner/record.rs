@@ -154,6 +154,10 @@ pub struct FrameRecord {
     /// ([`crate::shaders::ShaderOps::mip_blends`]), counted the same way.
     #[serde(default)]
     pub texture_mip_blends: Option<u64>,
+    /// Of both kinds of samples, those at a level the shader gives each invocation
+    /// ([`crate::shaders::ShaderOps::explicit_levels`]), counted the same way.
+    #[serde(default)]
+    pub texture_explicit_levels: Option<u64>,
     /// Texels of normalised or integer formats the core's background shaders read with
     /// `textureLoad`.
     #[serde(default)]
@@ -179,6 +183,9 @@ pub struct FrameRecord {
     /// Of the background's samples, those that may blend two mip levels.
     #[serde(default)]
     pub background_texture_mip_blends: Option<u64>,
+    /// Of the background's samples, those at a level the shader gives each invocation.
+    #[serde(default)]
+    pub background_texture_explicit_levels: Option<u64>,
     /// Transcendental built-ins (`sin`, `cos`, `pow`, `exp`, ...) the technique's vertex
     /// shaders evaluated, counted the same way ([`crate::shaders::ShaderOps`]: a loop's body
     /// once).
@@ -443,6 +450,9 @@ pub struct RunSummary {
     /// Median of both kinds of samples that may blend two mip levels.
     #[serde(default)]
     pub texture_mip_blends: Option<u64>,
+    /// Median of both kinds of samples at a level the shader gives each invocation.
+    #[serde(default)]
+    pub texture_explicit_levels: Option<u64>,
     /// Median transcendental built-ins evaluated by the technique's vertex shaders.
     #[serde(default)]
     pub vertex_transcendentals: Option<u64>,
@@ -575,6 +585,9 @@ pub struct RunSummary {
     /// Predicted ms of the primitives' fragment input slots.
     #[serde(default)]
     pub model_primitive_input_ms: Option<f64>,
+    /// Predicted ms of samples' levels picked lane by lane.
+    #[serde(default)]
+    pub model_texture_explicit_level_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -691,6 +704,7 @@ impl RunSummary {
             texture_samples: median_u64(&|r| r.texture_samples),
             float_texture_samples: median_u64(&|r| r.float_texture_samples),
             texture_mip_blends: median_u64(&|r| r.texture_mip_blends),
+            texture_explicit_levels: median_u64(&|r| r.texture_explicit_levels),
             vertex_transcendentals: median_u64(&|r| r.vertex_transcendentals),
             fragment_transcendentals: median_u64(&|r| r.fragment_transcendentals),
             compute_transcendentals: median_u64(&|r| r.compute_transcendentals),
@@ -739,6 +753,7 @@ impl RunSummary {
             model_texture_mip_blend_ms: None,
             model_instance_ms: None,
             model_primitive_input_ms: None,
+            model_texture_explicit_level_ms: None,
             speedup: None,
             speedup_ci_low: None,
             speedup_ci_high: None,
@@ -970,6 +985,7 @@ mod tests {
             texture_samples: None,
             float_texture_samples: None,
             texture_mip_blends: None,
+            texture_explicit_levels: None,
             vertex_transcendentals: None,
             fragment_transcendentals: None,
             compute_transcendentals: None,
@@ -980,6 +996,7 @@ mod tests {
             background_texture_samples: None,
             background_float_texture_samples: None,
             background_texture_mip_blends: None,
+            background_texture_explicit_levels: None,
             background_vertex_transcendentals: None,
             background_fragment_transcendentals: None,
             vertex_arithmetic: None,

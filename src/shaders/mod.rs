@@ -176,6 +176,7 @@ mod tests {
                 samples: 0,
                 float_samples: 0,
                 mip_blends: 0,
+                explicit_levels: 0,
                 transcendentals: 1,
                 // `p.xy`'s conversion to `vec2<i32>` (2), the product with `exp` (4), the
                 // alpha test (1).

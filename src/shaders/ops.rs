@@ -67,6 +67,15 @@ pub struct ShaderOps {
     /// at 320x180 with the samples' texture magnified, 2026-12-05); most GPUs' texture units
     /// filter trilinearly at half their bilinear rate.
     pub mip_blends: u64,
+    /// Filtered samples (of [`ShaderOps::samples`] and [`ShaderOps::float_samples`]) whose
+    /// mip level the shader gives each invocation: a `textureSampleLevel` at a level, a
+    /// `textureSampleGrad` by derivatives, a `textureSampleBias` by a bias that is not known
+    /// when the pipeline is made (a literal, a `const`, an override or arithmetic on them). A rasteriser picks a sample's
+    /// level once for a 2x2 quad from its derivatives; given a level a lane, a SIMD rasteriser
+    /// picks it lane by lane (lavapipe: bakay's two lookups a fragment at a level it computes
+    /// cost 1.2-1.7 ns a sample more than the same lookups with `textureSample`, its meadow and
+    /// flyover at 640x360, 2026-12-07, `results/cost_model/README.md`).
+    pub explicit_levels: u64,
     /// Calls of transcendental built-ins (`is_transcendental`).
     pub transcendentals: u64,
     /// Scalar arithmetic operations: every arithmetic, comparison, logical, selection,
@@ -157,6 +166,7 @@ impl ShaderOps {
             samples: self.samples * n,
             float_samples: self.float_samples * n,
             mip_blends: self.mip_blends * n,
+            explicit_levels: self.explicit_levels * n,
             transcendentals: self.transcendentals * n,
             arithmetic: self.arithmetic * n,
             barriers: self.barriers * n,
@@ -176,6 +186,7 @@ impl std::ops::Add for ShaderOps {
             samples: self.samples + o.samples,
             float_samples: self.float_samples + o.float_samples,
             mip_blends: self.mip_blends + o.mip_blends,
+            explicit_levels: self.explicit_levels + o.explicit_levels,
             transcendentals: self.transcendentals + o.transcendentals,
             arithmetic: self.arithmetic + o.arithmetic,
             barriers: self.barriers + o.barriers,
@@ -410,6 +421,19 @@ fn is_whole_level(function: &naga::Function, level: &naga::SampleLevel) -> bool 
     }
 }
 
+/// Whether a sample at `level` takes its level from each invocation rather than from its
+/// quad's derivatives: an explicit level, a bias or derivatives that are not constants
+/// ([`ShaderOps::explicit_levels`]).
+fn is_explicit_level(function: &naga::Function, level: &naga::SampleLevel) -> bool {
+    match level {
+        naga::SampleLevel::Exact(e) | naga::SampleLevel::Bias(e) => !is_constant(function, *e),
+        naga::SampleLevel::Gradient { x, y } => {
+            !(is_constant(function, *x) && is_constant(function, *y))
+        }
+        naga::SampleLevel::Auto | naga::SampleLevel::Zero => false,
+    }
+}
+
 /// Scalar components of expression `e`'s value (1 for scalars, and where its type is unknown).
 fn components(
     types: &Types<'_>,
@@ -615,6 +639,9 @@ fn function_ops(
                     samples: u64::from(!float),
                     float_samples: u64::from(float),
                     mip_blends: u64::from(blends(*image, *sampler, gather, level)),
+                    explicit_levels: u64::from(
+                        gather.is_none() && is_explicit_level(function, level),
+                    ),
                     ..none
                 }
             }
@@ -805,6 +832,7 @@ mod tests {
                 samples: 0,
                 float_samples: 0,
                 mip_blends: 0,
+                explicit_levels: 0,
                 transcendentals: 1,
                 arithmetic: 6 + 3 + 1 + 1 + 2 + 1,
                 barriers: 0,
@@ -825,6 +853,7 @@ mod tests {
                 float_samples: 0,
                 // tint's and the loop's; the branch's is at level 1, a whole one.
                 mip_blends: 1 + 4,
+                explicit_levels: 0,
                 transcendentals: 1 + 4,
                 arithmetic: 11 + 5 + 4 * (2 + 8),
                 barriers: 0,
@@ -982,6 +1011,35 @@ mod tests {
         // and a negative literal are a multiply and a shift; the `f32` one is arithmetic.
         assert_eq!(divisions("cs"), Some(2 + 2 + 1 + 3));
         assert_eq!(divisions("plain"), Some(0));
+    }
+
+    #[test]
+    fn samples_at_a_level_of_their_own_are_told_from_those_a_quad_picks() {
+        let module = naga::front::wgsl::parse_str(
+            "@group(0) @binding(0) var t: texture_2d<f32>;
+             @group(0) @binding(1) var s: sampler;
+             const LEVEL: f32 = 1.5;
+             override BIAS: f32 = 0.5;
+             @fragment fn fs(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+                 let lod = log2(length(dpdx(uv)) * 512.0);
+                 return textureSample(t, s, uv)                         // the quad's level
+                     + textureSampleLevel(t, s, uv, 0.0)                // level 0
+                     + textureSampleLevel(t, s, uv, LEVEL * 2.0)        // known when made
+                     + textureSampleLevel(t, s, uv, lod)                // a lane's own level
+                     + textureSampleLevel(t, s, uv, uv.x)               // a lane's own level
+                     + textureSampleGrad(t, s, uv, dpdx(uv), dpdy(uv))  // a lane's derivatives
+                     + textureSampleGrad(t, s, uv, vec2(0.1), vec2(0.2)) // known when made
+                     + textureSampleBias(t, s, uv, BIAS)                // known when made
+                     + textureSampleBias(t, s, uv, uv.y)                // a lane's own bias
+                     + textureGather(0, t, s, uv);                      // no level to pick
+             }",
+        )
+        .unwrap();
+        let fs = entry_ops(&module, Bound::default(), &[])
+            .into_iter()
+            .find(|(e, _)| e == "fs")
+            .map(|(_, o)| (o.samples, o.explicit_levels));
+        assert_eq!(fs, Some((10, 4)));
     }
 
     #[test]

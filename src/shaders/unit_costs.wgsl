@@ -333,6 +333,30 @@ fn fs_single_level_samples(in: VsOut) -> @location(0) vec4<f32> {
     return samples8(in, fetched, single_level);
 }
 
+// The same samples of one mip level at a level each fragment gives (the
+// `explicit_level_texture_samples` workload): `textureSampleLevel` at the level the
+// minification puts them at (log2 2.5 = 1.32) plus a fraction that differs between
+// neighbouring pixels, so the rasteriser cannot pick one level for a 2x2 quad; through
+// `single_level` each filters the level nearest its own.
+fn sample_level_at(t: texture_2d<f32>, s: sampler, uv: vec2<f32>, k: f32, lod: f32) -> vec4<f32> {
+    return textureSampleLevel(t, s, uv + vec2(k * 0.013, k * 0.029), lod);
+}
+
+@fragment
+fn fs_explicit_level_samples(in: VsOut) -> @location(0) vec4<f32> {
+    let uv = in.world.xz / 20.0 * 2.5 * params.size.x / 512.0;
+    let lod = 1.32 + 0.25 * fract(in.position.x * 0.37 + in.position.y * 0.61);
+    let c = sample_level_at(fetched, single_level, uv, 0.0, lod)
+        + sample_level_at(fetched, single_level, uv, 1.0, lod)
+        + sample_level_at(fetched, single_level, uv, 2.0, lod)
+        + sample_level_at(fetched, single_level, uv, 3.0, lod)
+        + sample_level_at(fetched, single_level, uv, 4.0, lod)
+        + sample_level_at(fetched, single_level, uv, 5.0, lod)
+        + sample_level_at(fetched, single_level, uv, 6.0, lod)
+        + sample_level_at(fetched, single_level, uv, 7.0, lod);
+    return vec4(lit(in) + 0.01 * c.rgb, 1.0);
+}
+
 // The same samples of floating-point texels (the `float_texture_samples` workload).
 @fragment
 fn fs_float_samples(in: VsOut) -> @location(0) vec4<f32> {

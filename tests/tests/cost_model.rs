@@ -267,6 +267,7 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
             | Term::TextureSample
             | Term::FloatTextureSample
             | Term::TextureMipBlend
+            | Term::TextureExplicitLevel
             | Term::FragmentTranscendental
             | Term::FragmentArithmetic => {
                 assert!(k <= c && c <= 1.02 * k, "{what}")
@@ -279,7 +280,7 @@ fn check_counts(name: &str, known: &Work, counted: &Work) {
 
 /// A grass-frame-like mix: 30k off-screen and 10k on-screen blade strips, 3 layers of each
 /// fragment kind, a layer loading 32 texels a fragment, one sampling 8 times between two mip
-/// levels and one 8 times at one level, the loads and the first samples of floating-point
+/// levels, one 8 times at one level and one 8 times at a level each fragment gives, the loads and the first samples of floating-point
 /// texels, 5k strips loading 32 floating-point texels a vertex, 5k strips, a
 /// layer and 65k compute invocations with 30 more transcendentals each, the same with 256
 /// more scalar operations each, 16k compute invocations reaching 8 barriers each, 32k reading
@@ -337,6 +338,14 @@ fn held_out_mix() -> Vec<Workload> {
             Term::TextureSample,
             Shape::FetchLayers {
                 fetch: Fetch::SingleLevelSamples,
+                layers: 1,
+            },
+        ),
+        w(
+            "explicit-level samples",
+            Term::TextureExplicitLevel,
+            Shape::FetchLayers {
+                fetch: Fetch::ExplicitLevelSamples,
                 layers: 1,
             },
         ),

@@ -205,6 +205,8 @@ impl Config {
                 // slots with the primitives.
                 r.model_instance_ms.unwrap_or(0.0),
                 r.model_primitive_input_ms.unwrap_or(0.0),
+                // Likewise the samples' levels picked lane by lane, with the samples.
+                r.model_texture_explicit_level_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

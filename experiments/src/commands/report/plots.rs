@@ -379,6 +379,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU texture mip blends",
     "GPU instances",
     "GPU primitive input slots",
+    "GPU texture levels by lane",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
