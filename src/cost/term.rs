@@ -167,9 +167,10 @@ pub enum Term {
     /// `textureSample`, whose level a rasteriser picks once for a 2x2 quad, and a SIMD
     /// rasteriser picks a level lane by lane where the shader gives one a lane. lavapipe on the
     /// Xeon: bakay's two lookups a fragment at the level it computes (`lod = "minor_axis"`)
-    /// cost 1.2-1.7 ns a sample more than the same lookups made `textureSample`s, its meadow
-    /// and flyover at 640x360, three rounds each way (2026-12-07); its lookups then took
-    /// about 18-23 ms of the 27 by which the model under-predicted its meadow.
+    /// cost 1.2-2.0 ns a sample more than the same lookups made `textureSample`s, its meadow
+    /// and flyover at 640x360, medians of three rounds each way (2026-12-07): 20.7 ms of the
+    /// 27.6 by which the model under-predicted its meadow. The calibration prices it at
+    /// 0.75-1.07 ns (`results/cost_model/README.md`, *Samples at a level of their own*).
     TextureExplicitLevel,
 }
 

@@ -852,7 +852,7 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", Some(269.87390400000004))
+            ("reference", Some(311.7844725))
         );
         // The newest columns: instances drawn (the reference's, one a blade) and the input slots
         // its primitives set up (its fragment shader reads 3).
@@ -881,6 +881,19 @@ mod tests {
         assert_eq!(zhang.run_id, "4bf71ea71ee3-r0");
         assert_eq!(zhang.technique, "zhang");
         assert!(zhang.is_ok());
+        // Samples at a level of their own: bakay's paper point looks its texels up with
+        // `textureSampleGrad`, every sample of its shells one.
+        let rows: Vec<RunSummary> = read_back(&root.join("bakay_table2/runs.csv"));
+        let bakay = &rows[1];
+        assert_eq!(bakay.technique, "bakay");
+        assert!(bakay.texture_samples.is_some_and(|n| n > 0));
+        assert_eq!(bakay.texture_explicit_levels, bakay.texture_samples);
+        assert!(
+            bakay
+                .model_texture_explicit_level_ms
+                .is_some_and(|ms| ms > 0.0)
+        );
+        assert_eq!(reference.texture_explicit_levels, Some(0));
         // The oldest columns: no run id, status, levels of detail or comparisons.
         let rows: Vec<RunSummary> = read_back(&root.join("bakay_vs_reference/runs.csv"));
         assert_eq!(rows[1].technique, "bakay");

@@ -73,7 +73,7 @@ pub struct ShaderOps {
     /// when the pipeline is made (a literal, a `const`, an override or arithmetic on them). A rasteriser picks a sample's
     /// level once for a 2x2 quad from its derivatives; given a level a lane, a SIMD rasteriser
     /// picks it lane by lane (lavapipe: bakay's two lookups a fragment at a level it computes
-    /// cost 1.2-1.7 ns a sample more than the same lookups with `textureSample`, its meadow and
+    /// cost 1.2-2.0 ns a sample more than the same lookups with `textureSample`, its meadow and
     /// flyover at 640x360, 2026-12-07, `results/cost_model/README.md`).
     pub explicit_levels: u64,
     /// Calls of transcendental built-ins (`is_transcendental`).
