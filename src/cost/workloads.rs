@@ -1176,6 +1176,23 @@ mod tests {
             },
             shader_ops("fs_single_level_samples")
         );
+        // The explicit-level workload: the one-level samples, each at a level the fragment
+        // gives; no other workload's samples pick their level lane by lane.
+        assert_eq!(
+            of("fs_explicit_level_samples"),
+            count(0, SAMPLES_PER_FRAGMENT, lit)
+        );
+        let explicit = |entry: &str| shader_ops(entry).explicit_levels;
+        assert_eq!(
+            explicit("fs_explicit_level_samples"),
+            u64::from(SAMPLES_PER_FRAGMENT)
+        );
+        assert_eq!(blends("fs_explicit_level_samples"), 0);
+        for f in Fetch::ALL {
+            if f != Fetch::ExplicitLevelSamples {
+                assert_eq!(explicit(f.fragment_entry()), 0, "{f:?}");
+            }
+        }
         assert_eq!(of("fs_float_samples"), count(0, SAMPLES_PER_FRAGMENT, lit));
         assert_eq!(of("fs_float_loads"), count(LOADS_PER_FRAGMENT, 0, lit));
         for float in [false, true] {

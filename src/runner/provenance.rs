@@ -61,8 +61,9 @@ pub struct Provenance {
     #[serde(default)]
     pub allocator: String,
     /// The environment variables set for the process that change how a software driver
-    /// works (`DRIVER_VARIABLES`: `LP_NUM_THREADS`, `GALLIUM_DRIVER` and the like; `NAME=value`, comma-separated), empty where none is set
-    /// and in files from before it was recorded. `LP_NUM_THREADS=0` makes llvmpipe and lavapipe
+    /// works (`DRIVER_VARIABLES`: `LP_NUM_THREADS`, `GALLIUM_DRIVER` and the like), as
+    /// `NAME=value`, comma-separated; empty where none is set and in files from before it was
+    /// recorded. `LP_NUM_THREADS=0` makes llvmpipe and lavapipe
     /// rasterise in the submitting thread, after its vertices, rather than in threads of their
     /// own beside it: the same work, a different time (`results/cost_model/README.md`).
     #[serde(default)]

@@ -70,8 +70,9 @@ pub struct ShaderOps {
     /// Filtered samples (of [`ShaderOps::samples`] and [`ShaderOps::float_samples`]) whose
     /// mip level the shader gives each invocation: a `textureSampleLevel` at a level, a
     /// `textureSampleGrad` by derivatives, a `textureSampleBias` by a bias that is not known
-    /// when the pipeline is made (a literal, a `const`, an override or arithmetic on them). A rasteriser picks a sample's
-    /// level once for a 2x2 quad from its derivatives; given a level a lane, a SIMD rasteriser
+    /// when the pipeline is made (a literal, a `const`, an override or arithmetic on them). A
+    /// rasteriser picks a sample's level once for a 2x2 quad from its derivatives; given a
+    /// level a lane, a SIMD rasteriser
     /// picks it lane by lane (lavapipe: bakay's two lookups a fragment at a level it computes
     /// cost 1.2-2.0 ns a sample more than the same lookups with `textureSample`, its meadow and
     /// flyover at 640x360, 2026-12-07, `results/cost_model/README.md`).
