@@ -37,7 +37,7 @@ COUNTS = [
     "compute_invocations", "fragments_opaque", "fragments_alpha_tested", "fragments_blended",
     "fragments_passed", "upload_bytes", "background_fragment_invocations", "texture_loads",
     "float_texture_loads", "vertex_texture_loads", "vertex_float_texture_loads",
-    "texture_samples", "float_texture_samples", "texture_mip_blends", "texture_explicit_levels", "vertex_transcendentals",
+    "texture_samples", "float_texture_samples", "texture_mip_blends", "texture_explicit_levels", "head_primitives", "vertex_transcendentals",
     "fragment_transcendentals", "compute_transcendentals", "vertex_arithmetic",
     "fragment_arithmetic", "compute_arithmetic", "compute_barriers", "compute_storage",
     "vertex_storage", "compute_divisions", "flip_vs_reference", "flip_vs_reference_quarter",

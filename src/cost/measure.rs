@@ -97,7 +97,7 @@ impl MeasuredSample {
 /// harness counts into the counter's segments as it records the draws. Texture fetches,
 /// transcendentals, arithmetic, barriers, storage words, integer divisions and mip blends are
 /// the counted invocations times those of the shaders' entry points.
-pub const COUNTED_TERMS: [Term; 24] = [
+pub const COUNTED_TERMS: [Term; 25] = [
     Term::Vertex,
     Term::Primitive,
     Term::FragmentOpaque,
@@ -122,6 +122,7 @@ pub const COUNTED_TERMS: [Term; 24] = [
     Term::Instance,
     Term::PrimitiveInput,
     Term::TextureExplicitLevel,
+    Term::HeadPrimitive,
 ];
 
 /// What [`calibrate_units`] measured and fitted.

@@ -60,6 +60,14 @@ impl Work {
             // Likewise their samples at a level of their own.
             texture_explicit_levels: f(r.texture_explicit_levels).unwrap_or(0.0)
                 + f(r.background_texture_explicit_levels).unwrap_or(0.0),
+            // Older records do not say how their primitives split among their segments: each
+            // priced as a small pass's (as their calibrations priced all), head and all.
+            head_primitives: f(r.head_primitives)
+                .or(f(r.clipper_primitives_out))
+                .unwrap_or(0.0)
+                + f(r.background_head_primitives)
+                    .or(f(r.background_primitives))
+                    .unwrap_or(0.0),
         })
     }
 
@@ -122,6 +130,7 @@ pub fn apply_model(run: &mut RunSummary, costs: &UnitCosts, frames: &[FrameRecor
     run.model_instance_ms = p.map(|p| p.instance_ms);
     run.model_primitive_input_ms = p.map(|p| p.primitive_input_ms);
     run.model_texture_explicit_level_ms = p.map(|p| p.texture_explicit_level_ms);
+    run.model_head_primitive_ms = p.map(|p| p.head_primitive_ms);
     run.model_ratio = run
         .gpu_wall_ms_median
         .zip(run.model_ms)
@@ -177,8 +186,9 @@ mod tests {
 
     #[test]
     fn a_run_drawn_unlike_the_calibration_is_not_priced() {
-        // Every unit 1 µs: a submission, a draw, 1 000 vertices, 300 primitives and 20 000
-        // fragments are 0.001 + 0.001 + 1 + 0.3 + 20 ms.
+        // Every unit 1 µs: a submission, a draw, 1 000 vertices, 300 primitives (each also
+        // a head primitive: a record without the head's columns is priced as one small
+        // pass) and 20 000 fragments are 0.001 + 0.001 + 1 + 0.3 + 0.3 + 20 ms.
         let costs = UnitCosts::from_ms_per_unit(
             "320x180".into(),
             "test".into(),
@@ -195,9 +205,44 @@ mod tests {
         let (msaa, model, ratio) = priced(false);
         assert!(!msaa);
         let model = model.expect("a single-sampled run is priced");
-        assert!((model - 21.302).abs() < 1e-9, "{model}");
-        assert!(ratio.is_some_and(|r| (r - 10.0 / 21.302).abs() < 1e-9));
+        assert!((model - 21.602).abs() < 1e-9, "{model}");
+        assert!(ratio.is_some_and(|r| (r - 10.0 / 21.602).abs() < 1e-9));
         // With MSAA: no figure rather than one that leaves the per-sample work out.
         assert_eq!(priced(true), (true, None, None));
+    }
+
+    #[test]
+    fn a_frame_counted_by_segments_prices_its_head_alone() {
+        let costs = UnitCosts::from_ms_per_unit(
+            "320x180".into(),
+            "test".into(),
+            [UnitCost::exact(1e-3); Term::ALL.len()],
+            FitSummary::default(),
+        );
+        // The same frame, its segments' heads counted: 120 of its 300 primitives, 30 of the
+        // background's 50; 600 slots.
+        let mut r = frame(false);
+        r.background_primitives = Some(50);
+        r.primitive_inputs = Some(600);
+        r.head_primitives = Some(120);
+        r.background_head_primitives = Some(30);
+        let w = Work::of_frame(&r).expect("counted work");
+        assert_eq!((w.primitives, w.head_primitives), (350.0, 150.0));
+        assert_eq!(w.primitive_inputs, 600.0);
+        let frames = [r];
+        let mut run = RunSummary::from_frames(&frames, &toml::Table::new());
+        apply_model(&mut run, &costs, &frames);
+        // 21.302 ms and the background's 50 primitives, the 150 head primitives and the 600
+        // slots.
+        let model = run.model_ms.expect("priced");
+        assert!(
+            (model - (21.302 + 0.05 + 0.15 + 0.6)).abs() < 1e-9,
+            "{model}"
+        );
+        assert_eq!(run.head_primitives, Some(120));
+        assert!(
+            run.model_head_primitive_ms
+                .is_some_and(|ms| (ms - 0.15).abs() < 1e-12)
+        );
     }
 }

@@ -14,7 +14,10 @@ pub enum Term {
     /// coverage test. Not among the units issue 20 lists: on a software rasteriser triangle
     /// setup and binning are a large cost of their own, paid by a triangle that covers no
     /// pixel as much as by one that covers a few, so neither vertices nor fragments can stand
-    /// for it (lavapipe: a sub-pixel triangle costs several vertex invocations).
+    /// for it (lavapipe: a sub-pixel triangle costs several vertex invocations). This is the
+    /// price of a primitive in a large pass; the first
+    /// [`crate::technique::work::PASS_HEAD_PRIMITIVES`] of each segment pay
+    /// [`Term::HeadPrimitive`] on top.
     Primitive,
     /// A fragment shader invocation of an opaque, depth-tested pipeline (early depth test).
     FragmentOpaque,
@@ -157,7 +160,10 @@ pub enum Term {
     /// fragment shader reads no slot, 73.5 with one `vec3`, 99.9 with three, 135 with the
     /// calibration's five; `grassbench calibrate` at 640x360, 2026-12-06). The primitive term
     /// alone, calibrated on five slots, over-priced a technique's triangles whose shader reads
-    /// fewer (the reference's three).
+    /// fewer (the reference's three). One price whatever the pass's size: fitted on strips at
+    /// both the primitives' scales, the calibration cannot tell a small pass's slot from a large
+    /// one's (a head's extra fitted on the Xeon at 0.6 ± 2.5 and 1.7 ± 2.2 ns a slot, on top
+    /// of 7.3-7.5; 2026-12-07).
     PrimitiveInput,
     /// A filtered sample whose mip level the shader gives each invocation
     /// (`crate::shaders::ShaderOps::explicit_levels`: a `textureSampleLevel` at a level not
@@ -172,11 +178,23 @@ pub enum Term {
     /// 27.6 by which the model under-predicted its meadow. The calibration prices it at
     /// 0.75-1.07 ns (`results/cost_model/README.md`, *Samples at a level of their own*).
     TextureExplicitLevel,
+    /// A primitive among the first [`crate::technique::work::PASS_HEAD_PRIMITIVES`] that
+    /// reached rasterisation in its segment, on top of [`Term::Primitive`], which every
+    /// primitive pays: a pass's price for its primitives in two parts. Not among the units
+    /// issue 20 lists: lavapipe prices a primitive less the more its pass draws, as it
+    /// rasterises a large pass on its worker threads while the recording thread still bins it,
+    /// and a small pass mostly after (on the Xeon, the calibration's strips at its shipped
+    /// scale, passes of up to 360 000 primitives: 74-81 ns a primitive; at 8x, passes of up to
+    /// 2.88 M: 55-62 ns). One price fitted on small passes over-priced the reference's 2.5 M
+    /// primitives a frame (its runs 0.67-0.79 of the prediction, 2026-12-07). Calibrated by
+    /// the `primitives` workload beside `large_primitives` (`crate::cost::workloads`): on
+    /// the Xeon 30.7 ± 7.2 and 31.2 ± 6.2 ns on top of a primitive's 50.4 and 50.8.
+    HeadPrimitive,
 }
 
 impl Term {
     /// Every term, in the order of the model's columns.
-    pub const ALL: [Self; 29] = [
+    pub const ALL: [Self; 30] = [
         Self::Fixed,
         Self::Vertex,
         Self::Primitive,
@@ -206,6 +224,7 @@ impl Term {
         Self::Instance,
         Self::PrimitiveInput,
         Self::TextureExplicitLevel,
+        Self::HeadPrimitive,
     ];
 
     /// Short name, as in files and messages (`fragment_opaque`).
@@ -240,6 +259,7 @@ impl Term {
             Self::Instance => "instance",
             Self::PrimitiveInput => "primitive_input",
             Self::TextureExplicitLevel => "texture_explicit_level",
+            Self::HeadPrimitive => "head_primitive",
         }
     }
 
@@ -274,6 +294,7 @@ impl Term {
             Self::Instance => "instance",
             Self::PrimitiveInput => "input slot of a primitive",
             Self::TextureExplicitLevel => "sample at a level of its own",
+            Self::HeadPrimitive => "primitive of a pass's head",
         }
     }
 

@@ -148,6 +148,11 @@ pub struct UnitCosts {
     /// as those whose level a quad picks).
     #[serde(default)]
     pub texture_explicit_level_ns: UnitCost,
+    /// Per primitive among the first [`crate::technique::work::PASS_HEAD_PRIMITIVES`] of its
+    /// segment, on top of `primitive_ns`, ns (0 before the term: calibrations made before it
+    /// priced every primitive at a small pass's price, `primitive_ns` alone).
+    #[serde(default)]
+    pub head_primitive_ns: UnitCost,
     /// How well the costs explain the samples they were fitted to.
     pub fit: FitSummary,
     /// The coverage checks ([`super::checks`]), timed with the samples and priced with these
@@ -241,6 +246,9 @@ pub struct Prediction {
     /// Samples' levels picked lane by lane, ms.
     #[serde(default)]
     pub texture_explicit_level_ms: f64,
+    /// What the first primitives of each segment cost on top of the others', ms.
+    #[serde(default)]
+    pub head_primitive_ms: f64,
 }
 
 impl UnitCosts {
@@ -307,6 +315,7 @@ impl UnitCosts {
             instance_ns: stored(Term::Instance),
             primitive_input_ns: stored(Term::PrimitiveInput),
             texture_explicit_level_ns: stored(Term::TextureExplicitLevel),
+            head_primitive_ns: stored(Term::HeadPrimitive),
             fit,
             checks: Vec::new(),
         }
@@ -344,6 +353,7 @@ impl UnitCosts {
             Term::Instance => self.instance_ns,
             Term::PrimitiveInput => self.primitive_input_ns,
             Term::TextureExplicitLevel => self.texture_explicit_level_ns,
+            Term::HeadPrimitive => self.head_primitive_ns,
         }
     }
 
@@ -386,6 +396,7 @@ impl UnitCosts {
             instance_ms: ms(Term::Instance),
             primitive_input_ms: ms(Term::PrimitiveInput),
             texture_explicit_level_ms: ms(Term::TextureExplicitLevel),
+            head_primitive_ms: ms(Term::HeadPrimitive),
         };
         p.total_ms = Term::ALL.iter().map(|&t| p.ms(t)).sum();
         p
@@ -481,6 +492,7 @@ impl Prediction {
             Term::Instance => self.instance_ms,
             Term::PrimitiveInput => self.primitive_input_ms,
             Term::TextureExplicitLevel => self.texture_explicit_level_ms,
+            Term::HeadPrimitive => self.head_primitive_ms,
         }
     }
 
@@ -507,10 +519,11 @@ mod tests {
         // 0.05 / 0.1 ns, a compute invocation at a barrier 20 ns, a compute shader's storage word 0.5 ns,
         // a vertex shader's 1 ns, a compute shader's integer division 4 ns, a sample's second
         // mip level 2 ns, an instance 200 ns, a primitive's input slot 20 ns, a sample's level
-        // picked lane by lane 3 ns.
+        // picked lane by lane 3 ns, a pass's head primitive 50 ns more.
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
             2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6, 2e-4, 2e-5, 3e-6,
+            5e-5,
         ]
         .map(UnitCost::exact);
         let costs = UnitCosts::from_ms_per_unit(
@@ -551,18 +564,19 @@ mod tests {
             instances: 2.5e4,
             primitive_inputs: 5e4,
             texture_explicit_levels: 1e5,
+            head_primitives: 8e3,
         };
         let p = costs.predict(&work);
         // 1 + 1 + 1 + 2 + 0 + 0.4 + 0.01 + 1 + 2 + 0.5 + 1 + 0.2 + 2 + 1.2 + 0.5 + 2 + 2 + 0
-        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 + 3 + 5 + 1 + 0.3 ms.
+        // + 1 + 1 + 0 + 8 + 3 + 2 + 2 + 3 + 5 + 1 + 0.3 + 0.4 ms.
         let expected = [
             1.0, 1.0, 1.0, 2.0, 0.0, 0.4, 0.01, 1.0, 2.0, 0.5, 1.0, 0.2, 2.0, 1.2, 0.5, 2.0, 2.0,
-            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0, 3.0, 5.0, 1.0, 0.3,
+            0.0, 1.0, 1.0, 0.0, 8.0, 3.0, 2.0, 2.0, 3.0, 5.0, 1.0, 0.3, 0.4,
         ];
         for (t, e) in Term::ALL.iter().zip(expected) {
             assert!((p.ms(*t) - e).abs() < 1e-9, "{t}: {} ms", p.ms(*t));
         }
-        assert!((p.total_ms - 44.11).abs() < 1e-9);
+        assert!((p.total_ms - 44.51).abs() < 1e-9);
         let shares: f64 = Term::ALL.iter().map(|&t| p.share(t)).sum();
         assert!((shares - 1.0).abs() < 1e-12);
         assert_eq!(Prediction::default().share(Term::Vertex), 0.0);
@@ -609,6 +623,7 @@ mod tests {
         let per_unit = [
             1.0, 1e-5, 1e-4, 2e-6, 3e-6, 4e-6, 1e-3, 5e-6, 0.5, 1e-6, 4e-6, 2e-6, 8e-6, 6e-6, 1e-5,
             2e-6, 5e-7, 1e-6, 2e-7, 5e-8, 1e-7, 2e-5, 5e-7, 1e-6, 4e-6, 2e-6, 2e-4, 2e-5, 3e-6,
+            5e-5,
         ]
         .map(UnitCost::exact);
         let mut costs = UnitCosts::from_ms_per_unit(
@@ -638,7 +653,8 @@ mod tests {
                     || l.starts_with("[compute_division_")
                     || l.starts_with("[texture_mip_blend_")
                     || l.starts_with("[instance_")
-                    || l.starts_with("[primitive_input_");
+                    || l.starts_with("[primitive_input_")
+                    || l.starts_with("[head_primitive");
             }
             if !skipping
                 && !l.starts_with("host_other_cores")
@@ -681,5 +697,7 @@ mod tests {
         assert!(!older.contains("primitive_input_ns"), "{older}");
         assert_eq!(read.texture_explicit_level_ns, UnitCost::default());
         assert!(!older.contains("explicit_level_ns"), "{older}");
+        assert_eq!(read.head_primitive_ns, UnitCost::default());
+        assert!(!older.contains("head_primitive"), "{older}");
     }
 }

@@ -103,6 +103,11 @@ pub struct Work {
     /// invocation ([`crate::shaders::ShaderOps::explicit_levels`]).
     #[serde(default)]
     pub texture_explicit_levels: f64,
+    /// Of [`Work::primitives`], those among the first
+    /// [`crate::technique::work::PASS_HEAD_PRIMITIVES`] of their segment, summed over the
+    /// segments ([`crate::technique::work::PassWork::head_primitives`]).
+    #[serde(default)]
+    pub head_primitives: f64,
 }
 
 pub use crate::shaders::FragmentKind;
@@ -155,6 +160,7 @@ impl Work {
             instances: counted.instances as f64,
             primitive_inputs: pipeline.primitive_inputs(counted) as f64,
             texture_explicit_levels: fetches.explicit_levels as f64,
+            head_primitives: counted.head_primitives() as f64,
         };
         *work.fragments_mut(pipeline.fragments) = counted.fragment_invocations as f64;
         work
@@ -193,6 +199,20 @@ impl Work {
             Term::Instance => self.instances,
             Term::PrimitiveInput => self.primitive_inputs,
             Term::TextureExplicitLevel => self.texture_explicit_levels,
+            Term::HeadPrimitive => self.head_primitives,
+        }
+    }
+
+    /// This work with its head taken as one segment's: [`Work::head_primitives`] the first
+    /// [`crate::technique::work::PASS_HEAD_PRIMITIVES`] of its primitives (work known in
+    /// advance, such as a calibration workload's; counted work takes its heads segment by
+    /// segment, [`Work::from_counters`]).
+    pub fn as_one_segment(self) -> Self {
+        Self {
+            head_primitives: self
+                .primitives
+                .min(crate::technique::work::PASS_HEAD_PRIMITIVES as f64),
+            ..self
         }
     }
 
@@ -227,6 +247,7 @@ impl Work {
             instances: self.instances * k,
             primitive_inputs: self.primitive_inputs * k,
             texture_explicit_levels: self.texture_explicit_levels * k,
+            head_primitives: self.head_primitives * k,
         }
     }
 
@@ -272,6 +293,7 @@ impl std::ops::Add for Work {
             instances: self.instances + o.instances,
             primitive_inputs: self.primitive_inputs + o.primitive_inputs,
             texture_explicit_levels: self.texture_explicit_levels + o.texture_explicit_levels,
+            head_primitives: self.head_primitives + o.head_primitives,
         }
     }
 }
@@ -311,13 +333,14 @@ mod tests {
             instances: 19.0,
             primitive_inputs: 20.0,
             texture_explicit_levels: 21.0,
+            head_primitives: 8.0,
         };
         let amounts: Vec<f64> = Term::ALL.iter().map(|&t| w.amount(t)).collect();
         assert_eq!(
             amounts,
             [
                 1.0, 11.0, 9.0, 1.0, 2.0, 3.0, 4.0, 5.0, 2.5, 6.0, 6.5, 3.0, 3.5, 7.0, 7.5, 8.0,
-                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0,
+                9.5, 10.0, 11.5, 12.0, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0, 8.0,
             ]
         );
         // A sum of frames counts each frame's work, not its submission (the fixed term is per
@@ -430,8 +453,9 @@ mod tests {
                 compute_storage: 640.0,
                 compute_divisions: 192.0,
                 instances: 3.0,
-                // 7 primitives, 4 input slots each.
+                // 7 primitives, 4 input slots each, all among the segment's first 360 000.
                 primitive_inputs: 28.0,
+                head_primitives: 7.0,
                 ..Work::default()
             }
         );
@@ -442,5 +466,33 @@ mod tests {
         let opaque = Work::from_counters(&counted, kind(FragmentKind::Opaque));
         assert_eq!(opaque.fragments_opaque, 100.0);
         assert_eq!((opaque.texture_loads, opaque.texture_samples), (0.0, 0.0));
+    }
+
+    #[test]
+    fn a_segments_head_stops_at_the_pass_head() {
+        use crate::technique::work::PASS_HEAD_PRIMITIVES as S;
+        let cost = PipelineCost {
+            fragment_inputs: 3,
+            ..PipelineCost::default()
+        };
+        let segment = |primitives| PassWork {
+            clipper_primitives_out: primitives,
+            ..PassWork::default()
+        };
+        // Below, at and past the head: the head is the segment's primitives up to S; the
+        // primitives (and every primitive's slots) past it are counted, not headed.
+        for (n, head) in [(0, 0), (S - 1, S - 1), (S, S), (S + 1, S), (7 * S, S)] {
+            let w = Work::from_counters(&segment(n), cost);
+            assert_eq!(w.primitives, n as f64, "{n}");
+            assert_eq!(w.head_primitives, head as f64, "{n}");
+            assert_eq!(w.primitive_inputs, (3 * n) as f64, "{n}");
+        }
+        // Two large segments each have a head: segments are summed after their heads are
+        // taken, not before.
+        let two =
+            Work::from_counters(&segment(2 * S), cost) + Work::from_counters(&segment(3 * S), cost);
+        assert_eq!(two.head_primitives, (2 * S) as f64);
+        let summed = segment(2 * S) + segment(3 * S);
+        assert_eq!(Work::from_counters(&summed, cost).head_primitives, S as f64);
     }
 }

@@ -11,8 +11,9 @@
 //! | `empty` | nothing: the target's clear | fixed |
 //! | `vertices` | instanced 43-vertex strips (a 21-segment blade) of degenerate triangles: the clipper passes none | vertex |
 //! | `instances` | the same strips cut to their first triangle, 3 vertices an instance | instance |
-//! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre, a fragment shader that reads no interpolated slot | primitive |
+//! | `primitives` | the same strips folded into a quarter of a pixel each, one pixel apart: 9 triangles that cover no pixel centre, a fragment shader that reads no interpolated slot; passes of up to [`PASS_HEAD_PRIMITIVES`] | a primitive of a pass's head (with `large_primitives`) |
 //! | `primitive_inputs` | the same strips with a fragment shader reading the blade's five interpolated slots | a fragment input slot of a primitive |
+//! | `large_primitives`, `large_primitive_inputs` | the same two at eight times the instances: passes of 1x to 8x [`PASS_HEAD_PRIMITIVES`] | a primitive (and, with `primitives`, what a pass's head costs more); the slot at that scale |
 //! | `fragments_*` | full-screen triangles layered, each nearer than the last, opaque / alpha-tested (half the pixels discarded) / blended | fragment by kind |
 //! | `texture_loads`, `single_level_texture_samples` | the opaque layers with [`LOADS_PER_FRAGMENT`] `textureLoad`s / [`SAMPLES_PER_FRAGMENT`] `textureSample`s of one mip level (a `Nearest` mipmap filter, [`SINGLE_LEVEL_SAMPLER`]) of a mip-mapped 512² RGBA8 texture per fragment | texel load, texture sample |
 //! | `texture_samples` | the same samples trilinear, minified between two levels | a sample's second mip level |
@@ -47,6 +48,7 @@ use std::sync::OnceLock;
 use super::{FragmentKind, Term, Work};
 use crate::shaders::ShaderOps;
 use crate::target::Size;
+use crate::technique::work::PASS_HEAD_PRIMITIVES;
 
 /// The workloads' shader (composed with the prelude when built).
 pub const SHADER: &str = include_str!("../shaders/unit_costs.wgsl");
@@ -473,8 +475,15 @@ impl Chain {
 }
 
 impl Workload {
-    /// The work this workload does on a `size` target, known in advance.
+    /// The work this workload does on a `size` target, known in advance: one segment's (one
+    /// render pass drawn with one pipeline), its head primitives the first
+    /// [`crate::technique::work::PASS_HEAD_PRIMITIVES`].
     pub fn work(&self, size: Size) -> Work {
+        self.counts(size).as_one_segment()
+    }
+
+    /// [`Self::work`] before its head is taken.
+    fn counts(&self, size: Size) -> Work {
         let pixels = f64::from(size.width) * f64::from(size.height);
         let none = Work::default();
         match self.shape {
@@ -724,6 +733,15 @@ impl Workload {
         match self.shape {
             Shape::Empty | Shape::Upload { .. } => 1,
             Shape::Draws { .. } => 16,
+            // Strips that price a pass's head keep their largest pass within it: past it,
+            // their primitives would be priced as a large pass's.
+            Shape::SubpixelStrips { instances, .. }
+                if largest_strips_pass(instances) <= PASS_HEAD_PRIMITIVES =>
+            {
+                u32::try_from(PASS_HEAD_PRIMITIVES / largest_strips_pass(instances).max(1))
+                    .unwrap_or(u32::MAX)
+                    .clamp(1, 1024)
+            }
             _ => 1024,
         }
     }
@@ -804,6 +822,11 @@ impl Workload {
     }
 }
 
+/// The triangles of the largest size ([`SIZE_STEPS`]) of `instances` sub-pixel strips.
+fn largest_strips_pass(instances: u32) -> u64 {
+    u64::from(instances) * u64::from(STRIP_TRIANGLES) * u64::from(SIZE_STEPS[SIZE_STEPS.len() - 1])
+}
+
 /// The families of workloads at their smallest size, sized so that on lavapipe at 640x360
 /// the largest size (8x) of each takes some 30-250 ms on the shared 2-core host with another
 /// core's worth of work on it (vertices 100 ms, primitives 240, each fragment kind 200-230,
@@ -844,10 +867,13 @@ pub fn families() -> Vec<Workload> {
         },
         // The same strips twice: with a fragment shader reading none of their slots, then
         // the blade's five, which a rasteriser sets up for each triangle (none covers a pixel
-        // centre: no fragment is shaded either way).
+        // centre: no fragment is shaded either way). Both pairs at two scales: passes within
+        // the head that a small pass's price covers (5 000 instances, 45 000 to 360 000
+        // triangles), and eight times larger (360 000 to 2.88 M, the reference's scale),
+        // where lavapipe prices a triangle a quarter less (`Term::HeadPrimitive`).
         Workload {
             name: "primitives",
-            term: Term::Primitive,
+            term: Term::HeadPrimitive,
             shape: Shape::SubpixelStrips {
                 instances: 5_000,
                 interpolated: false,
@@ -858,6 +884,22 @@ pub fn families() -> Vec<Workload> {
             term: Term::PrimitiveInput,
             shape: Shape::SubpixelStrips {
                 instances: 5_000,
+                interpolated: true,
+            },
+        },
+        Workload {
+            name: "large_primitives",
+            term: Term::Primitive,
+            shape: Shape::SubpixelStrips {
+                instances: 40_000,
+                interpolated: false,
+            },
+        },
+        Workload {
+            name: "large_primitive_inputs",
+            term: Term::PrimitiveInput,
+            shape: Shape::SubpixelStrips {
+                instances: 40_000,
                 interpolated: true,
             },
         },
@@ -1093,8 +1135,10 @@ mod tests {
                 fragments_blended: 3.0 * 640.0 * 360.0,
                 draw_calls: 1.0,
                 instances: 3.0,
-                // Each triangle sets up the five slots `fs_blended` reads.
+                // Each triangle sets up the five slots `fs_blended` reads; all three triangles
+                // are among the pass's first.
                 primitive_inputs: 15.0,
+                head_primitives: 3.0,
                 fragment_transcendentals: 3.0 * 640.0 * 360.0 * f64::from(LIT_TRANSCENDENTALS),
                 vertex_arithmetic: 9.0 * shader_ops("vs_layer").arithmetic as f64,
                 fragment_arithmetic: 3.0
@@ -1504,5 +1548,49 @@ mod tests {
             .collect();
         assert_eq!(mb, [1.0, 4.0, 16.0, 64.0]);
         assert_eq!(sizes(&families()[0], 8), vec![families()[0]; 4]);
+        // The strips that price a pass's head do not scale past it; the large ones draw
+        // passes of 1x to 8x the head and scale freely.
+        let family = |name| families().into_iter().find(|f| f.name == name).unwrap();
+        let head = PASS_HEAD_PRIMITIVES as f64;
+        for name in ["primitives", "primitive_inputs"] {
+            let f = family(name);
+            assert_eq!(f.max_scale(), 1, "{name}");
+            let primitives: Vec<f64> = sizes(&f, 64)
+                .iter()
+                .map(|w| w.work(SIZE).primitives)
+                .collect();
+            assert_eq!(
+                primitives,
+                [head / 8.0, head / 4.0, head / 2.0, head],
+                "{name}"
+            );
+            for w in sizes(&f, 64) {
+                let w = w.work(SIZE);
+                assert_eq!(w.head_primitives, w.primitives, "{name}");
+            }
+        }
+        for name in ["large_primitives", "large_primitive_inputs"] {
+            let f = family(name);
+            assert_eq!(f.max_scale(), 1024, "{name}");
+            let works: Vec<Work> = sizes(&f, 1).iter().map(|w| w.work(SIZE)).collect();
+            let primitives: Vec<f64> = works.iter().map(|w| w.primitives).collect();
+            assert_eq!(
+                primitives,
+                [head, 2.0 * head, 4.0 * head, 8.0 * head],
+                "{name}"
+            );
+            for w in works {
+                assert_eq!(w.head_primitives, head, "{name}");
+            }
+        }
+        // Strips whose largest pass is an eighth of the head may scale 8x, no more.
+        let small = Workload {
+            shape: Shape::SubpixelStrips {
+                instances: 625,
+                interpolated: false,
+            },
+            ..family("primitives")
+        };
+        assert_eq!(small.max_scale(), 8);
     }
 }

@@ -311,6 +311,16 @@ impl<'g> World<'g> {
                     .sum()
             })
         };
+        // Of the primitives, the segments' heads, taken segment by segment.
+        let heads_of = |core: bool| -> Option<u64> {
+            work.as_ref().map(|w| {
+                w.iter()
+                    .filter(|p| p.label.starts_with("core.") == core)
+                    .map(|p| p.work.head_primitives())
+                    .sum()
+            })
+        };
+        let (heads, background_heads) = (heads_of(false), heads_of(true));
         // Texture fetches are summed over the stages (the vertex stage's are priced again
         // apart).
         let (fetches, background_fetches) = (ops.map(|o| o.all()), background_ops.map(|o| o.all()));
@@ -356,6 +366,8 @@ impl<'g> World<'g> {
             background_instances: background.map(|w| w.instances),
             primitive_inputs: inputs_of(false),
             background_primitive_inputs: inputs_of(true),
+            head_primitives: heads,
+            background_head_primitives: background_heads,
             texture_loads: fetches.map(|f| f.loads),
             float_texture_loads: fetches.map(|f| f.float_loads),
             vertex_texture_loads: ops.map(|o| o.vertex.loads),

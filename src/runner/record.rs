@@ -126,6 +126,15 @@ pub struct FrameRecord {
     /// The same for the core's background pass.
     #[serde(default)]
     pub background_primitive_inputs: Option<u64>,
+    /// Of the technique's rasterised primitives, those among the first
+    /// [`crate::technique::work::PASS_HEAD_PRIMITIVES`] of their counted segment, summed over
+    /// its segments (the cost model prices them as a small pass's,
+    /// [`crate::cost::Term::HeadPrimitive`]).
+    #[serde(default)]
+    pub head_primitives: Option<u64>,
+    /// The same head primitives of the core's background pass.
+    #[serde(default)]
+    pub background_head_primitives: Option<u64>,
     /// Texels of normalised or integer formats the technique's shaders read with
     /// `textureLoad`: each counted segment's invocations times the loads of one invocation of
     /// its pipeline's entry points ([`crate::shaders::PipelineCost`], a static count).
@@ -391,6 +400,10 @@ pub struct RunSummary {
     /// Median fragment input slots set up for the technique's primitives.
     #[serde(default)]
     pub primitive_inputs: Option<u64>,
+    /// Median of the technique's primitives among the first
+    /// [`crate::technique::work::PASS_HEAD_PRIMITIVES`] of their segment.
+    #[serde(default)]
+    pub head_primitives: Option<u64>,
     /// Largest GPU memory held, bytes.
     pub gpu_bytes: Option<u64>,
     /// Median vertex shader invocations of the technique's passes (GPU-counted; empty without
@@ -588,6 +601,9 @@ pub struct RunSummary {
     /// Predicted ms of samples' levels picked lane by lane.
     #[serde(default)]
     pub model_texture_explicit_level_ms: Option<f64>,
+    /// Predicted ms the segments' head primitives cost on top of the others' price.
+    #[serde(default)]
+    pub model_head_primitive_ms: Option<f64>,
     /// Technique parameters, `key=value;...` (also in long format in `params.csv`).
     pub params: String,
     /// Median GPU wall time over the reference's in the same configuration and repetition.
@@ -686,6 +702,7 @@ impl RunSummary {
             draw_calls: median_u64(&|r| Some(r.draw_calls)),
             instances: median_u64(&|r| r.instances),
             primitive_inputs: median_u64(&|r| r.primitive_inputs),
+            head_primitives: median_u64(&|r| r.head_primitives),
             gpu_bytes: frames.iter().map(|r| r.gpu_bytes).max(),
             vertex_invocations: median_u64(&|r| r.vertex_invocations),
             clipper_primitives_out: median_u64(&|r| r.clipper_primitives_out),
@@ -753,6 +770,7 @@ impl RunSummary {
             model_texture_mip_blend_ms: None,
             model_instance_ms: None,
             model_primitive_input_ms: None,
+            model_head_primitive_ms: None,
             model_texture_explicit_level_ms: None,
             speedup: None,
             speedup_ci_low: None,
@@ -991,6 +1009,8 @@ mod tests {
             background_instances: None,
             primitive_inputs: None,
             background_primitive_inputs: None,
+            head_primitives: None,
+            background_head_primitives: None,
             texture_loads: None,
             float_texture_loads: None,
             vertex_texture_loads: None,

@@ -48,6 +48,14 @@ const COUNTERS: u64 = 5;
 /// Most segments (passes, split where the fragment kind changes) a frame can count.
 pub const MAX_COUNTED_PASSES: u32 = 512;
 
+/// The primitives of a segment priced as a small pass's ([`crate::cost::Term::HeadPrimitive`]):
+/// the largest pass the calibration's `primitives` workload draws (5 000 instances of 9
+/// triangles, 8x). lavapipe prices a primitive less the more its pass draws (it rasterises a
+/// large pass on its worker threads while the recording thread is still binning it, a small
+/// one mostly after): on the Xeon 74-81 ns a primitive in passes of up to 360 000, 55-62 ns in
+/// passes of 360 000 to 2.88 M (`results/cost_model/README.md`, *The reference's primitives*).
+pub const PASS_HEAD_PRIMITIVES: u64 = 360_000;
+
 /// Work counted by the GPU over one or more passes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct PassWork {
@@ -72,6 +80,13 @@ pub struct PassWork {
 }
 
 impl PassWork {
+    /// Of this segment's rasterised primitives, those among its first
+    /// [`PASS_HEAD_PRIMITIVES`]: the primitives priced as a small pass's. Only meaningful for
+    /// one segment's work: summed work must sum its segments' heads.
+    pub fn head_primitives(&self) -> u64 {
+        self.clipper_primitives_out.min(PASS_HEAD_PRIMITIVES)
+    }
+
     fn from_counters(c: &[u64], samples_passed: u64, instances: u64) -> Self {
         Self {
             vertex_invocations: c[0],

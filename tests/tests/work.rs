@@ -46,6 +46,11 @@ fn pass_statistics_count_the_work_each_frame_submits() -> anyhow::Result<()> {
         // Every primitive rasterised sets up the three slots its fragment shader reads
         // (`world_ao`, `normal`, `albedo`).
         assert_eq!(r.primitive_inputs, r.clipper_primitives_out.map(|n| 3 * n));
+        // Its pass draws fewer than a pass's head (`PASS_HEAD_PRIMITIVES`): all of them in
+        // it, and the background's likewise (the heads of passes past it are checked in the
+        // calibration's test, `cost_model.rs`, on strips of up to 2.88 M triangles).
+        assert_eq!(r.head_primitives, r.clipper_primitives_out);
+        assert_eq!(r.background_head_primitives, r.background_primitives);
         assert!(r.background_instances.is_some_and(|n| n > 0), "{r:?}");
         // Its bend pass runs once per blade, in whole 64-wide workgroups (one chunk here).
         assert_eq!(

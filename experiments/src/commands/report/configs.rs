@@ -207,6 +207,8 @@ impl Config {
                 r.model_primitive_input_ms.unwrap_or(0.0),
                 // Likewise the samples' levels picked lane by lane, with the samples.
                 r.model_texture_explicit_level_ms.unwrap_or(0.0),
+                // And a pass head's primitives, with the primitives.
+                r.model_head_primitive_ms.unwrap_or(0.0),
             ])
         })()
         .or(c.model_terms);

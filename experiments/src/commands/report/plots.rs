@@ -380,6 +380,7 @@ pub(super) const SPLIT_SEGMENTS: [&str; SPLIT_LEN] = [
     "GPU instances",
     "GPU primitive input slots",
     "GPU texture levels by lane",
+    "GPU primitives of pass heads (extra)",
 ];
 
 /// A configuration's frame split into [`SPLIT_SEGMENTS`], ms: its median CPU stages and the
