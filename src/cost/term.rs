@@ -188,7 +188,9 @@ pub enum Term {
     /// 2.88 M: 55-62 ns). One price fitted on small passes over-priced the reference's 2.5 M
     /// primitives a frame (its runs 0.67-0.79 of the prediction, 2026-12-07). Calibrated by
     /// the `primitives` workload beside `large_primitives` (`crate::cost::workloads`): on
-    /// the Xeon 30.7 ± 7.2 and 31.2 ± 6.2 ns on top of a primitive's 50.4 and 50.8.
+    /// the Xeon 25.5-28.6 ns (standard errors 3.5-4.7) on top of a primitive's 48.8-48.9,
+    /// and every re-made sweep within (`results/cost_model/README.md`, *Two prices for a
+    /// primitive*).
     HeadPrimitive,
 }
 

@@ -870,7 +870,7 @@ pub fn families() -> Vec<Workload> {
         // centre: no fragment is shaded either way). Both pairs at two scales: passes within
         // the head that a small pass's price covers (5 000 instances, 45 000 to 360 000
         // triangles), and eight times larger (360 000 to 2.88 M, the reference's scale),
-        // where lavapipe prices a triangle a quarter less (`Term::HeadPrimitive`).
+        // where lavapipe prices a triangle a third less (`Term::HeadPrimitive`).
         Workload {
             name: "primitives",
             term: Term::HeadPrimitive,

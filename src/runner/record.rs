@@ -870,7 +870,7 @@ mod tests {
         let (reference, zhang) = (&rows[0], &rows[1]);
         assert_eq!(
             (reference.technique.as_str(), reference.gpu_wall_ms_median),
-            ("reference", Some(311.7844725))
+            ("reference", Some(259.068133))
         );
         // The newest columns: instances drawn (the reference's, one a blade) and the input slots
         // its primitives set up (its fragment shader reads 3).
@@ -880,6 +880,11 @@ mod tests {
             reference.clipper_primitives_out.map(|p| 3 * p)
         );
         assert!(reference.model_instance_ms.is_some_and(|ms| ms > 0.0));
+        // Its one pass draws more primitives than a pass's head: the head is the whole head,
+        // and the model prices it.
+        assert!(reference.clipper_primitives_out > Some(360_000));
+        assert_eq!(reference.head_primitives, Some(360_000));
+        assert!(reference.model_head_primitive_ms.is_some_and(|ms| ms > 0.0));
         // Texel loads by stage. The reference reads its wind map (4
         // floating-point texels a blade) in its bend pass, once a blade, and nothing in its
         // vertex stage since `68eb6f4`.
