@@ -184,17 +184,22 @@ mod tests {
         .expect("a frame record")
     }
 
+    /// Single-sampled costs at 320x180 of 1 µs a unit, every term.
+    fn every_unit_a_microsecond() -> UnitCosts {
+        UnitCosts::from_ms_per_unit(
+            "320x180".into(),
+            "test".into(),
+            [UnitCost::exact(1e-3); Term::ALL.len()],
+            FitSummary::default(),
+        )
+    }
+
     #[test]
     fn a_run_drawn_unlike_the_calibration_is_not_priced() {
         // Every unit 1 µs: a submission, a draw, 1 000 vertices, 300 primitives (each also
         // a head primitive: a record without the head's columns is priced as one small
         // pass) and 20 000 fragments are 0.001 + 0.001 + 1 + 0.3 + 0.3 + 20 ms.
-        let costs = UnitCosts::from_ms_per_unit(
-            "320x180".into(),
-            "test".into(),
-            [UnitCost::exact(1e-3); Term::ALL.len()],
-            FitSummary::default(),
-        );
+        let costs = every_unit_a_microsecond();
         assert!(!costs.msaa, "the calibration draws single-sampled");
         let priced = |msaa: bool| {
             let frames = [frame(msaa)];
@@ -213,12 +218,7 @@ mod tests {
 
     #[test]
     fn a_frame_counted_by_segments_prices_its_head_alone() {
-        let costs = UnitCosts::from_ms_per_unit(
-            "320x180".into(),
-            "test".into(),
-            [UnitCost::exact(1e-3); Term::ALL.len()],
-            FitSummary::default(),
-        );
+        let costs = every_unit_a_microsecond();
         // The same frame, its segments' heads counted: 120 of its 300 primitives, 30 of the
         // background's 50; 600 slots.
         let mut r = frame(false);
