@@ -188,9 +188,11 @@ pub enum Term {
     /// 2.88 M: 55-62 ns). One price fitted on small passes over-priced the reference's 2.5 M
     /// primitives a frame (its runs 0.67-0.79 of the prediction, 2026-12-07). Calibrated by
     /// the `primitives` workload beside `large_primitives` (`crate::cost::workloads`): on
-    /// the Xeon 25.5-28.6 ns (standard errors 3.5-4.7) on top of a primitive's 48.8-48.9,
-    /// and every re-made sweep within (`results/cost_model/README.md`, *Two prices for a
-    /// primitive*).
+    /// the Xeon 25.5-31.8 ns (standard errors 4.1-4.7) on top of a primitive's 44.8-48.9,
+    /// and the reference within ±25 % on every cost-model run (0.82-0.94). One step at 360 000
+    /// approximates a price that falls gradually: under 4x MSAA it fits the head strips worst
+    /// of the workloads and prices small passes low (`results/cost_model/README.md`, *Two
+    /// prices for a primitive*).
     HeadPrimitive,
 }
 
