@@ -438,6 +438,49 @@ pub(super) fn split_rows<'a>(configs: &[&'a Config]) -> Vec<SplitRow<'a>> {
         .collect()
 }
 
+/// The y of the legend's row `k` in [`time_split_plot`] (rows 22 px apart below a 40 px
+/// margin).
+fn legend_row_y(k: usize) -> i32 {
+    40 + 22 * k as i32
+}
+
+/// Height of [`time_split_plot`]: the chart's 520 px, or the legend's every row where it needs
+/// more (33 rows since the model's 30 terms: a fixed 520 px cut the last fifteen off).
+const SPLIT_PLOT_HEIGHT: u32 = {
+    let legend = 40 + 22 * SPLIT_LEN as u32 + 20;
+    if legend > 520 { legend } else { 520 }
+};
+
+/// The colour of segment `k` of [`time_split_plot`]: the techniques' colours, twelve more
+/// from the same family, then saturated dark tones a golden-ratio step of hue apart, so that
+/// no two of the [`SPLIT_LEN`] segments share one (the twenty fixed colours repeated from the
+/// twenty-first segment on before).
+fn split_colour(k: usize) -> RGBColor {
+    const EXTRA: [RGBColor; 12] = [
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
+        RGBColor(0, 0, 128),
+        RGBColor(200, 200, 200),
+        RGBColor(255, 187, 120),
+        RGBColor(152, 223, 138),
+        RGBColor(197, 176, 213),
+        RGBColor(196, 156, 148),
+        RGBColor(247, 182, 210),
+        RGBColor(219, 219, 141),
+        RGBColor(158, 218, 229),
+        RGBColor(57, 59, 121),
+    ];
+    if k < COLORS.len() {
+        COLORS[k]
+    } else if k < COLORS.len() + EXTRA.len() {
+        EXTRA[k - COLORS.len()]
+    } else {
+        let step = (k - COLORS.len() - EXTRA.len()) as f64;
+        let c = HSLColor((0.98 + 0.618_034 * step).fract(), 1.0, 0.3).to_rgba();
+        RGBColor(c.0, c.1, c.2)
+    }
+}
+
 /// "Where the time goes": per configuration with a model, one bar stacking its CPU stages and
 /// the model's predicted GPU terms (ms, log-free so the parts add up), and a black tick at its
 /// measured frame time (CPU stages + measured GPU wall time): the gap between the bar's top
@@ -448,7 +491,7 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
         .filter_map(|c| Some((*c, time_split(c)?)))
         .collect();
     let width = (220 + 70 * rows.len() as u32).max(700);
-    let root = SVGBackend::new(path, (width, 520)).into_drawing_area();
+    let root = SVGBackend::new(path, (width, SPLIT_PLOT_HEIGHT)).into_drawing_area();
     root.fill(&WHITE).map_err(plot_err)?;
     let measured = |c: &Config, split: &[f64; SPLIT_LEN]| {
         split[..3].iter().sum::<f64>() + median(&c.gpu_wall).unwrap_or(0.0)
@@ -476,27 +519,7 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
         .y_desc("ms per frame")
         .draw()
         .map_err(plot_err)?;
-    let palette = |k: usize| -> RGBColor {
-        const EXTRA: [RGBColor; 12] = [
-            RGBColor(188, 189, 34),
-            RGBColor(23, 190, 207),
-            RGBColor(90, 90, 90),
-            RGBColor(200, 200, 200),
-            RGBColor(255, 187, 120),
-            RGBColor(152, 223, 138),
-            RGBColor(197, 176, 213),
-            RGBColor(196, 156, 148),
-            RGBColor(247, 182, 210),
-            RGBColor(219, 219, 141),
-            RGBColor(158, 218, 229),
-            RGBColor(57, 59, 121),
-        ];
-        if k < COLORS.len() {
-            COLORS[k]
-        } else {
-            EXTRA[(k - COLORS.len()) % EXTRA.len()]
-        }
-    };
+    let palette = split_colour;
     for (k, (c, split)) in rows.iter().enumerate() {
         let x = k as f64;
         let mut base = 0.0;
@@ -527,7 +550,7 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
             .map_err(plot_err)?;
     }
     for (s, name) in SPLIT_SEGMENTS.iter().enumerate() {
-        let y = 40 + 22 * s as i32;
+        let y = legend_row_y(s);
         legend
             .draw(&Rectangle::new(
                 [(10, y), (24, y + 14)],
@@ -545,6 +568,36 @@ pub(super) fn time_split_plot(configs: &[&Config], path: &Path) -> anyhow::Resul
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_split_segment_has_its_own_colour_and_a_legend_row_in_the_plot() {
+        let colours: Vec<(u8, u8, u8)> = (0..SPLIT_LEN)
+            .map(|k| {
+                let c = split_colour(k);
+                (c.0, c.1, c.2)
+            })
+            .collect();
+        for (i, a) in colours.iter().enumerate() {
+            for (j, b) in colours.iter().enumerate().skip(i + 1) {
+                // At least 24 apart in some channel: the twenty fixed colours' closest pair
+                // (light grey and lavender); the repeated colours were 0 apart.
+                let apart = [(a.0, b.0), (a.1, b.1), (a.2, b.2)]
+                    .iter()
+                    .any(|&(x, y)| x.abs_diff(y) >= 24);
+                assert!(
+                    apart,
+                    "{} and {}: {a:?} {b:?}",
+                    SPLIT_SEGMENTS[i], SPLIT_SEGMENTS[j]
+                );
+            }
+        }
+        // The last row's swatch (14 px) and text lie inside the plot.
+        let last = legend_row_y(SPLIT_LEN - 1);
+        assert!(
+            last + 14 < SPLIT_PLOT_HEIGHT as i32,
+            "{last} of {SPLIT_PLOT_HEIGHT}"
+        );
+    }
 
     #[test]
     fn the_frontier_keeps_what_nothing_cheaper_beats() {
