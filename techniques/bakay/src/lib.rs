@@ -133,7 +133,7 @@
 //! blades): the module says so when it is made (`shaders::module_with_bindings`), so the cost
 //! model prices no second level for them. Priced as trilinear samples, as every sample was
 //! until `7c6575e`, they had bakay over-predicted on every run (0.68-0.95 of the model on the
-//! 2.6 GHz EPYC; 0.85-1.23 since: `results/cost_model/`).
+//! 2.6 GHz EPYC; 0.85-1.26 since: `results/cost_model/`).
 //! With 4x MSAA the model under-predicts it instead (in one process at 320x180, 1.14-1.68
 //! against 0.91-1.06 single-sampled: `results/cost_model/coverage/sweep/`): nearly all of its
 //! counted fragments are discarded or hidden (0.1-0.7 % of them kept), and such an alpha-tested

@@ -174,11 +174,11 @@
 //! map; the shadow mask, 128 x 64 (262 KB with its mips); on the CPU, 8 bytes per cell for the
 //! population. Per blade fragment the shadow mask costs a ray-cylinder intersection, an
 //! `atan2` and a texture lookup per light. The BTFs' `Rgba16Float` texels cost lavapipe more
-//! to sample than an RGBA8 texture's, converted one by one: 5.3-5.5 ns a trilinear sample
-//! against 3.1-3.2 (a GPU filters 64-bit texels at half rate, most of them); 42-45 % of what
-//! the cost model predicts for the walker's meadow is those samples (178 of 420 ms at
-//! 320x180), which it prices apart (`TEXTURE_FORMATS` in `pipelines.rs`;
-//! `results/cost_model/`). Since the model prices a sample's second mip level on its own
+//! to sample than an RGBA8 texture's, converted one by one: 3.8-4.0 ns a sample against 1.6
+//! on the Xeon, and 1.5-1.9 more for the second mip level a trilinear one blends (a GPU filters
+//! 64-bit texels at half rate, most of them); 42 % of what the cost model predicts for the
+//! walker's meadow is the slices' samples and blends (185 of 437 ms at 320x180), which it prices
+//! apart (`TEXTURE_FORMATS` in `pipelines.rs`; `results/cost_model/`, `3116f59`). Since the model prices a sample's second mip level on its own
 //! (`texture_mip_blend`), the slices' samples, which blend two levels, cost 2.7-3.1 ns plus
 //! 1.8-2.2 for the blend on the 2.6 GHz EPYC, and the occlusion map's, read at level 0, 2.1-2.5
 //! ns: on the meadow at 320x180 the slices' samples and blends are 160 ms and the occlusion
