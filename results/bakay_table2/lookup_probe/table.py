@@ -8,6 +8,11 @@ import csv
 import glob
 import os
 import statistics
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+from tables import num, params  # noqa: E402  (results/tables.py: the shared helpers)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BUILDS = ["shipped", "level", "nearest"]
@@ -19,13 +24,13 @@ def rows():
         for path in sorted(glob.glob(os.path.join(HERE, f"{build}_*.runs.csv"))):
             sweep = os.path.basename(path).split(".")[0]
             for r in csv.DictReader(open(path)):
-                shells = int(r["params"].split("shells=")[1].split(";")[0])
+                shells = int(params(r)["shells"])
                 out.setdefault((build, shells), []).append((sweep, r))
     return out
 
 
 def f(r, k):
-    return float(r[k] or 0)
+    return num(r, k) or 0.0
 
 
 def main():

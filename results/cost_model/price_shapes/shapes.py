@@ -28,9 +28,13 @@ Needs numpy and scipy (`pip install numpy scipy`). Usage, from the repository ro
 import csv
 import sys
 import tomllib
+from pathlib import Path
 
 import numpy as np
 from scipy.optimize import nnls
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+from tables import within  # noqa: E402  (results/tables.py: the shared helpers)
 
 S0 = 360_000.0
 SHAPES = {
@@ -149,11 +153,11 @@ def main(folder, calibrations):
                 by.setdefault(r["technique"], []).append(
                     float(r["gpu_wall_ms_median"]) / float(np.dot(x, c)))
             ratios = [v for vs in by.values() for v in vs]
-            within = sum(0.75 <= v <= 1.25 for v in ratios)
+            within_band = sum(within(v) for v in ratios)
             cells = [f"{min(by[t]):.2f}-{max(by[t]):.2f}" if t in by else ""
                      for t in ["reference", "zhang", "perbet", "bakay", "boulanger", "jahrmann"]]
             label = path.split("/")[-1] + (" (4x MSAA)" if msaa else "")
-            print(f"| {label} | {name} | {rms * 100:.1f} % | {within} of {len(ratios)} | "
+            print(f"| {label} | {name} | {rms * 100:.1f} % | {within_band} of {len(ratios)} | "
                   + " | ".join(cells) + " |")
 
 

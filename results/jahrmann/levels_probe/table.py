@@ -6,14 +6,15 @@ repository root:
 """
 import csv
 import os
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+from tables import params  # noqa: E402  (results/tables.py: the shared helpers)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # The meadow's blades at each density (`../README.md`'s density table).
 POPULATION = {"103.75": "500 312", "207.5": "1 000 098", "830": "4 002 240"}
-
-
-def param(r, key):
-    return dict(p.split("=", 1) for p in r["params"].split(";"))[key]
 
 
 def main():
@@ -25,7 +26,7 @@ def main():
         for r in csv.DictReader(open(os.path.join(HERE, f"{name}.runs.csv"))):
             runs.append((name, r))
             print(f"| {name} | {POPULATION[r['scene_variant'].split('grass.density=')[1].split(';')[0]]} "
-                  f"| {param(r, 'far_keep')} | {param(r, 'far_widen')} "
+                  f"| {params(r)['far_keep']} | {params(r)['far_widen']} "
                   f"| {float(r['gpu_wall_ms_median']):.0f} | {float(r['model_ms']):.0f} "
                   f"| {float(r['model_ratio']):.2f} | {int(r['fragment_invocations']) / 1e6:.1f} M "
                   f"| {int(r['fragments_passed']) / 1e6:.2f} M | {float(r['model_fragment_opaque_ms']):.0f} |")
@@ -36,14 +37,14 @@ def main():
     for name in ["keep_widen", "density_widen"]:
         group = [r for n, r in runs if n == name]
         for r in group:
-            if param(r, "far_widen") != "4":
+            if params(r)["far_widen"] != "4":
                 continue
-            twin = next(o for o in group if param(o, "far_widen") == "1"
-                        and param(o, "far_keep") == param(r, "far_keep")
+            twin = next(o for o in group if params(o)["far_widen"] == "1"
+                        and params(o)["far_keep"] == params(r)["far_keep"]
                         and o["scene_variant"] == r["scene_variant"])
             d = lambda k: float(r[k]) - float(twin[k])
             print(f"| {name} | {POPULATION[r['scene_variant'].split('grass.density=')[1].split(';')[0]]} "
-                  f"| {param(r, 'far_keep')} | {d('fragment_invocations') / 1e6:+.1f} M "
+                  f"| {params(r)['far_keep']} | {d('fragment_invocations') / 1e6:+.1f} M "
                   f"| {d('fragments_passed') / 1e6:+.2f} M | {d('gpu_wall_ms_median'):+.0f} "
                   f"| {d('model_ms'):+.0f} |")
 
