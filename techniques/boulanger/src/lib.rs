@@ -178,8 +178,9 @@
 //! on the Xeon, and 1.5-1.9 more for the second mip level a trilinear one blends (a GPU filters
 //! 64-bit texels at half rate, most of them); 42 % of what the cost model predicts for the
 //! walker's meadow is the slices' samples and blends (185 of 437 ms at 320x180), which it prices
-//! apart (`TEXTURE_FORMATS` in `pipelines.rs`; `results/cost_model/`, `3116f59`). Since the model prices a sample's second mip level on its own
-//! (`texture_mip_blend`), the slices' samples, which blend two levels, cost 2.7-3.1 ns plus
+//! apart (`TEXTURE_FORMATS` in `pipelines.rs`; `results/cost_model/`, `3116f59`). Since the
+//! model prices a sample's second mip level on its own (`texture_mip_blend`), the slices'
+//! samples, which blend two levels, cost 2.7-3.1 ns plus
 //! 1.8-2.2 for the blend on the 2.6 GHz EPYC, and the occlusion map's, read at level 0, 2.1-2.5
 //! ns: on the meadow at 320x180 the slices' samples and blends are 160 ms and the occlusion
 //! map's 25 of the 452 predicted, against 398.6 measured. Nothing grows with the virtual blade count except
